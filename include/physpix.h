@@ -1,0 +1,228 @@
+/* PhysPix — 2D rigid bodies whose shapes are bitmaps used as they are.
+ * The public C ABI: value handles, status codes, def structs with a struct_size.
+ * Units everywhere: pixels, seconds, radians; world y points down. */
+#ifndef PHYSPIX_H
+#define PHYSPIX_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(PHYSPIX_BUILD)
+#define PP_API __attribute__((visibility("default")))
+#else
+#define PP_API
+#endif
+
+/// Library major version (the soname carries it).
+#define PHYSPIX_VERSION_MAJOR 0
+/// Library minor version.
+#define PHYSPIX_VERSION_MINOR 1
+/// Library patch version.
+#define PHYSPIX_VERSION_PATCH 0
+
+/// Largest bitmap side accepted by pp_body_create, in pixels.
+#define PP_MAX_BITMAP_SIDE 16384
+/// Largest bitmap area (width × height) accepted by pp_body_create, in pixels.
+#define PP_MAX_BITMAP_AREA (8192 * 8192)
+/// Largest number of live bodies in one world.
+#define PP_MAX_BODIES (1 << 20)
+/// Largest number of live worlds in one process.
+#define PP_MAX_WORLDS 4096
+
+/// Result of every call that can fail; PP_OK is 0.
+typedef enum pp_status {
+    PP_OK = 0,                   ///< success
+    PP_ERR_INVALID_ARGUMENT = 1, ///< NULL, NaN, out-of-range or inconsistent argument
+    PP_ERR_INVALID_HANDLE = 2,   ///< a null, destroyed or stale world or body handle
+    PP_ERR_OUT_OF_MEMORY = 3,    ///< an allocation failed; nothing was changed
+    PP_ERR_IO = 4,               ///< a file could not be read or written
+    PP_ERR_FORMAT = 5,           ///< a file's contents are malformed
+    PP_ERR_UNSUPPORTED = 6,      ///< the feature is not available here (e.g. no GPU)
+    PP_ERR_LIMIT = 7,            ///< a size over the documented PP_MAX_* limits
+    PP_ERR_ABI = 8,              ///< a def struct whose struct_size does not match this library
+    PP_STATUS_FORCE_U32 = 0x7fffffff
+} pp_status;
+
+/// Which collision backend runs the narrowphase.
+typedef enum pp_backend {
+    PP_BACKEND_AUTO = 0, ///< the GPU where it pays off, else the CPU
+    PP_BACKEND_CPU = 1,  ///< the CPU reference backend
+    PP_BACKEND_GPU = 2,  ///< GLES 3.1 compute; PP_ERR_UNSUPPORTED where unavailable
+    PP_BACKEND_FORCE_U32 = 0x7fffffff
+} pp_backend;
+
+/// How a contact normal is estimated from the intersection raster.
+typedef enum pp_normal_method {
+    PP_NORMAL_AREA_GRADIENT = 0, ///< direction in which a unit shift of the second body shrinks the overlap fastest
+    PP_NORMAL_KERNEL = 1,        ///< the poster's 3×3 critical-pixel kernel, summed
+    PP_NORMAL_FORCE_U32 = 0x7fffffff
+} pp_normal_method;
+
+/// How many contact points a colliding pair produces.
+typedef enum pp_contact_mode {
+    PP_CONTACT_MANIFOLD = 0, ///< two points: the extremes of the intersection along the tangent
+    PP_CONTACT_CENTROID = 1, ///< one point: the intersection's centroid (the poster's)
+    PP_CONTACT_FORCE_U32 = 0x7fffffff
+} pp_contact_mode;
+
+/// How a body moves.
+typedef enum pp_body_type {
+    PP_BODY_DYNAMIC = 0,   ///< moved by forces and contacts
+    PP_BODY_STATIC = 1,    ///< never moves; no mass, no ODE body
+    PP_BODY_KINEMATIC = 2, ///< moved only by its velocity; pushes dynamic bodies, is never pushed
+    PP_BODY_FORCE_U32 = 0x7fffffff
+} pp_body_type;
+
+/// A 2D vector in pixels (or pixels per second, per the call).
+typedef struct pp_vec2 {
+    float x; ///< x component, pixels
+    float y; ///< y component, pixels (down is positive)
+} pp_vec2;
+
+/// A world handle; id 0 is never valid.
+typedef struct pp_world {
+    uint64_t id; ///< slot index and generation; opaque
+} pp_world;
+
+/// A body handle; id 0 is never valid.
+typedef struct pp_body {
+    uint64_t id; ///< slot index and generation; opaque
+} pp_body;
+
+/// Settings of a world; fill from pp_world_def_default(). Zero in a count field means its default.
+typedef struct pp_world_def {
+    uint32_t struct_size;           ///< sizeof(pp_world_def), set by pp_world_def_default
+    pp_vec2 gravity;                ///< acceleration, px/s² (default 0, 980)
+    int32_t substeps;               ///< solver steps per pp_world_step, 1..64 (default 2)
+    int32_t solver_iterations;      ///< QuickStep iterations, 1..1000 (default 20)
+    uint32_t exact_solver;          ///< nonzero: ODE's exact dWorldStep instead of QuickStep
+    pp_backend backend;             ///< collision backend (default AUTO)
+    pp_normal_method normal_method; ///< contact normal estimator (default AREA_GRADIENT)
+    pp_contact_mode contact_mode;   ///< contact points per pair (default MANIFOLD)
+    int32_t raster_stride;          ///< collision grid coarsening: 1, 2 or 4 pixels per sample (default 1)
+    float pixels_per_meter;         ///< internal length scale handed to ODE, px/m (default 100)
+    float contact_slop;             ///< penetration left uncorrected, px (default 1)
+    float contact_erp;              ///< fraction of penetration corrected per solver step, 0..1 (default 0.2)
+    float contact_cfm;              ///< contact softness, ODE constraint force mixing, non-dimensional (default 1e-5)
+    float bounce_threshold;         ///< approach speed below which restitution is ignored, px/s (default 20)
+    uint32_t allow_sleep;           ///< nonzero: resting bodies are put to sleep (default 1)
+    float sleep_linear_speed;       ///< speed under which a body may sleep, px/s (default 5)
+    float sleep_angular_speed;      ///< angular speed under which a body may sleep, rad/s (default 0.05)
+    float sleep_time;               ///< time a body must stay slow before it sleeps, s (default 0.5)
+} pp_world_def;
+
+/// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
+typedef struct pp_body_def {
+    uint32_t struct_size;     ///< sizeof(pp_body_def), set by pp_body_def_default
+    pp_body_type type;        ///< dynamic, static or kinematic (default DYNAMIC)
+    pp_vec2 position;         ///< world position of the pivot, px
+    float angle;              ///< rotation, radians (positive turns +x toward +y)
+    uint32_t custom_pivot;    ///< nonzero: use `pivot`; zero: the pivot is the bitmap centre
+    pp_vec2 pivot;            ///< pivot in bitmap coordinates (origin at the top-left corner), px
+    pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s
+    float angular_velocity;   ///< initial angular velocity, rad/s
+    float density;            ///< mass of one solid pixel of weight 255, mass units (default 1)
+    float friction;           ///< Coulomb coefficient, ≥ 0 (default 0.6); pairs use sqrt(fa·fb)
+    float restitution;        ///< bounciness 0..1 (default 0); pairs use max(ra, rb)
+    float linear_damping;     ///< velocity decay, 1/s (default 0)
+    float angular_damping;    ///< angular velocity decay, 1/s (default 0)
+    uint32_t category_bits;   ///< the categories this body is in (default 1)
+    uint32_t mask_bits;       ///< the categories it collides with (default all)
+    uint32_t fixed_rotation;  ///< nonzero: the body never rotates
+    int32_t width;            ///< bitmap width, px, 1..PP_MAX_BITMAP_SIDE
+    int32_t height;           ///< bitmap height, px, 1..PP_MAX_BITMAP_SIDE
+    const uint8_t *rgba;      ///< optional sprite, width·height·4 bytes, rows top to bottom
+    const uint8_t *mask;      ///< optional collision mask, width·height bytes, non-zero is solid; overrides rgba
+    const uint8_t *weights;   ///< optional relative mass per pixel 0..255, width·height bytes
+    uint32_t alpha_threshold; ///< sprite alpha at or above which a pixel is solid, 1..255 (default 128)
+    uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
+} pp_body_def;
+
+/// One contact point between two bodies.
+typedef struct pp_contact {
+    pp_body a;           ///< first body
+    pp_body b;           ///< second body
+    pp_vec2 point;       ///< world contact point, px
+    pp_vec2 normal;      ///< unit normal pointing from a to b
+    float depth;         ///< penetration along the normal, px
+    int32_t pixel_count; ///< intersecting pixels of the pair (shared by a pair's points)
+} pp_contact;
+
+/// What the last pp_world_step did and what it cost.
+typedef struct pp_step_stats {
+    float broadphase_ms;   ///< candidate-pair search, milliseconds (all substeps)
+    float narrowphase_ms;  ///< raster collision, milliseconds (all substeps)
+    float solver_ms;       ///< ODE, milliseconds (all substeps)
+    float total_ms;        ///< the whole step, milliseconds
+    int32_t bodies;        ///< live bodies
+    int32_t awake_bodies;  ///< dynamic or kinematic bodies not asleep
+    int32_t pairs;         ///< candidate pairs tested in the last substep
+    int32_t contacts;      ///< contact points made in the last substep
+    int64_t pixels_tested; ///< raster samples tested (all substeps)
+    pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
+    uint32_t reserved;     ///< zero
+} pp_step_stats;
+
+/// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
+typedef void (*pp_log_fn)(int level, const char *msg, void *user);
+
+/// Library version as MAJOR·10000 + MINOR·100 + PATCH.
+PP_API uint32_t pp_version(void);
+/// Static name of a status, e.g. "PP_ERR_LIMIT"; never NULL.
+PP_API const char *pp_status_name(pp_status status);
+/// Message of the last failure on the calling thread ("" if none); never NULL.
+PP_API const char *pp_last_error(void);
+/// Install a process-wide log hook (NULL removes it); called outside steps only.
+PP_API void pp_set_log_hook(pp_log_fn fn, void *user);
+
+/// Default world settings (the balanced preset).
+PP_API pp_world_def pp_world_def_default(void);
+/// Create a world from a def.
+PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
+/// Destroy a world and all its bodies; the handle becomes stale.
+PP_API pp_status pp_world_destroy(pp_world w);
+/// Advance the world by dt seconds (0 < dt ≤ 1), in `substeps` solver steps.
+PP_API pp_status pp_world_step(pp_world w, float dt);
+/// Write up to capacity live body handles; count receives the total.
+PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count);
+/// Write up to capacity contacts of the last substep; count receives the total.
+PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
+/// Statistics of the last step.
+PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
+/// Run the narrowphase on one pair at the current poses, without stepping; count receives the total.
+PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
+                                  int32_t *count);
+
+/// Default body settings: a dynamic body with no bitmap yet.
+PP_API pp_body_def pp_body_def_default(void);
+/// Create a body from a def; the bitmap planes are copied.
+PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out);
+/// Destroy a body; its handle becomes stale.
+PP_API pp_status pp_body_destroy(pp_world w, pp_body b);
+/// World position of the body's pivot, px.
+PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out);
+/// Rotation of the body, radians.
+PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out);
+/// Teleport the body: pivot to position (px), rotation to angle (radians); wakes it.
+PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, float angle);
+/// Velocity of the centre of mass (px/s) and angular velocity (rad/s); either pointer may be NULL.
+PP_API pp_status pp_body_get_velocity(pp_world w, pp_body b, pp_vec2 *linear, float *angular);
+/// Set the velocity of the centre of mass (px/s) and angular velocity (rad/s); wakes it.
+PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, float angular);
+/// Apply an impulse (mass·px/s) at a world point (px); wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point);
+/// Mass (mass units), centre of mass in bitmap coordinates (px) and inertia about it (mass·px²); any pointer may be NULL.
+PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia);
+/// Whether the body is awake (1) or asleep (0); static bodies are never awake.
+PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
+/// The host's value given in the body def.
+PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PHYSPIX_H */

@@ -1,0 +1,368 @@
+/* Bodies: the handle table (slot + generation), creation from a def, poses and velocities.
+ * A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
+#include "status.h"
+#include "world.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+PP_API pp_body_def pp_body_def_default(void)
+{
+    pp_body_def d;
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    d.type = PP_BODY_DYNAMIC;
+    d.density = 1.0f;
+    d.friction = 0.6f;
+    d.category_bits = 1;
+    d.mask_bits = 0xffffffffu;
+    d.alpha_threshold = 128;
+    return d;
+}
+
+body *body_lookup(world *wd, pp_body b, const char *fn)
+{
+    const uint32_t slot = (uint32_t)(b.id & 0xffffffffu) - 1, gen = (uint32_t)(b.id >> 32);
+    if (b.id == 0 || slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || !wd->bodies[slot]) {
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: body handle %#llx is null, destroyed or stale", fn,
+                (unsigned long long)b.id);
+        return NULL;
+    }
+    return wd->bodies[slot];
+}
+
+/* Look up both handles for a body call; returns the status to hand back. */
+static pp_status lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd)
+{
+    *wd = world_lookup(w, fn);
+    if (!*wd)
+        return PP_ERR_INVALID_HANDLE;
+    *bd = body_lookup(*wd, b, fn);
+    return *bd ? PP_OK : PP_ERR_INVALID_HANDLE;
+}
+
+void body_update_pose_cache(body *bd)
+{
+    const pp_raster *r = &bd->raster;
+    pp_aabb box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    if (!raster_empty(r)) {
+        const double xs[2] = {r->x0, r->x1}, ys[2] = {r->y0, r->y1};
+        for (int k = 0; k < 4; k++) {
+            const dvec2 w = dv_add(bd->pos, dv_rot(dv_sub(dv(xs[k & 1], ys[k >> 1]), bd->pivot), bd->cos_a, bd->sin_a));
+            box.x0 = fmin(box.x0, w.x), box.y0 = fmin(box.y0, w.y);
+            box.x1 = fmax(box.x1, w.x), box.y1 = fmax(box.y1, w.y);
+        }
+    }
+    bd->aabb = box;
+}
+
+static dvec2 body_com_local(const body *bd)
+{
+    return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
+}
+
+static dvec2 body_com_world(const body *bd)
+{
+    return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
+}
+
+void body_free(world *wd, body *bd)
+{
+    solver_body_destroy(wd->solver, &bd->sb);
+    raster_free(&bd->raster);
+    free(bd);
+}
+
+static pp_status check_body_def(const pp_body_def *d)
+{
+    static const char *fn = "pp_body_create";
+    if (d->struct_size != sizeof(pp_body_def))
+        return pp_fail(PP_ERR_ABI, "%s: def->struct_size is %u, this library expects %u", fn,
+                       (unsigned)d->struct_size, (unsigned)sizeof(pp_body_def));
+    if ((uint32_t)d->type > PP_BODY_KINEMATIC)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is unknown", fn, (int)d->type);
+    if (!finite2(d->position.x, d->position.y) || !isfinite(d->angle))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: position and angle must be finite", fn);
+    if (d->custom_pivot && !finite2(d->pivot.x, d->pivot.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: pivot must be finite", fn);
+    if (!finite2(d->linear_velocity.x, d->linear_velocity.y) || !isfinite(d->angular_velocity))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_velocity and angular_velocity must be finite", fn);
+    if (!(d->density > 0) || !isfinite(d->density))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: density must be finite and > 0, got %g", fn, d->density);
+    if (!(d->friction >= 0) || !isfinite(d->friction))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: friction must be finite and ≥ 0, got %g", fn, d->friction);
+    if (!(d->restitution >= 0 && d->restitution <= 1))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: restitution must be in 0..1, got %g", fn, d->restitution);
+    if (!(d->linear_damping >= 0 && d->angular_damping >= 0) || !isfinite(d->linear_damping) ||
+        !isfinite(d->angular_damping))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_damping and angular_damping must be finite and ≥ 0", fn);
+    return raster_check_def(d);
+}
+
+/* Reserve a slot; on failure nothing changes. */
+static pp_status alloc_slot(world *wd, uint32_t *slot)
+{
+    if (wd->free_count > 0) {
+        *slot = wd->free_slots[--wd->free_count];
+        return PP_OK;
+    }
+    if (wd->body_capacity >= PP_MAX_BODIES)
+        return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
+    const int32_t n = wd->body_capacity ? 2 * wd->body_capacity : 64;
+    body **bodies = realloc(wd->bodies, (size_t)n * sizeof *bodies);
+    if (bodies)
+        wd->bodies = bodies;
+    uint32_t *gens = realloc(wd->generations, (size_t)n * sizeof *gens);
+    if (gens)
+        wd->generations = gens;
+    uint32_t *fs = realloc(wd->free_slots, (size_t)n * sizeof *fs);
+    if (fs)
+        wd->free_slots = fs;
+    if (!bodies || !gens || !fs)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for %d body slots", (int)n);
+    for (int32_t i = wd->body_capacity; i < n; i++) {
+        wd->bodies[i] = NULL;
+        wd->generations[i] = 1;
+    }
+    /* Hand out low slots first so creation order is slot order. */
+    for (int32_t i = n - 1; i > wd->body_capacity; i--)
+        wd->free_slots[wd->free_count++] = (uint32_t)i;
+    *slot = (uint32_t)wd->body_capacity;
+    wd->body_capacity = n;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out)
+{
+    world *wd = world_lookup(w, "pp_body_create");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!def || !out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: %s is NULL", def ? "out" : "def");
+    pp_status st = check_body_def(def);
+    if (st)
+        return st;
+    body *bd = calloc(1, sizeof *bd);
+    if (!bd)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory");
+    if ((st = raster_init(&bd->raster, def))) {
+        free(bd);
+        return st;
+    }
+    bd->type = def->type;
+    mass_sums_of_raster(&bd->sums, &bd->raster);
+    if (def->type == PP_BODY_DYNAMIC && bd->raster.solid_count == 0)
+        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: a dynamic body needs solid pixels; the bitmap (%s) has none",
+                     def->mask ? "mask" : "rgba alpha");
+    else if (def->type == PP_BODY_DYNAMIC && bd->sums.w == 0)
+        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: a dynamic body needs mass; its weights sum to zero");
+    if (st) {
+        body_free(wd, bd);
+        return st;
+    }
+    if (def->type != PP_BODY_STATIC)
+        bd->mass = mass_from_sums(&bd->sums, bd->raster.width, bd->raster.height, def->density);
+    bd->density = def->density;
+    bd->friction = def->friction;
+    bd->restitution = def->restitution;
+    bd->linear_damping = def->linear_damping;
+    bd->angular_damping = def->angular_damping;
+    bd->category_bits = def->category_bits;
+    bd->mask_bits = def->mask_bits;
+    bd->fixed_rotation = def->fixed_rotation != 0;
+    bd->user_data = def->user_data;
+    bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
+    bd->pos = dv(def->position.x, def->position.y);
+    bd->angle = def->angle;
+    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    body_update_pose_cache(bd);
+
+    if (def->type != PP_BODY_STATIC) {
+        const solver_body_desc desc = {
+            def->type, bd->mass.mass, bd->mass.inertia, body_com_world(bd), bd->angle,
+            dv(def->linear_velocity.x, def->linear_velocity.y), def->fixed_rotation ? 0.0 : def->angular_velocity,
+            def->linear_damping, def->angular_damping, bd->fixed_rotation, bd,
+        };
+        if ((st = solver_body_create(wd->solver, &desc, &bd->sb))) {
+            body_free(wd, bd);
+            return st;
+        }
+    }
+    uint32_t slot = 0;
+    if ((st = alloc_slot(wd, &slot))) {
+        body_free(wd, bd);
+        return st;
+    }
+    bd->index = slot;
+    bd->handle.id = ((uint64_t)wd->generations[slot] << 32) | (slot + 1);
+    wd->bodies[slot] = bd;
+    wd->live_count++;
+    *out = bd->handle;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_destroy", &wd, &bd);
+    if (st)
+        return st;
+    const uint32_t slot = bd->index;
+    body_free(wd, bd);
+    wd->bodies[slot] = NULL;
+    if (++wd->generations[slot] == 0)
+        wd->generations[slot] = 1;
+    wd->free_slots[wd->free_count++] = slot;
+    wd->live_count--;
+    /* Contacts of the last step may name this body; drop them so none is stale. */
+    int32_t n = 0;
+    for (int32_t i = 0; i < wd->contact_count; i++)
+        if (wd->contacts[i].a.id != b.id && wd->contacts[i].b.id != b.id)
+            wd->contacts[n++] = wd->contacts[i];
+    wd->contact_count = n;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_get_position", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_position: out is NULL");
+    *out = (pp_vec2){(float)bd->pos.x, (float)bd->pos.y};
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_get_angle", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_angle: out is NULL");
+    *out = (float)bd->angle;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, float angle)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_set_transform", &wd, &bd);
+    if (st)
+        return st;
+    if (!finite2(position.x, position.y) || !isfinite(angle))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_transform: position and angle must be finite");
+    bd->pos = dv(position.x, position.y);
+    bd->angle = bd->fixed_rotation ? bd->angle : angle;
+    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    body_update_pose_cache(bd);
+    if (bd->sb.body) {
+        solver_body_set_pose(wd->solver, &bd->sb, body_com_world(bd), bd->angle);
+        solver_body_wake(&bd->sb);
+    }
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_velocity(pp_world w, pp_body b, pp_vec2 *linear, float *angular)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_get_velocity", &wd, &bd);
+    if (st)
+        return st;
+    solver_body_state s = {0};
+    if (bd->sb.body)
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+    if (linear)
+        *linear = (pp_vec2){(float)s.velocity.x, (float)s.velocity.y};
+    if (angular)
+        *angular = (float)s.angular_velocity;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, float angular)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_set_velocity", &wd, &bd);
+    if (st)
+        return st;
+    if (!finite2(linear.x, linear.y) || !isfinite(angular))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_velocity: linear and angular velocity must be finite");
+    if (!bd->sb.body)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_velocity: a static body cannot move");
+    solver_body_set_velocity(wd->solver, &bd->sb, dv(linear.x, linear.y), bd->fixed_rotation ? 0.0 : angular);
+    solver_body_wake(&bd->sb);
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_apply_impulse", &wd, &bd);
+    if (st)
+        return st;
+    if (!finite2(impulse.x, impulse.y) || !finite2(world_point.x, world_point.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_apply_impulse: impulse and world_point must be finite");
+    if (bd->type != PP_BODY_DYNAMIC)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_apply_impulse: only dynamic bodies take impulses");
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    const dvec2 J = dv(impulse.x, impulse.y), r = dv_sub(dv(world_point.x, world_point.y), s.com_world);
+    const dvec2 v = dv_add(s.velocity, dv_scale(J, 1.0 / bd->mass.mass));
+    const double wz = bd->fixed_rotation ? 0.0 : s.angular_velocity + (r.x * J.y - r.y * J.x) / bd->mass.inertia;
+    solver_body_set_velocity(wd->solver, &bd->sb, v, wz);
+    solver_body_wake(&bd->sb);
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_get_mass", &wd, &bd);
+    if (st)
+        return st;
+    const dvec2 c = body_com_local(bd);
+    if (mass)
+        *mass = (float)bd->mass.mass;
+    if (local_center)
+        *local_center = (pp_vec2){(float)c.x, (float)c.y};
+    if (inertia)
+        *inertia = (float)bd->mass.inertia;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_is_awake", &wd, &bd);
+    if (st)
+        return st;
+    if (!awake)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_is_awake: awake is NULL");
+    *awake = bd->sb.body ? solver_body_is_awake(&bd->sb) : 0;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = lookup(w, b, "pp_body_get_user_data", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_user_data: out is NULL");
+    *out = bd->user_data;
+    return PP_OK;
+}

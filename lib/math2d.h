@@ -1,0 +1,23 @@
+/* Small 2D helpers shared by the library (double precision inside, float at the ABI). */
+#ifndef PP_MATH2D_H
+#define PP_MATH2D_H
+
+#include <math.h>
+
+typedef struct dvec2 {
+    double x, y;
+} dvec2;
+
+static inline dvec2 dv(double x, double y) { return (dvec2){x, y}; }
+static inline dvec2 dv_add(dvec2 a, dvec2 b) { return dv(a.x + b.x, a.y + b.y); }
+static inline dvec2 dv_sub(dvec2 a, dvec2 b) { return dv(a.x - b.x, a.y - b.y); }
+static inline dvec2 dv_scale(dvec2 a, double s) { return dv(a.x * s, a.y * s); }
+static inline double dv_dot(dvec2 a, dvec2 b) { return a.x * b.x + a.y * b.y; }
+/* Rotate by angle (radians); +x turns toward +y. */
+static inline dvec2 dv_rot(dvec2 a, double c, double s) { return dv(c * a.x - s * a.y, s * a.x + c * a.y); }
+/* Rotate by −angle. */
+static inline dvec2 dv_unrot(dvec2 a, double c, double s) { return dv(c * a.x + s * a.y, -s * a.x + c * a.y); }
+
+static inline int finite2(float x, float y) { return isfinite(x) && isfinite(y); }
+
+#endif

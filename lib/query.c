@@ -1,0 +1,36 @@
+/* Queries that read the world without stepping it: the narrowphase on one chosen pair. */
+#include "status.h"
+#include "world.h"
+
+PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
+                                  int32_t *count)
+{
+    static const char *fn = "pp_world_collide";
+    world *wd = world_lookup(w, fn);
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    const body *ba = body_lookup(wd, a, fn);
+    if (!ba)
+        return PP_ERR_INVALID_HANDLE;
+    const body *bb = body_lookup(wd, b, fn);
+    if (!bb)
+        return PP_ERR_INVALID_HANDLE;
+    if (!count || capacity < 0 || (capacity > 0 && !out))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s", fn,
+                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    if (a.id == b.id)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a and b are the same body", fn);
+    const np_settings set = {wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
+    const np_body va = body_np_view(ba), vb = body_np_view(bb);
+    np_result r;
+    pp_status st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r);
+    if (st)
+        return st;
+    for (int32_t k = 0; k < r.count && k < capacity; k++) {
+        out[k] = r.contacts[k];
+        out[k].a = a;
+        out[k].b = b;
+    }
+    *count = r.count;
+    return PP_OK;
+}

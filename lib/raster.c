@@ -1,0 +1,74 @@
+/* Collision rasters: building the bit-packed mask from a sprite, a mask or both,
+ * and keeping the bounds of the solid pixels. */
+#include "raster.h"
+#include "status.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+pp_status raster_check_def(const pp_body_def *def)
+{
+    if (def->width <= 0 || def->height <= 0)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: width and height must be > 0, got %d × %d",
+                       (int)def->width, (int)def->height);
+    if (def->width > PP_MAX_BITMAP_SIDE || def->height > PP_MAX_BITMAP_SIDE)
+        return pp_fail(PP_ERR_LIMIT, "pp_body_create: width and height must be ≤ %d (PP_MAX_BITMAP_SIDE), got %d × %d",
+                       PP_MAX_BITMAP_SIDE, (int)def->width, (int)def->height);
+    if ((int64_t)def->width * def->height > (int64_t)PP_MAX_BITMAP_AREA)
+        return pp_fail(PP_ERR_LIMIT, "pp_body_create: width × height = %lld is over PP_MAX_BITMAP_AREA (%lld)",
+                       (long long)def->width * def->height, (long long)PP_MAX_BITMAP_AREA);
+    if (!def->rgba && !def->mask)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: the def has no bitmap (rgba and mask are both NULL)");
+    if (!def->mask && (def->alpha_threshold < 1 || def->alpha_threshold > 255))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: alpha_threshold must be 1..255, got %u",
+                       (unsigned)def->alpha_threshold);
+    return PP_OK;
+}
+
+pp_status raster_init(pp_raster *r, const pp_body_def *def)
+{
+    memset(r, 0, sizeof *r);
+    const int32_t w = def->width, h = def->height;
+    r->width = w;
+    r->height = h;
+    r->words_per_row = (w + 63) / 64;
+    r->bits = calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
+    if (!r->bits)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);
+    if (def->weights) {
+        r->weights = malloc((size_t)w * (size_t)h);
+        if (!r->weights) {
+            free(r->bits);
+            r->bits = NULL;
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d weight plane", (int)w, (int)h);
+        }
+        memcpy(r->weights, def->weights, (size_t)w * (size_t)h);
+    }
+
+    int32_t x0 = w, y0 = h, x1 = 0, y1 = 0;
+    const uint8_t thr = (uint8_t)def->alpha_threshold;
+    for (int32_t y = 0; y < h; y++) {
+        uint64_t *row = r->bits + (int64_t)y * r->words_per_row;
+        const int64_t base = (int64_t)y * w;
+        for (int32_t x = 0; x < w; x++) {
+            const bool solid = def->mask ? def->mask[base + x] != 0 : def->rgba[4 * (base + x) + 3] >= thr;
+            if (!solid)
+                continue;
+            row[x >> 6] |= (uint64_t)1 << (x & 63);
+            r->solid_count++;
+            if (x < x0) x0 = x;
+            if (x >= x1) x1 = x + 1;
+            if (y < y0) y0 = y;
+            y1 = y + 1;
+        }
+    }
+    r->x0 = x0, r->y0 = y0, r->x1 = x1, r->y1 = y1;
+    return PP_OK;
+}
+
+void raster_free(pp_raster *r)
+{
+    free(r->bits);
+    free(r->weights);
+    memset(r, 0, sizeof *r);
+}

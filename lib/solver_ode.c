@@ -1,0 +1,213 @@
+/* The ODE world: one ODE body per dynamic or kinematic body with its centre of mass at the body
+ * origin, a plane-2D joint each, contact joints from the raster contacts, QuickStep or Step.
+ * Lengths are divided by pixels_per_meter so ODE's tolerances see metre-sized numbers. */
+#include "solver_ode.h"
+#include "status.h"
+
+#include <ode/ode.h>
+#include <pthread.h>
+#include <stdlib.h>
+
+struct pp_solver {
+    dWorldID world;
+    dJointGroupID contacts;
+    double ppm, inv_ppm;
+    double erp, cfm, bounce_vel;  /* bounce_vel in m/s */
+    bool exact;
+    uint64_t steps;               /* seeds QuickStep's constraint shuffle */
+};
+
+static pthread_once_t ode_once = PTHREAD_ONCE_INIT;
+static bool ode_ok;
+/* ODE's random generator is process-wide: seeding and stepping happen under one lock. */
+static pthread_mutex_t ode_step_lock = PTHREAD_MUTEX_INITIALIZER;
+static _Thread_local bool ode_thread_ready;
+
+static void ode_init_once(void)
+{
+    ode_ok = dInitODE2(0) && dCheckConfiguration("ODE_double_precision");
+}
+
+static pp_status ode_ready(void)
+{
+    pthread_once(&ode_once, ode_init_once);
+    if (!ode_ok)
+        return pp_fail(PP_ERR_UNSUPPORTED, "ODE failed to initialise or is not the double-precision build");
+    if (!ode_thread_ready) {
+        if (!dAllocateODEDataForThread(dAllocateMaskAll))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "ODE could not allocate its per-thread data");
+        ode_thread_ready = true;
+    }
+    return PP_OK;
+}
+
+pp_status solver_create(const pp_world_def *def, pp_solver **out)
+{
+    pp_status st = ode_ready();
+    if (st)
+        return st;
+    pp_solver *s = calloc(1, sizeof *s);
+    if (!s)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory for the solver");
+    s->ppm = def->pixels_per_meter;
+    s->inv_ppm = 1.0 / def->pixels_per_meter;
+    s->erp = def->contact_erp;
+    s->cfm = def->contact_cfm;
+    s->bounce_vel = def->bounce_threshold * s->inv_ppm;
+    s->exact = def->exact_solver != 0;
+    s->world = dWorldCreate();
+    s->contacts = dJointGroupCreate(0);
+    dWorldSetGravity(s->world, def->gravity.x * s->inv_ppm, def->gravity.y * s->inv_ppm, 0);
+    dWorldSetQuickStepNumIterations(s->world, def->solver_iterations);
+    dWorldSetContactSurfaceLayer(s->world, def->contact_slop * s->inv_ppm);
+    dWorldSetAutoDisableFlag(s->world, def->allow_sleep ? 1 : 0);
+    dWorldSetAutoDisableLinearThreshold(s->world, def->sleep_linear_speed * s->inv_ppm);
+    dWorldSetAutoDisableAngularThreshold(s->world, def->sleep_angular_speed);
+    dWorldSetAutoDisableTime(s->world, def->sleep_time);
+    dWorldSetAutoDisableSteps(s->world, 0);
+    *out = s;
+    return PP_OK;
+}
+
+void solver_destroy(pp_solver *s)
+{
+    if (!s)
+        return;
+    dJointGroupDestroy(s->contacts);
+    dWorldDestroy(s->world);
+    free(s);
+}
+
+static void set_rotation_z(dBodyID b, double angle)
+{
+    dMatrix3 R;
+    dRFromAxisAndAngle(R, 0, 0, 1, angle);
+    dBodySetRotation(b, R);
+}
+
+pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_body *out)
+{
+    dBodyID b = dBodyCreate(s->world);
+    if (d->type == PP_BODY_KINEMATIC) {
+        dBodySetKinematic(b);
+        dBodySetAutoDisableFlag(b, 0);
+    } else {
+        dMass m;
+        dMassSetZero(&m);
+        const double I = d->inertia * s->inv_ppm * s->inv_ppm;
+        /* Only I33 acts in the plane; the other two keep the tensor well-conditioned. */
+        dMassSetParameters(&m, d->mass, 0, 0, 0, I, I, I, 0, 0, 0);
+        dBodySetMass(b, &m);
+        dBodySetLinearDamping(b, d->linear_damping);
+        dBodySetAngularDamping(b, d->angular_damping);
+    }
+    dBodySetData(b, d->user);
+    dJointID plane = dJointCreatePlane2D(s->world, 0);
+    dJointAttach(plane, b, 0);
+    if (d->fixed_rotation) {
+        /* The plane-2D angle motor holding ω = 0 with unbounded torque. */
+        dJointSetPlane2DAngleParam(plane, dParamVel, 0);
+        dJointSetPlane2DAngleParam(plane, dParamFMax, dInfinity);
+    }
+    out->body = b;
+    out->plane = plane;
+    solver_body_set_pose(s, out, d->com_world, d->angle);
+    solver_body_set_velocity(s, out, d->velocity, d->angular_velocity);
+    return PP_OK;
+}
+
+void solver_body_destroy(pp_solver *s, solver_body *sb)
+{
+    if (sb->plane)
+        dJointDestroy((dJointID)sb->plane);
+    if (sb->body)
+        dBodyDestroy((dBodyID)sb->body);
+    sb->body = sb->plane = NULL;
+}
+
+void solver_body_set_pose(pp_solver *s, const solver_body *sb, dvec2 com, double angle)
+{
+    dBodyID b = sb->body;
+    dBodySetPosition(b, com.x * s->inv_ppm, com.y * s->inv_ppm, 0);
+    set_rotation_z(b, angle);
+}
+
+void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w)
+{
+    dBodySetLinearVel(sb->body, v.x * s->inv_ppm, v.y * s->inv_ppm, 0);
+    dBodySetAngularVel(sb->body, 0, 0, w);
+}
+
+void solver_body_wake(const solver_body *sb)
+{
+    if (sb->body)
+        dBodyEnable(sb->body);
+}
+
+bool solver_body_is_awake(const solver_body *sb) { return dBodyIsEnabled((dBodyID)sb->body) != 0; }
+
+void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out)
+{
+    dBodyID b = sb->body;
+    const dReal *p = dBodyGetPosition(b), *R = dBodyGetRotation(b);
+    const dReal *v = dBodyGetLinearVel(b), *w = dBodyGetAngularVel(b);
+    out->com_world = dv(p[0] * s->ppm, p[1] * s->ppm);
+    out->angle = atan2(R[4], R[0]);
+    out->velocity = dv(v[0] * s->ppm, v[1] * s->ppm);
+    out->angular_velocity = w[2];
+    out->awake = dBodyIsEnabled(b) != 0;
+}
+
+void solver_add_contact(pp_solver *s, const solver_contact *c)
+{
+    dContact ct = {0};
+    ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    ct.surface.mu = c->friction;
+    if (c->restitution > 0) {
+        ct.surface.mode |= dContactBounce;
+        ct.surface.bounce = c->restitution;
+        ct.surface.bounce_vel = s->bounce_vel;
+    }
+    /* cfm is relative to the pair's reduced mass, so softness does not depend on body size. */
+    const double inv_m = c->inv_mass_a + c->inv_mass_b;
+    ct.surface.soft_erp = s->erp;
+    ct.surface.soft_cfm = s->cfm * (inv_m > 0 ? inv_m : 1.0);
+    /* ODE pushes body 1 along the normal to separate: our normal points from a to b, so negate. */
+    ct.geom.pos[0] = c->point.x * s->inv_ppm;
+    ct.geom.pos[1] = c->point.y * s->inv_ppm;
+    ct.geom.normal[0] = -c->normal.x;
+    ct.geom.normal[1] = -c->normal.y;
+    ct.geom.depth = c->depth * s->inv_ppm;
+    dJointID j = dJointCreateContact(s->world, s->contacts, &ct);
+    dJointAttach(j, c->a ? (dBodyID)c->a->body : 0, c->b ? (dBodyID)c->b->body : 0);
+}
+
+/* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;
+ * project the body back to a pure z rotation, as ODE's own plane-2D demo does. */
+void solver_body_flatten(const solver_body *sb)
+{
+    dBodyID b = sb->body;
+    if (!dBodyIsEnabled(b))
+        return;
+    const dReal *R = dBodyGetRotation(b), *w = dBodyGetAngularVel(b), *p = dBodyGetPosition(b);
+    const dReal *v = dBodyGetLinearVel(b);
+    const double angle = atan2(R[4], R[0]), wz = w[2];
+    const double px = p[0], py = p[1], vx = v[0], vy = v[1];
+    set_rotation_z(b, angle);
+    dBodySetAngularVel(b, 0, 0, wz);
+    dBodySetPosition(b, px, py, 0);
+    dBodySetLinearVel(b, vx, vy, 0);
+}
+
+void solver_step(pp_solver *s, double h)
+{
+    pthread_mutex_lock(&ode_step_lock);
+    dRandSetSeed((unsigned long)(s->steps * 2654435761u + 12345u));
+    if (s->exact)
+        dWorldStep(s->world, h);
+    else
+        dWorldQuickStep(s->world, h);
+    pthread_mutex_unlock(&ode_step_lock);
+    s->steps++;
+    dJointGroupEmpty(s->contacts);
+}

@@ -1,0 +1,69 @@
+/* The rigid-body solver: an ODE world constrained to the plane, in metres inside and pixels
+ * outside. ODE types stay in solver_ode.c; the rest of the library sees opaque pointers. */
+#ifndef PP_SOLVER_ODE_H
+#define PP_SOLVER_ODE_H
+
+#include "math2d.h"
+#include "physpix.h"
+
+#include <stdbool.h>
+
+typedef struct pp_solver pp_solver;
+
+/* A body's ODE objects; both NULL for static bodies. */
+typedef struct solver_body {
+    void *body;
+    void *plane;
+} solver_body;
+
+/* What the solver needs to create or update a body. */
+typedef struct solver_body_desc {
+    pp_body_type type;
+    double mass, inertia;      /* mass units, mass·px² */
+    dvec2 com_world;           /* px */
+    double angle;              /* rad */
+    dvec2 velocity;            /* of the centre of mass, px/s */
+    double angular_velocity;   /* rad/s */
+    double linear_damping, angular_damping;
+    bool fixed_rotation;
+    void *user;                /* the library's body record */
+} solver_body_desc;
+
+/* The state read back after a step. */
+typedef struct solver_body_state {
+    dvec2 com_world;
+    double angle;
+    dvec2 velocity;
+    double angular_velocity;
+    bool awake;
+} solver_body_state;
+
+/* One contact handed to the solver; normal points from a to b. */
+typedef struct solver_contact {
+    const solver_body *a, *b;  /* b may be a static body (no ODE body) */
+    double inv_mass_a, inv_mass_b;
+    dvec2 point, normal;       /* px, unit */
+    double depth;              /* px */
+    double friction, restitution;
+} solver_contact;
+
+pp_status solver_create(const pp_world_def *def, pp_solver **out);
+void solver_destroy(pp_solver *s);
+
+pp_status solver_body_create(pp_solver *s, const solver_body_desc *desc, solver_body *out);
+void solver_body_destroy(pp_solver *s, solver_body *sb);
+void solver_body_set_pose(pp_solver *s, const solver_body *sb, dvec2 com_world, double angle);
+void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w);
+void solver_body_wake(const solver_body *sb);
+bool solver_body_is_awake(const solver_body *sb);
+/* Undo ODE's drift out of the plane; call once per body after each step. */
+void solver_body_flatten(const solver_body *sb);
+void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
+
+/* Add a contact joint for the next step. */
+void solver_add_contact(pp_solver *s, const solver_contact *c);
+
+/* Advance by h seconds (one substep) and drop the contact joints. */
+void solver_step(pp_solver *s, double h);
+
+#endif

@@ -1,0 +1,59 @@
+/* Status names, the thread-local last-error message, the log hook, the version. */
+#include "status.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+static _Thread_local char last_error[512];
+static pp_log_fn log_fn;
+static void *log_user;
+
+pp_status pp_fail(pp_status status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(last_error, sizeof last_error, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+void pp_log(int level, const char *fmt, ...)
+{
+    if (!log_fn)
+        return;
+    char line[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    log_fn(level, line, log_user);
+}
+
+PP_API void pp_set_log_hook(pp_log_fn fn, void *user)
+{
+    log_fn = fn;
+    log_user = user;
+}
+
+PP_API const char *pp_last_error(void) { return last_error; }
+
+PP_API uint32_t pp_version(void)
+{
+    return PHYSPIX_VERSION_MAJOR * 10000u + PHYSPIX_VERSION_MINOR * 100u + PHYSPIX_VERSION_PATCH;
+}
+
+PP_API const char *pp_status_name(pp_status status)
+{
+    switch (status) {
+    case PP_OK: return "PP_OK";
+    case PP_ERR_INVALID_ARGUMENT: return "PP_ERR_INVALID_ARGUMENT";
+    case PP_ERR_INVALID_HANDLE: return "PP_ERR_INVALID_HANDLE";
+    case PP_ERR_OUT_OF_MEMORY: return "PP_ERR_OUT_OF_MEMORY";
+    case PP_ERR_IO: return "PP_ERR_IO";
+    case PP_ERR_FORMAT: return "PP_ERR_FORMAT";
+    case PP_ERR_UNSUPPORTED: return "PP_ERR_UNSUPPORTED";
+    case PP_ERR_LIMIT: return "PP_ERR_LIMIT";
+    case PP_ERR_ABI: return "PP_ERR_ABI";
+    default: return "PP_STATUS_UNKNOWN";
+    }
+}

@@ -1,0 +1,14 @@
+/* Status codes with a thread-local message, and the process-wide log hook. */
+#ifndef PP_STATUS_H
+#define PP_STATUS_H
+
+#include "physpix.h"
+
+/* Record a failure for pp_last_error() and return the status, so call sites read
+ * `return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be > 0, got %g", dt);`. */
+pp_status pp_fail(pp_status status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Send a line to the host's log hook, if one is installed. */
+void pp_log(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif

@@ -1,0 +1,338 @@
+/* World lifetime, the handle tables, and the step loop:
+ * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
+#include "world.h"
+#include "status.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1). */
+static world *worlds[PP_MAX_WORLDS];
+static uint32_t world_generations[PP_MAX_WORLDS];
+static pthread_mutex_t worlds_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+world *world_lookup(pp_world w, const char *fn)
+{
+    const uint32_t slot = (uint32_t)(w.id & 0xffffffffu) - 1, gen = (uint32_t)(w.id >> 32);
+    world *wd = NULL;
+    pthread_mutex_lock(&worlds_lock);
+    if (w.id != 0 && slot < PP_MAX_WORLDS && world_generations[slot] == gen)
+        wd = worlds[slot];
+    pthread_mutex_unlock(&worlds_lock);
+    if (!wd)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: world handle %#llx is null, destroyed or stale", fn,
+                (unsigned long long)w.id);
+    return wd;
+}
+
+PP_API pp_world_def pp_world_def_default(void)
+{
+    pp_world_def d;
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    d.gravity = (pp_vec2){0.0f, 980.0f};
+    d.substeps = 2;
+    d.solver_iterations = 20;
+    d.backend = PP_BACKEND_AUTO;
+    d.normal_method = PP_NORMAL_AREA_GRADIENT;
+    d.contact_mode = PP_CONTACT_MANIFOLD;
+    d.raster_stride = 1;
+    d.pixels_per_meter = 100.0f;
+    d.contact_slop = 1.0f;
+    d.contact_erp = 0.2f;
+    d.contact_cfm = 1e-5f;
+    d.bounce_threshold = 20.0f;
+    d.allow_sleep = 1;
+    d.sleep_linear_speed = 5.0f;
+    d.sleep_angular_speed = 0.05f;
+    d.sleep_time = 0.5f;
+    return d;
+}
+
+static pp_status check_world_def(const pp_world_def *d)
+{
+    if (d->struct_size != sizeof(pp_world_def))
+        return pp_fail(PP_ERR_ABI, "pp_world_create: def->struct_size is %u, this library expects %u",
+                       (unsigned)d->struct_size, (unsigned)sizeof(pp_world_def));
+    if (!finite2(d->gravity.x, d->gravity.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: gravity must be finite");
+    if (d->substeps < 1 || d->substeps > 64)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: substeps must be 1..64, got %d", (int)d->substeps);
+    if (d->solver_iterations < 1 || d->solver_iterations > 1000)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: solver_iterations must be 1..1000, got %d",
+                       (int)d->solver_iterations);
+    if (d->raster_stride != 1 && d->raster_stride != 2 && d->raster_stride != 4)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: raster_stride must be 1, 2 or 4, got %d",
+                       (int)d->raster_stride);
+    if ((uint32_t)d->normal_method > PP_NORMAL_KERNEL)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: normal_method %d is unknown", (int)d->normal_method);
+    if ((uint32_t)d->contact_mode > PP_CONTACT_CENTROID)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_mode %d is unknown", (int)d->contact_mode);
+    if ((uint32_t)d->backend > PP_BACKEND_GPU)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: backend %d is unknown", (int)d->backend);
+    if (d->backend == PP_BACKEND_GPU)
+        return pp_fail(PP_ERR_UNSUPPORTED, "pp_world_create: backend GPU: this build has no GPU collision backend");
+    if (!(d->pixels_per_meter > 0) || !isfinite(d->pixels_per_meter))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: pixels_per_meter must be finite and > 0");
+    if (!(d->contact_slop >= 0) || !isfinite(d->contact_slop))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_slop must be finite and ≥ 0");
+    if (!(d->contact_erp >= 0 && d->contact_erp <= 1))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_erp must be in 0..1");
+    if (!(d->contact_cfm >= 0) || !isfinite(d->contact_cfm))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_cfm must be finite and ≥ 0");
+    if (!(d->bounce_threshold >= 0) || !isfinite(d->bounce_threshold))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: bounce_threshold must be finite and ≥ 0");
+    if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
+        !isfinite(d->sleep_linear_speed) || !isfinite(d->sleep_angular_speed) || !isfinite(d->sleep_time))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: sleep thresholds must be finite and ≥ 0");
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
+{
+    if (!def || !out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: %s is NULL", def ? "out" : "def");
+    pp_status st = check_world_def(def);
+    if (st)
+        return st;
+    world *wd = calloc(1, sizeof *wd);
+    if (!wd)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");
+    wd->def = *def;
+    if ((st = solver_create(def, &wd->solver))) {
+        free(wd);
+        return st;
+    }
+    pthread_mutex_lock(&worlds_lock);
+    uint32_t slot = 0;
+    while (slot < PP_MAX_WORLDS && worlds[slot])
+        slot++;
+    if (slot == PP_MAX_WORLDS) {
+        pthread_mutex_unlock(&worlds_lock);
+        solver_destroy(wd->solver);
+        free(wd);
+        return pp_fail(PP_ERR_LIMIT, "pp_world_create: already %d live worlds (PP_MAX_WORLDS)", PP_MAX_WORLDS);
+    }
+    if (world_generations[slot] == 0)
+        world_generations[slot] = 1;
+    worlds[slot] = wd;
+    wd->slot = slot;
+    wd->handle.id = ((uint64_t)world_generations[slot] << 32) | (slot + 1);
+    pthread_mutex_unlock(&worlds_lock);
+    wd->stats.backend = PP_BACKEND_CPU;
+    *out = wd->handle;
+    return PP_OK;
+}
+
+void body_free(world *wd, body *bd); /* body.c */
+
+PP_API pp_status pp_world_destroy(pp_world w)
+{
+    world *wd = world_lookup(w, "pp_world_destroy");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    pthread_mutex_lock(&worlds_lock);
+    worlds[wd->slot] = NULL;
+    world_generations[wd->slot]++;
+    if (world_generations[wd->slot] == 0)
+        world_generations[wd->slot] = 1;
+    pthread_mutex_unlock(&worlds_lock);
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i])
+            body_free(wd, wd->bodies[i]);
+    solver_destroy(wd->solver);
+    broadphase_free(&wd->broad);
+    np_scratch_free(&wd->scratch);
+    free(wd->bodies);
+    free(wd->generations);
+    free(wd->free_slots);
+    free(wd->contacts);
+    free(wd);
+    return PP_OK;
+}
+
+static pp_status push_contact(world *wd, const pp_contact *c)
+{
+    if (wd->contact_count == wd->contact_capacity) {
+        const int32_t n = wd->contact_capacity ? 2 * wd->contact_capacity : 256;
+        pp_contact *p = realloc(wd->contacts, (size_t)n * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)n);
+        wd->contacts = p;
+        wd->contact_capacity = n;
+    }
+    wd->contacts[wd->contact_count++] = *c;
+    return PP_OK;
+}
+
+static double inv_mass(const body *bd)
+{
+    return bd->type == PP_BODY_DYNAMIC && bd->mass.mass > 0 ? 1.0 / bd->mass.mass : 0.0;
+}
+
+/* Broadphase and narrowphase at the current poses; fills wd->contacts. */
+static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
+{
+    const double t0 = now_ms();
+    bp_proxy *proxies = calloc((size_t)wd->body_capacity + 1, sizeof *proxies);
+    if (!proxies)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (!bd)
+            continue;
+        proxies[i] = (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
+                                bd->type == PP_BODY_DYNAMIC,
+                                bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
+                                true};
+    }
+    pp_status st = broadphase_find_pairs(&wd->broad, proxies, wd->body_capacity);
+    free(proxies);
+    if (st)
+        return st;
+    const double t1 = now_ms();
+
+    const np_settings set = {wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
+    wd->contact_count = 0;
+    for (int32_t p = 0; p < wd->broad.pair_count; p++) {
+        const body *a = wd->bodies[wd->broad.pairs[p].a], *b = wd->bodies[wd->broad.pairs[p].b];
+        const np_body va = body_np_view(a), vb = body_np_view(b);
+        np_result r;
+        if ((st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r)))
+            return st;
+        wd->stats.pixels_tested += r.samples;
+        for (int32_t k = 0; k < r.count; k++) {
+            r.contacts[k].a = a->handle;
+            r.contacts[k].b = b->handle;
+            if ((st = push_contact(wd, &r.contacts[k])))
+                return st;
+        }
+    }
+    wd->stats.pairs = wd->broad.pair_count;
+    wd->stats.contacts = wd->contact_count;
+    *t_broad += t1 - t0;
+    *t_narrow += now_ms() - t1;
+    return PP_OK;
+}
+
+static void add_contact_joints(world *wd)
+{
+    for (int32_t i = 0; i < wd->contact_count; i++) {
+        const pp_contact *c = &wd->contacts[i];
+        const body *a = wd->bodies[(uint32_t)c->a.id - 1], *b = wd->bodies[(uint32_t)c->b.id - 1];
+        const solver_contact sc = {
+            a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
+            dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
+            sqrt(a->friction * b->friction), fmax(a->restitution, b->restitution),
+        };
+        solver_add_contact(wd->solver, &sc);
+    }
+}
+
+/* Read every moving body back from ODE into the cached pose. */
+static void sync_bodies(world *wd)
+{
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        body *bd = wd->bodies[i];
+        if (!bd || !bd->sb.body)
+            continue;
+        solver_body_flatten(&bd->sb);
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        bd->angle = s.angle;
+        bd->cos_a = cos(s.angle), bd->sin_a = sin(s.angle);
+        /* pivot = com − R(angle)·(com_local − pivot) */
+        const dvec2 arm = dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), bd->cos_a, bd->sin_a);
+        bd->pos = dv_sub(s.com_world, arm);
+        body_update_pose_cache(bd);
+    }
+}
+
+PP_API pp_status pp_world_step(pp_world w, float dt)
+{
+    world *wd = world_lookup(w, "pp_world_step");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!isfinite(dt) || !(dt > 0) || dt > 1)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be finite and in (0, 1] s, got %g", dt);
+    const double t_start = now_ms();
+    double t_broad = 0, t_narrow = 0, t_solver = 0;
+    wd->stats.pixels_tested = 0;
+    const double h = (double)dt / wd->def.substeps;
+    for (int32_t k = 0; k < wd->def.substeps; k++) {
+        pp_status st = find_contacts(wd, &t_broad, &t_narrow);
+        if (st)
+            return st;
+        const double t0 = now_ms();
+        add_contact_joints(wd);
+        solver_step(wd->solver, h);
+        sync_bodies(wd);
+        t_solver += now_ms() - t0;
+    }
+    int32_t awake = 0;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i] && wd->bodies[i]->sb.body && solver_body_is_awake(&wd->bodies[i]->sb))
+            awake++;
+    wd->stats.broadphase_ms = (float)t_broad;
+    wd->stats.narrowphase_ms = (float)t_narrow;
+    wd->stats.solver_ms = (float)t_solver;
+    wd->stats.total_ms = (float)(now_ms() - t_start);
+    wd->stats.bodies = wd->live_count;
+    wd->stats.awake_bodies = awake;
+    wd->stats.backend = PP_BACKEND_CPU;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count)
+{
+    world *wd = world_lookup(w, "pp_world_get_bodies");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!count || capacity < 0 || (capacity > 0 && !out))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_bodies: %s",
+                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    int32_t n = 0;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i]) {
+            if (n < capacity)
+                out[n] = wd->bodies[i]->handle;
+            n++;
+        }
+    *count = n;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count)
+{
+    world *wd = world_lookup(w, "pp_world_get_contacts");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!count || capacity < 0 || (capacity > 0 && !out))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_contacts: %s",
+                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    const int32_t n = wd->contact_count < capacity ? wd->contact_count : capacity;
+    if (n > 0)
+        memcpy(out, wd->contacts, (size_t)n * sizeof *out);
+    *count = wd->contact_count;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out)
+{
+    world *wd = world_lookup(w, "pp_world_get_stats");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_stats: out is NULL");
+    *out = wd->stats;
+    return PP_OK;
+}

@@ -1,0 +1,61 @@
+/* The private world and body records shared by world.c, body.c, query.c and the solver glue. */
+#ifndef PP_WORLD_H
+#define PP_WORLD_H
+
+#include "broadphase.h"
+#include "massprops.h"
+#include "math2d.h"
+#include "narrowphase.h"
+#include "raster.h"
+#include "solver_ode.h"
+
+#include <stdbool.h>
+
+typedef struct body {
+    uint32_t index;          /* slot in the world's body table */
+    pp_body handle;
+    pp_body_type type;
+    pp_raster raster;
+    pp_mass_sums sums;
+    pp_mass mass;            /* zero for static bodies */
+    double density, friction, restitution, linear_damping, angular_damping;
+    uint32_t category_bits, mask_bits;
+    bool fixed_rotation;
+    dvec2 pivot;             /* bitmap coordinates, px */
+    dvec2 pos;               /* world position of the pivot, px */
+    double angle, cos_a, sin_a;
+    solver_body sb;          /* the ODE body; empty for static bodies */
+    pp_aabb aabb;            /* world bounds of the solid pixels */
+    uint64_t user_data;
+} body;
+
+typedef struct world {
+    uint32_t slot;
+    pp_world handle;
+    pp_world_def def;
+    body **bodies;           /* by slot; NULL where free */
+    uint32_t *generations;   /* by slot; bumped on destroy so old handles go stale */
+    uint32_t *free_slots;
+    int32_t body_capacity, free_count, live_count;
+    pp_solver *solver;
+    pp_broadphase broad;
+    pp_contact *contacts;    /* the last substep's contacts */
+    int32_t contact_count, contact_capacity;
+    np_scratch scratch;
+    pp_step_stats stats;
+} world;
+
+/* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
+world *world_lookup(pp_world w, const char *fn);
+body *body_lookup(world *wd, pp_body b, const char *fn);
+
+/* Refresh cached trig and world bounds after a pose change. */
+void body_update_pose_cache(body *bd);
+
+/* The narrowphase's view of a body at its current pose. */
+static inline np_body body_np_view(const body *bd)
+{
+    return (np_body){&bd->raster, bd->pos, bd->pivot, bd->cos_a, bd->sin_a};
+}
+
+#endif

@@ -1,0 +1,13 @@
+/* The public header compiles as C11 with -Werror, and its structs have the documented layout. */
+#include "physpix.h"
+#include <stddef.h>
+
+_Static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
+_Static_assert(sizeof(pp_world) == 8 && sizeof(pp_body) == 8, "handle layout");
+_Static_assert(sizeof(pp_contact) == 40, "pp_contact layout");
+_Static_assert(sizeof(pp_status) == 4 && sizeof(pp_body_type) == 4, "enums are 32-bit");
+_Static_assert(offsetof(pp_world_def, struct_size) == 0, "struct_size first");
+_Static_assert(offsetof(pp_body_def, struct_size) == 0, "struct_size first");
+
+int physpix_header_c_check(void);
+int physpix_header_c_check(void) { return (int)sizeof(pp_body_def) + (int)sizeof(pp_world_def); }
