@@ -9,6 +9,9 @@
 #include <limits.h>
 #include <stdlib.h>
 
+/* Sampled ring around the inner grid: the 5×5 taper window reaches two cells out. */
+#define RING 2
+
 static const int8_t NB[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 
 static inline int64_t floor_div(int64_t a, int64_t b)
@@ -23,6 +26,19 @@ static inline uint8_t sample_fixed(const pp_raster *r, int64_t qx, int64_t qy)
 {
     const int64_t x = qx >> NP_FIX_BITS, y = qy >> NP_FIX_BITS; /* arithmetic shift = floor */
     return x >= 0 && y >= 0 && x < r->width && y < r->height && raster_solid(r, (int32_t)x, (int32_t)y);
+}
+
+/* Coverage 0..256 of the mask at a 16.16 point, bilinear between pixel centres, in integers. */
+static inline uint32_t coverage_fixed(const pp_raster *r, int64_t qx, int64_t qy)
+{
+    const int64_t hx = qx - (1 << (NP_FIX_BITS - 1)), hy = qy - (1 << (NP_FIX_BITS - 1));
+    const int64_t x = hx >> NP_FIX_BITS, y = hy >> NP_FIX_BITS;
+    const uint32_t fx = (uint32_t)((hx >> (NP_FIX_BITS - 8)) & 255), fy = (uint32_t)((hy >> (NP_FIX_BITS - 8)) & 255);
+    if (x < -1 || y < -1 || x >= r->width || y >= r->height)
+        return 0;
+    const uint32_t m00 = raster_solid_clamped(r, (int32_t)x, (int32_t)y), m10 = raster_solid_clamped(r, (int32_t)x + 1, (int32_t)y);
+    const uint32_t m01 = raster_solid_clamped(r, (int32_t)x, (int32_t)y + 1), m11 = raster_solid_clamped(r, (int32_t)x + 1, (int32_t)y + 1);
+    return (m00 * (256 - fx) * (256 - fy) + m10 * fx * (256 - fy) + m01 * (256 - fx) * fy + m11 * fx * fy) >> 8;
 }
 
 static pp_status grow_scratch(np_scratch *s, int64_t cells, int64_t strips)
@@ -57,8 +73,8 @@ static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0)
 typedef struct grid {
     int32_t s, off;
     int32_t i0, j0;     /* grid index of the first inner cell */
-    int32_t nx, ny;     /* inner cells; the sampled planes have a one-cell ring around them */
-    int32_t ex, ey;     /* nx + 2, ny + 2 */
+    int32_t nx, ny;     /* inner cells; the sampled planes have a RING-cell ring around them */
+    int32_t ex, ey;     /* nx + 2·RING, ny + 2·RING */
 } grid;
 
 /* Reference-local pixel coordinates of a (fractional) inner-cell position. */
@@ -93,29 +109,32 @@ static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, do
         return false;
     g->i0 = (int32_t)i0, g->j0 = (int32_t)j0;
     g->nx = (int32_t)(i1 - i0 + 1), g->ny = (int32_t)(j1 - j0 + 1);
-    g->ex = g->nx + 2, g->ey = g->ny + 2;
+    g->ex = g->nx + 2 * RING, g->ey = g->ny + 2 * RING;
     return true;
 }
 
 /* Sample both masks on the grid plus its ring: sa from the reference directly, sb through
- * 16.16 fixed-point affine steps from one rounded origin, so every backend reads the same cells. */
+ * 16.16 fixed-point affine steps from one rounded origin, so every backend reads the same cells.
+ * cb (optional) is the other body's bilinear coverage, for the area gradient's sub-pixel edges. */
 static void sample_planes(const grid *g, const pp_raster *ra, const pp_raster *rb, double mc, double ms, dvec2 t,
-                          uint8_t *sa, uint8_t *sb)
+                          uint8_t *sa, uint8_t *sb, uint16_t *cb)
 {
     const double one = (double)(1 << NP_FIX_BITS);
-    const dvec2 l0 = grid_to_local(g, -1, -1);
+    const dvec2 l0 = grid_to_local(g, -RING, -RING);
     const dvec2 q0 = dv_add(dv_rot(l0, mc, ms), t);
     const int64_t qx0 = llround(q0.x * one), qy0 = llround(q0.y * one);
     const int64_t dix = llround(mc * g->s * one), diy = llround(ms * g->s * one);
     const int64_t djx = llround(-ms * g->s * one), djy = llround(mc * g->s * one);
     for (int32_t cj = 0; cj < g->ey; cj++) {
-        const int32_t py = (g->j0 - 1 + cj) * g->s + g->off;
+        const int32_t py = (g->j0 - RING + cj) * g->s + g->off;
         const int64_t rx = qx0 + cj * djx, ry = qy0 + cj * djy;
         uint8_t *ra_row = sa + (int64_t)cj * g->ex, *rb_row = sb + (int64_t)cj * g->ex;
         for (int32_t ci = 0; ci < g->ex; ci++) {
-            const int32_t px = (g->i0 - 1 + ci) * g->s + g->off;
+            const int32_t px = (g->i0 - RING + ci) * g->s + g->off;
             ra_row[ci] = raster_solid_clamped(ra, px, py);
             rb_row[ci] = sample_fixed(rb, rx + ci * dix, ry + ci * diy);
+            if (cb)
+                cb[(int64_t)cj * g->ex + ci] = (uint16_t)coverage_fixed(rb, rx + ci * dix, ry + ci * diy);
         }
     }
 }
@@ -126,32 +145,42 @@ typedef struct isect_sums {
     int64_t nx, ny;         /* unnormalised normal, reference grid axes, pointing from reference to other */
 } isect_sums;
 
-static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *sb, pp_normal_method method,
+static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb, pp_normal_method method,
                               isect_sums *r)
 {
     *r = (isect_sums){0};
     const int32_t ex = g->ex;
-    for (int32_t cj = 1; cj <= g->ny; cj++) {
-        for (int32_t ci = 1; ci <= g->nx; ci++) {
+    for (int32_t cj = RING; cj < g->ny + RING; cj++) {
+        for (int32_t ci = RING; ci < g->nx + RING; ci++) {
             const int64_t k = (int64_t)cj * ex + ci;
             if (!sa[k])
                 continue;
             if (method == PP_NORMAL_AREA_GRADIENT) {
                 /* −∇ overlap(shift of the other body) = Σ over reference cells of the directions to the
-                 * other body's neighbours, axis neighbours weighted 2, diagonals 1 (isotropic). */
+                 * other body's neighbours (bilinear coverage), axis neighbours weighted 2, diagonals 1
+                 * (isotropic). Each cell is weighted by the reference's 5×5 coverage, which tapers the
+                 * ends of the contact arc where the quantisation noise is. */
+                int64_t gx = 0, gy = 0;
                 for (int d = 0; d < 8; d++) {
                     const int w = (NB[d][0] && NB[d][1]) ? 1 : 2;
-                    if (sb[k + NB[d][0] + (int64_t)NB[d][1] * ex]) {
-                        r->nx += w * NB[d][0];
-                        r->ny += w * NB[d][1];
-                    }
+                    const int64_t c = cb[k + NB[d][0] + (int64_t)NB[d][1] * ex];
+                    gx += w * NB[d][0] * c;
+                    gy += w * NB[d][1] * c;
+                }
+                if (gx | gy) {
+                    int64_t cover = 0;
+                    for (int dy = -2; dy <= 2; dy++)
+                        for (int dx = -2; dx <= 2; dx++)
+                            cover += sa[k + dx + (int64_t)dy * ex];
+                    r->nx += cover * gx;
+                    r->ny += cover * gy;
                 }
             }
             if (!sb[k])
                 continue;
             r->count++;
-            r->sx += ci - 1;
-            r->sy += cj - 1;
+            r->sx += ci - RING;
+            r->sy += cj - RING;
             if (method == PP_NORMAL_KERNEL) {
                 /* A critical cell borders the outside of the intersection; its 3×3 kernel counts the
                  * other body's cells toward the normal and the reference's against it. */
@@ -191,12 +220,12 @@ static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb,
         strips[2 * i] = INT32_MAX;
         strips[2 * i + 1] = INT32_MIN;
     }
-    for (int32_t cj = 1; cj <= g->ny; cj++) {
-        for (int32_t ci = 1; ci <= g->nx; ci++) {
+    for (int32_t cj = RING; cj < g->ny + RING; cj++) {
+        for (int32_t ci = RING; ci < g->nx + RING; ci++) {
             const int64_t k = (int64_t)cj * g->ex + ci;
             if (!(sa[k] && sb[k]))
                 continue;
-            const int64_t x = ci - 1, y = cj - 1;
+            const int64_t x = ci - RING, y = cj - RING;
             const int32_t p = (int32_t)(x * nqx + y * nqy);
             const int32_t b = (int32_t)(floor_div(-x * nqy + y * nqx, NP_NORMAL_ONE) - lo);
             if (p < strips[2 * b]) strips[2 * b] = p;
@@ -245,8 +274,9 @@ pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_
     if (raster_empty(a->raster) || raster_empty(b->raster))
         return PP_OK;
 
-    /* The smaller body is the reference, so the grid spans the small one, not the terrain. */
-    const bool swap = bounds_area(b->raster) < bounds_area(a->raster);
+    /* The larger body is the reference: its own boundary stays exact on its own grid (a flat ground
+     * gives an exact normal), and the grid is still bounded by the smaller body's box. */
+    const bool swap = bounds_area(b->raster) > bounds_area(a->raster);
     const np_body *A = swap ? b : a, *B = swap ? a : b;
     const pp_raster *ra = A->raster, *rb = B->raster;
 
@@ -259,15 +289,16 @@ pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_
     if (!overlap_grid(ra, rb, mc, ms, t, set->stride, &g))
         return PP_OK;
     const int64_t cells = (int64_t)g.ex * g.ey;
-    pp_status st = grow_scratch(scratch, 2 * cells, 2 * ((int64_t)g.nx + g.ny + 4));
+    pp_status st = grow_scratch(scratch, 4 * cells, 2 * ((int64_t)g.nx + g.ny + 4));
     if (st)
         return st;
     uint8_t *sa = scratch->cells, *sb = scratch->cells + cells;
-    sample_planes(&g, ra, rb, mc, ms, t, sa, sb);
+    uint16_t *cb = set->normal_method == PP_NORMAL_AREA_GRADIENT ? (uint16_t *)(scratch->cells + 2 * cells) : NULL;
+    sample_planes(&g, ra, rb, mc, ms, t, sa, sb, cb);
     out->samples = cells;
 
     isect_sums sum;
-    intersection_sums(&g, sa, sb, set->normal_method, &sum);
+    intersection_sums(&g, sa, sb, cb, set->normal_method, &sum);
     if (sum.count == 0)
         return PP_OK;
 
