@@ -92,7 +92,7 @@ typedef struct pp_body {
     uint64_t id; ///< slot index and generation; opaque
 } pp_body;
 
-/// Settings of a world; fill from pp_world_def_default(). Zero in a count field means its default.
+/// Settings of a world; fill from pp_world_def_default(). Zero in substeps, solver_iterations or raster_stride means its default.
 typedef struct pp_world_def {
     uint32_t struct_size;           ///< sizeof(pp_world_def), set by pp_world_def_default
     pp_vec2 gravity;                ///< acceleration, px/s² (default 0, 980)
@@ -104,7 +104,7 @@ typedef struct pp_world_def {
     pp_contact_mode contact_mode;   ///< contact points per pair (default MANIFOLD)
     int32_t raster_stride;          ///< collision grid coarsening: 1, 2 or 4 pixels per sample (default 1)
     float pixels_per_meter;         ///< internal length scale handed to ODE, px/m (default 100)
-    float contact_slop;             ///< penetration left uncorrected, px (default 1)
+    float contact_slop;             ///< penetration left uncorrected, px (default 0.75)
     float contact_erp;              ///< fraction of penetration corrected per solver step, 0..1 (default 0.2)
     float contact_cfm;              ///< contact softness, ODE constraint force mixing, non-dimensional (default 1e-5)
     float bounce_threshold;         ///< approach speed below which restitution is ignored, px/s (default 20)

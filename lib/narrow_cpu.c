@@ -115,7 +115,7 @@ static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, do
 
 /* Sample both masks on the grid plus its ring: sa from the reference directly, sb through
  * 16.16 fixed-point affine steps from one rounded origin, so every backend reads the same cells.
- * cb (optional) is the other body's bilinear coverage, for the area gradient's sub-pixel edges. */
+ * cb is the other body's bilinear coverage (0..256), for sub-pixel edges in the gradient and depth. */
 static void sample_planes(const grid *g, const pp_raster *ra, const pp_raster *rb, double mc, double ms, dvec2 t,
                           uint8_t *sa, uint8_t *sb, uint16_t *cb)
 {
@@ -133,8 +133,7 @@ static void sample_planes(const grid *g, const pp_raster *ra, const pp_raster *r
             const int32_t px = (g->i0 - RING + ci) * g->s + g->off;
             ra_row[ci] = raster_solid_clamped(ra, px, py);
             rb_row[ci] = sample_fixed(rb, rx + ci * dix, ry + ci * diy);
-            if (cb)
-                cb[(int64_t)cj * g->ex + ci] = (uint16_t)coverage_fixed(rb, rx + ci * dix, ry + ci * diy);
+            cb[(int64_t)cj * g->ex + ci] = (uint16_t)coverage_fixed(rb, rx + ci * dix, ry + ci * diy);
         }
     }
 }
@@ -202,10 +201,15 @@ static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *s
     }
 }
 
-/* Strips across the normal, one cell wide: per strip the min and max projection on the normal,
- * all in Q14 integers. Returns the number of strips; *tmin is the index of the first. */
-static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb, int32_t nqx, int32_t nqy,
-                            int32_t *strips, int64_t *tmin)
+/* Strips across the normal, one cell wide. Per strip: the min and max projection of its
+ * intersection cells on the normal (Q14), and the other body's coverage summed over the strip's
+ * reference cells, which is the overlap length along the strip to sub-pixel precision (for a
+ * flat edge, exactly). Each cell's coverage is shared between the two strips whose centres are
+ * nearest, by distance, since a tilted strip holds a varying number of cell centres. Returns the number of strips; *tmin is the index of the first. */
+enum { STRIP_MIN, STRIP_MAX, STRIP_COVER, STRIP_FIELDS };
+
+static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb, int32_t nqx,
+                            int32_t nqy, int32_t *strips, int64_t *tmin)
 {
     /* Tangent coordinate t = −x·ny + y·nx over the rectangle's corners bounds the strip indices. */
     int64_t lo = INT64_MAX, hi = INT64_MIN;
@@ -217,51 +221,56 @@ static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb,
     }
     const int32_t n = (int32_t)(hi - lo + 1);
     for (int32_t i = 0; i < n; i++) {
-        strips[2 * i] = INT32_MAX;
-        strips[2 * i + 1] = INT32_MIN;
+        strips[STRIP_FIELDS * i + STRIP_MIN] = INT32_MAX;
+        strips[STRIP_FIELDS * i + STRIP_MAX] = INT32_MIN;
+        strips[STRIP_FIELDS * i + STRIP_COVER] = 0;
     }
     for (int32_t cj = RING; cj < g->ny + RING; cj++) {
         for (int32_t ci = RING; ci < g->nx + RING; ci++) {
             const int64_t k = (int64_t)cj * g->ex + ci;
-            if (!(sa[k] && sb[k]))
+            if (!sa[k] || !cb[k])
                 continue;
-            const int64_t x = ci - RING, y = cj - RING;
+            const int64_t x = ci - RING, y = cj - RING, tq = -x * nqy + y * nqx;
+            int32_t *st = strips + STRIP_FIELDS * (floor_div(tq, NP_NORMAL_ONE) - lo);
+            /* Tent-splat the coverage between the two strips whose centres are nearest (8-bit weights). */
+            const int64_t ts = tq - NP_NORMAL_ONE / 2, b0 = floor_div(ts, NP_NORMAL_ONE) - lo;
+            const int32_t w1 = (int32_t)((ts - (b0 + lo) * NP_NORMAL_ONE) >> 6); /* 0..255 */
+            if (b0 >= 0)
+                strips[STRIP_FIELDS * b0 + STRIP_COVER] += (cb[k] * (256 - w1)) >> 8;
+            if (b0 + 1 < n)
+                strips[STRIP_FIELDS * (b0 + 1) + STRIP_COVER] += (cb[k] * w1) >> 8;
+            if (!sb[k])
+                continue;
             const int32_t p = (int32_t)(x * nqx + y * nqy);
-            const int32_t b = (int32_t)(floor_div(-x * nqy + y * nqx, NP_NORMAL_ONE) - lo);
-            if (p < strips[2 * b]) strips[2 * b] = p;
-            if (p > strips[2 * b + 1]) strips[2 * b + 1] = p;
+            if (p < st[STRIP_MIN]) st[STRIP_MIN] = p;
+            if (p > st[STRIP_MAX]) st[STRIP_MAX] = p;
         }
     }
     *tmin = lo;
     return n;
 }
 
-/* Longest strip in [from, to]; returns its index or −1 when all are empty. */
-static int32_t longest_strip(const int32_t *strips, int32_t from, int32_t to)
+static bool strip_hit(const int32_t *strips, int32_t b)
 {
-    int32_t best = -1;
-    int64_t best_len = -1;
-    for (int32_t b = from; b <= to; b++) {
-        if (strips[2 * b] > strips[2 * b + 1])
-            continue;
-        const int64_t len = (int64_t)strips[2 * b + 1] - strips[2 * b];
-        if (len > best_len)
-            best_len = len, best = b;
-    }
-    return best;
+    return strips[STRIP_FIELDS * b + STRIP_MIN] <= strips[STRIP_FIELDS * b + STRIP_MAX];
 }
 
-/* Strip length in pixels: the span of its cell centres along the normal plus one cell. */
-static double strip_depth(const int32_t *strips, int32_t b, int32_t stride)
+/* Depth in pixels of the deepest strip in [from, to]: its covered length along the normal. */
+static double deepest_in(const int32_t *strips, int32_t from, int32_t to, int32_t stride)
 {
-    return ((double)(strips[2 * b + 1] - strips[2 * b]) / NP_NORMAL_ONE + 1.0) * stride;
+    int32_t best = 0;
+    for (int32_t b = from; b <= to; b++)
+        if (strips[STRIP_FIELDS * b + STRIP_COVER] > best)
+            best = strips[STRIP_FIELDS * b + STRIP_COVER];
+    return (double)best / 256.0 * stride;
 }
 
-/* Inner-cell coordinates of the middle of strip b. */
+/* Inner-cell coordinates of the middle of strip b's intersection. */
 static dvec2 strip_point(const int32_t *strips, int32_t b, int64_t tmin, int32_t nqx, int32_t nqy)
 {
-    const double v = 0.5 * ((double)strips[2 * b] + strips[2 * b + 1]) / NP_NORMAL_ONE; /* along n */
-    const double u = (double)(b + tmin) + 0.5;                                           /* along t */
+    const int32_t *st = strips + STRIP_FIELDS * b;
+    const double v = 0.5 * ((double)st[STRIP_MIN] + st[STRIP_MAX]) / NP_NORMAL_ONE; /* along n */
+    const double u = (double)(b + tmin) + 0.5;                                       /* along t */
     const double q = (double)NP_NORMAL_ONE;
     return dv((nqx * v - nqy * u) / q, (nqy * v + nqx * u) / q);
 }
@@ -289,11 +298,11 @@ pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_
     if (!overlap_grid(ra, rb, mc, ms, t, set->stride, &g))
         return PP_OK;
     const int64_t cells = (int64_t)g.ex * g.ey;
-    pp_status st = grow_scratch(scratch, 4 * cells, 2 * ((int64_t)g.nx + g.ny + 4));
+    pp_status st = grow_scratch(scratch, 4 * cells, STRIP_FIELDS * ((int64_t)g.nx + g.ny + 4));
     if (st)
         return st;
     uint8_t *sa = scratch->cells, *sb = scratch->cells + cells;
-    uint16_t *cb = set->normal_method == PP_NORMAL_AREA_GRADIENT ? (uint16_t *)(scratch->cells + 2 * cells) : NULL;
+    uint16_t *cb = (uint16_t *)(scratch->cells + 2 * cells);
     sample_planes(&g, ra, rb, mc, ms, t, sa, sb, cb);
     out->samples = cells;
 
@@ -311,29 +320,27 @@ pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_
     const int32_t nqx = (int32_t)lround(n.x * NP_NORMAL_ONE), nqy = (int32_t)lround(n.y * NP_NORMAL_ONE);
 
     int64_t tmin;
-    const int32_t nstrips = strips_along(&g, sa, sb, nqx, nqy, scratch->strips, &tmin);
+    const int32_t nstrips = strips_along(&g, sa, sb, cb, nqx, nqy, scratch->strips, &tmin);
     const int32_t *strips = scratch->strips;
-    const int32_t deepest = longest_strip(strips, 0, nstrips - 1);
 
     /* Contact points in inner-cell coordinates, with their depths in pixels. */
     dvec2 pts[2];
     double depth[2];
     int32_t first = 0, last = nstrips - 1;
-    while (strips[2 * first] > strips[2 * first + 1]) first++;
-    while (strips[2 * last] > strips[2 * last + 1]) last--;
+    while (!strip_hit(strips, first)) first++;
+    while (!strip_hit(strips, last)) last--;
     if (set->contact_mode == PP_CONTACT_CENTROID || first == last) {
-        pts[0] = dv((double)sum.sx / sum.count, (double)sum.sy / sum.count);
-        if (set->contact_mode != PP_CONTACT_CENTROID)
-            pts[0] = strip_point(strips, first, tmin, nqx, nqy);
-        depth[0] = strip_depth(strips, deepest, g.s);
+        pts[0] = set->contact_mode == PP_CONTACT_CENTROID ? dv((double)sum.sx / sum.count, (double)sum.sy / sum.count)
+                                                          : strip_point(strips, first, tmin, nqx, nqy);
+        depth[0] = deepest_in(strips, 0, nstrips - 1, g.s);
         out->count = 1;
     } else {
         /* The two ends along the tangent, each as deep as the deepest strip of its half. */
         const int32_t mid = first + (last - first) / 2;
         pts[0] = strip_point(strips, first, tmin, nqx, nqy);
         pts[1] = strip_point(strips, last, tmin, nqx, nqy);
-        depth[0] = strip_depth(strips, longest_strip(strips, first, mid), g.s);
-        depth[1] = strip_depth(strips, longest_strip(strips, mid + 1, last), g.s);
+        depth[0] = deepest_in(strips, first, mid, g.s);
+        depth[1] = deepest_in(strips, mid + 1, last, g.s);
         out->count = 2;
     }
 

@@ -47,7 +47,7 @@ PP_API pp_world_def pp_world_def_default(void)
     d.contact_mode = PP_CONTACT_MANIFOLD;
     d.raster_stride = 1;
     d.pixels_per_meter = 100.0f;
-    d.contact_slop = 1.0f;
+    d.contact_slop = 0.75f;
     d.contact_erp = 0.2f;
     d.contact_cfm = 1e-5f;
     d.bounce_threshold = 20.0f;
@@ -58,11 +58,17 @@ PP_API pp_world_def pp_world_def_default(void)
     return d;
 }
 
+/* Zero in a count field means its default (as the header says). */
+static void apply_count_defaults(pp_world_def *d)
+{
+    const pp_world_def def = pp_world_def_default();
+    if (d->substeps == 0) d->substeps = def.substeps;
+    if (d->solver_iterations == 0) d->solver_iterations = def.solver_iterations;
+    if (d->raster_stride == 0) d->raster_stride = def.raster_stride;
+}
+
 static pp_status check_world_def(const pp_world_def *d)
 {
-    if (d->struct_size != sizeof(pp_world_def))
-        return pp_fail(PP_ERR_ABI, "pp_world_create: def->struct_size is %u, this library expects %u",
-                       (unsigned)d->struct_size, (unsigned)sizeof(pp_world_def));
     if (!finite2(d->gravity.x, d->gravity.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: gravity must be finite");
     if (d->substeps < 1 || d->substeps > 64)
@@ -101,14 +107,19 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
 {
     if (!def || !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: %s is NULL", def ? "out" : "def");
-    pp_status st = check_world_def(def);
+    if (def->struct_size != sizeof(pp_world_def))
+        return pp_fail(PP_ERR_ABI, "pp_world_create: def->struct_size is %u, this library expects %u",
+                       (unsigned)def->struct_size, (unsigned)sizeof(pp_world_def));
+    pp_world_def d = *def;
+    apply_count_defaults(&d);
+    pp_status st = check_world_def(&d);
     if (st)
         return st;
     world *wd = calloc(1, sizeof *wd);
     if (!wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");
-    wd->def = *def;
-    if ((st = solver_create(def, &wd->solver))) {
+    wd->def = d;
+    if ((st = solver_create(&d, &wd->solver))) {
         free(wd);
         return st;
     }
