@@ -1,0 +1,203 @@
+/* Shared helpers of the C unit tests: worlds, rectangle and disc bodies, status checks,
+ * angle arithmetic and small statistics. Everything is static inline, since every
+ * test file under tests/c is linked into one Criterion binary. */
+#ifndef PHYSPIX_TEST_HELPERS_H
+#define PHYSPIX_TEST_HELPERS_H
+
+#include <criterion/criterion.h>
+#include <criterion/logging.h>
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "physpix.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define DEG2RAD(d) ((d) * (M_PI / 180.0))
+#define RAD2DEG(r) ((r) * (180.0 / M_PI))
+
+/* Asserts a call returned PP_OK, printing the status name and the last error otherwise. */
+#define PP_OK_OR_FAIL(call)                                                                          \
+    do {                                                                                             \
+        pp_status st_ = (call);                                                                      \
+        cr_assert_eq(st_, PP_OK, "%s -> %s (%s)", #call, pp_status_name(st_), pp_last_error());     \
+    } while (0)
+
+/* Case-insensitive: does `hay` contain one of the '|'-separated words of `alts`? */
+static inline int msg_names(const char *hay, const char *alts) {
+    char word[64];
+    const char *p = alts;
+    while (*p) {
+        size_t n = 0;
+        while (p[n] && p[n] != '|' && n < sizeof word - 1) {
+            word[n] = (char)tolower((unsigned char)p[n]);
+            n++;
+        }
+        word[n] = 0;
+        for (const char *h = hay; *h; h++) {
+            size_t k = 0;
+            while (k < n && h[k] && tolower((unsigned char)h[k]) == word[k]) k++;
+            if (n > 0 && k == n) return 1;
+        }
+        p += n;
+        if (*p == '|') p++;
+    }
+    return 0;
+}
+
+/* Asserts a call failed with `want`, and that pp_last_error() names one of `words` ("a|b"). */
+#define EXPECT_ERR(call, want, words)                                                                \
+    do {                                                                                             \
+        pp_status st_ = (call);                                                                      \
+        const char *msg_ = pp_last_error();                                                          \
+        cr_assert_eq(st_, (want), "%s -> %s, expected %s (msg: \"%s\")", #call, pp_status_name(st_), \
+                     pp_status_name(want), msg_);                                                    \
+        cr_assert(msg_ != NULL, "pp_last_error() returned NULL after %s", #call);                   \
+        cr_assert(msg_names(msg_, (words)), "%s: pp_last_error() \"%s\" does not name %s", #call,    \
+                  msg_, (words));                                                                    \
+    } while (0)
+
+static inline pp_vec2 v2(float x, float y) {
+    pp_vec2 v = {x, y};
+    return v;
+}
+
+/* A world with the default settings but the given gravity. */
+static inline pp_world make_world_def(const pp_world_def *d) {
+    pp_world w = {0};
+    PP_OK_OR_FAIL(pp_world_create(d, &w));
+    cr_assert_neq(w.id, 0);
+    return w;
+}
+
+static inline pp_world make_world(float gx, float gy) {
+    pp_world_def d = pp_world_def_default();
+    d.gravity = v2(gx, gy);
+    return make_world_def(&d);
+}
+
+/* A body def with a type and a pose, everything else default, no bitmap yet. */
+static inline pp_body_def body_def(pp_body_type type, float x, float y, float angle) {
+    pp_body_def d = pp_body_def_default();
+    d.type = type;
+    d.position = v2(x, y);
+    d.angle = angle;
+    return d;
+}
+
+/* A width×height mask, every pixel solid. Caller frees. */
+static inline uint8_t *rect_mask(int width, int height) {
+    uint8_t *m = malloc((size_t)width * (size_t)height);
+    cr_assert_not_null(m);
+    memset(m, 1, (size_t)width * (size_t)height);
+    return m;
+}
+
+/* Is pixel (i, j) of a 2r×2r bitmap inside the disc of radius r centred at (r, r)? By pixel centre. */
+static inline int disc_pixel(int r, int i, int j) {
+    double dx = i + 0.5 - r, dy = j + 0.5 - r;
+    return dx * dx + dy * dy <= (double)r * r;
+}
+
+/* A 2r×2r mask of a disc of radius r rasterised by pixel centres; *count receives the solid pixels. */
+static inline uint8_t *disc_mask(int r, int *count) {
+    int n = 2 * r, c = 0;
+    uint8_t *m = calloc((size_t)n * (size_t)n, 1);
+    cr_assert_not_null(m);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            if (disc_pixel(r, i, j)) {
+                m[j * n + i] = 1;
+                c++;
+            }
+    if (count) *count = c;
+    return m;
+}
+
+/* Creates a body from a def whose bitmap is filled in; asserts success. */
+static inline pp_body create_body_ok(pp_world w, const pp_body_def *d) {
+    pp_body b = {0};
+    PP_OK_OR_FAIL(pp_body_create(w, d, &b));
+    cr_assert_neq(b.id, 0);
+    return b;
+}
+
+/* Adds a solid width×height rectangle with the given def (bitmap fields are overwritten). */
+static inline pp_body add_rect(pp_world w, pp_body_def d, int width, int height) {
+    uint8_t *m = rect_mask(width, height);
+    d.width = width;
+    d.height = height;
+    d.mask = m;
+    d.rgba = NULL;
+    pp_body b = create_body_ok(w, &d);
+    free(m);
+    return b;
+}
+
+/* Adds a disc of radius r (a 2r×2r bitmap; its centre is the default pivot). */
+static inline pp_body add_disc(pp_world w, pp_body_def d, int r) {
+    uint8_t *m = disc_mask(r, NULL);
+    d.width = 2 * r;
+    d.height = 2 * r;
+    d.mask = m;
+    d.rgba = NULL;
+    pp_body b = create_body_ok(w, &d);
+    free(m);
+    return b;
+}
+
+static inline pp_vec2 body_pos(pp_world w, pp_body b) {
+    pp_vec2 p = {0, 0};
+    PP_OK_OR_FAIL(pp_body_get_position(w, b, &p));
+    return p;
+}
+
+static inline float body_angle(pp_world w, pp_body b) {
+    float a = 0;
+    PP_OK_OR_FAIL(pp_body_get_angle(w, b, &a));
+    return a;
+}
+
+static inline pp_vec2 body_vel(pp_world w, pp_body b) {
+    pp_vec2 v = {0, 0};
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, b, &v, NULL));
+    return v;
+}
+
+static inline void step_n(pp_world w, float dt, int n) {
+    for (int i = 0; i < n; i++) PP_OK_OR_FAIL(pp_world_step(w, dt));
+}
+
+/* An angle folded into (-pi, pi]. */
+static inline double wrap_angle(double a) {
+    while (a > M_PI) a -= 2 * M_PI;
+    while (a <= -M_PI) a += 2 * M_PI;
+    return a;
+}
+
+/* Angle between two 2D directions (need not be unit), degrees in [0, 180]. */
+static inline double angle_between_deg(double ax, double ay, double bx, double by) {
+    return fabs(RAD2DEG(atan2(ax * by - ay * bx, ax * bx + ay * by)));
+}
+
+static inline int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The q-quantile (0..1) of n values, nearest rank; sorts v in place. */
+static inline double quantile(double *v, int n, double q) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    int k = (int)ceil(q * n) - 1;
+    if (k < 0) k = 0;
+    if (k >= n) k = n - 1;
+    return v[k];
+}
+
+#endif /* PHYSPIX_TEST_HELPERS_H */

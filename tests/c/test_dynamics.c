@@ -1,0 +1,191 @@
+/* Collision response: momentum conservation, restitution, Coulomb friction on a slope. */
+#include "helpers.h"
+
+Test(dynamics, head_on_collision_conserves_momentum, .timeout = 30) {
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 0);
+    /* a: 20×20 (m 400) moving right at 300 px/s; b: 30×30 (m 900) at rest, same line. */
+    pp_body_def da = body_def(PP_BODY_DYNAMIC, 300, 300, 0);
+    da.linear_velocity = v2(300, 0);
+    pp_body a = add_rect(w, da, 20, 20);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 30, 30);
+    float ma = 0, mb = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, a, &ma, NULL, NULL));
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b, &mb, NULL, NULL));
+    cr_assert_float_eq(ma, 400.0, 1e-2);
+    cr_assert_float_eq(mb, 900.0, 1e-2);
+
+    pp_vec2 va0 = body_vel(w, a), vb0 = body_vel(w, b);
+    double px0 = ma * va0.x + mb * vb0.x, py0 = ma * va0.y + mb * vb0.y;
+    cr_assert_float_eq(px0, 120000.0, 1.0, "initial momentum %g (initial velocity not applied?)", px0);
+
+    step_n(w, dt, 60); /* they meet after ~0.25 s */
+    pp_vec2 va = body_vel(w, a), vb = body_vel(w, b);
+    double px = ma * va.x + mb * vb.x, py = ma * va.y + mb * vb.y;
+    cr_log_info("momentum: before (%.1f, %.1f), after (%.1f, %.1f); va %.2f vb %.2f px/s", px0, py0, px, py, va.x,
+                vb.x);
+    cr_assert_gt(vb.x, 50.0, "b did not get pushed: vb = (%g, %g)", vb.x, vb.y);
+    cr_assert_lt(va.x, 250.0, "a was not slowed: va = (%g, %g)", va.x, va.y);
+    cr_assert_leq(fabs(px - px0), 0.01 * fabs(px0), "x momentum %g after, %g before", px, px0);
+    cr_assert_leq(fabs(py - py0), 0.01 * fabs(px0), "y momentum %g after, %g before", py, py0);
+    /* They are no longer approaching and no longer overlap by more than a couple of pixels. */
+    cr_assert_geq(vb.x - va.x, -1.0, "still approaching: va %g vb %g", va.x, vb.x);
+    pp_vec2 pa = body_pos(w, a), pb = body_pos(w, b);
+    cr_assert_geq(pb.x - pa.x, 25.0 - 2.0, "bodies interpenetrate: centres %g px apart, touching at 25", pb.x - pa.x);
+    pp_world_destroy(w);
+}
+
+Test(dynamics, oblique_collision_conserves_momentum, .timeout = 30) {
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 0);
+    /* Off-centre hit of two discs: momentum holds in x and y, angular motion may appear. */
+    pp_body_def da = body_def(PP_BODY_DYNAMIC, 200, 310, 0);
+    da.linear_velocity = v2(250, -20);
+    da.restitution = 0.5f;
+    pp_body a = add_disc(w, da, 16);
+    pp_body_def db = body_def(PP_BODY_DYNAMIC, 300, 300, 0);
+    db.linear_velocity = v2(-40, 10);
+    db.density = 2.0f;
+    pp_body b = add_disc(w, db, 20);
+    float ma = 0, mb = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, a, &ma, NULL, NULL));
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b, &mb, NULL, NULL));
+    pp_vec2 va0 = body_vel(w, a), vb0 = body_vel(w, b);
+    double px0 = ma * va0.x + mb * vb0.x, py0 = ma * va0.y + mb * vb0.y;
+    double scale = fabs(ma * va0.x) + fabs(mb * vb0.x) + fabs(ma * va0.y) + fabs(mb * vb0.y);
+    step_n(w, dt, 60);
+    pp_vec2 va = body_vel(w, a), vb = body_vel(w, b);
+    double px = ma * va.x + mb * vb.x, py = ma * va.y + mb * vb.y;
+    cr_log_info("oblique: before (%.1f, %.1f), after (%.1f, %.1f)", px0, py0, px, py);
+    cr_assert_gt(fabs(vb.x - vb0.x) + fabs(vb.y - vb0.y), 20.0, "no collision happened");
+    cr_assert_leq(fabs(px - px0), 0.01 * scale, "x momentum %g after, %g before", px, px0);
+    cr_assert_leq(fabs(py - py0), 0.01 * scale, "y momentum %g after, %g before", py, py0);
+    pp_world_destroy(w);
+}
+
+Test(dynamics, elastic_ball_rebounds_to_drop_height, .timeout = 30) {
+    const float dt = 1.0f / 60.0f;
+    pp_world_def wd = pp_world_def_default();
+    wd.allow_sleep = 0;
+    pp_world w = make_world_def(&wd);
+    pp_body_def gd = body_def(PP_BODY_STATIC, 400, 520, 0);
+    gd.restitution = 1.0f;
+    add_rect(w, gd, 800, 40); /* top at 500 */
+    const int r = 16;
+    const double drop = 200.0; /* ball bottom starts 200 px above the ground */
+    pp_body_def bd = body_def(PP_BODY_DYNAMIC, 400, (float)(500.0 - drop - r), 0);
+    bd.restitution = 1.0f;
+    pp_body ball = add_disc(w, bd, r);
+
+    int bounced = 0, steps_after = 0;
+    double min_y_after = 1e9;
+    float prev_vy = 0;
+    for (int i = 0; i < 150 && steps_after < 60; i++) { /* fall ~0.64 s, rise ~0.64 s */
+        PP_OK_OR_FAIL(pp_world_step(w, dt));
+        pp_vec2 p = body_pos(w, ball), v = body_vel(w, ball);
+        if (!bounced && prev_vy > 0 && v.y < 0) bounced = 1;
+        if (bounced) {
+            if (p.y < min_y_after) min_y_after = p.y;
+            if (v.y > 0) steps_after++; /* falling again: the apex is behind us */
+        }
+        prev_vy = v.y;
+    }
+    cr_assert(bounced, "the ball never bounced");
+    double height = 500.0 - (min_y_after + r);
+    cr_log_info("restitution 1: dropped from %.1f px, rebounded to %.2f px (%.1f%%)", drop, height,
+                100.0 * height / drop);
+    cr_assert_geq(height, 0.95 * drop, "rebound height %.2f px < 95%% of drop %.1f px", height, drop);
+    cr_assert_leq(height, 1.05 * drop, "rebound height %.2f px > 105%% of drop %.1f px", height, drop);
+    pp_world_destroy(w);
+}
+
+Test(dynamics, inelastic_ball_does_not_bounce, .timeout = 30) {
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 980);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40); /* restitution 0 by default */
+    pp_body ball = add_disc(w, body_def(PP_BODY_DYNAMIC, 400, 500 - 200 - 16, 0), 16);
+    double min_y_after = 1e9;
+    int landed = 0;
+    for (int i = 0; i < 120; i++) {
+        PP_OK_OR_FAIL(pp_world_step(w, dt));
+        pp_vec2 p = body_pos(w, ball);
+        if (p.y + 16 >= 498.0) landed = 1;
+        if (landed && p.y < min_y_after) min_y_after = p.y;
+    }
+    cr_assert(landed, "the ball never reached the ground");
+    double height = 500.0 - (min_y_after + 16);
+    cr_assert_leq(height, 5.0, "restitution 0 ball rebounded %.2f px", height);
+    pp_world_destroy(w);
+}
+
+/* A 32×32 box resting on a static 1200×40 plank tilted by `deg`; both with friction f.
+ * Returns how far the box moved in 2 s; *expected receives the analytic distance
+ * (from the speed it had when the 2 s began). */
+static double slope_slide(double deg, float f, double *expected) {
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 980);
+    const double th = DEG2RAD(deg), cx = 700, cy = 600;
+    pp_body_def gd = body_def(PP_BODY_STATIC, (float)cx, (float)cy, (float)th);
+    gd.friction = f;
+    add_rect(w, gd, 1200, 40);
+    /* The plank's top face has outward normal R(th)·(0, -1) = (sin th, -cos th); sit the box on it. */
+    const double off = 20.0 + 16.0 + 0.25;
+    pp_body_def bd = body_def(PP_BODY_DYNAMIC, (float)(cx + off * sin(th)), (float)(cy - off * cos(th)), (float)th);
+    bd.friction = f;
+    pp_body box = add_rect(w, bd, 32, 32);
+    step_n(w, dt, 6); /* let it land on the plank (0.25 px of gap) */
+    pp_vec2 p0 = body_pos(w, box), v0 = body_vel(w, box);
+    step_n(w, dt, 120);
+    pp_vec2 p1 = body_pos(w, box);
+    double a1 = body_angle(w, box);
+    double moved = hypot(p1.x - p0.x, p1.y - p0.y);
+    double acc = 980.0 * (sin(th) - f * cos(th));
+    *expected = acc > 0 ? hypot(v0.x, v0.y) * 2.0 + 0.5 * acc * 4.0 : 0.0;
+    cr_log_info("slope %.1f deg, friction %.2f (atan f = %.1f deg): moved %.2f px in 2 s (analytic %.2f), angle %.2f deg",
+                deg, f, RAD2DEG(atan(f)), moved, *expected, RAD2DEG(a1));
+    cr_assert_float_eq(wrap_angle(a1 - th), 0.0, DEG2RAD(1.0), "the box tipped: angle %.2f deg on a %.1f deg slope",
+                       RAD2DEG(a1), deg);
+    pp_world_destroy(w);
+    return moved;
+}
+
+Test(dynamics, slope_below_friction_angle_holds, .timeout = 30) {
+    double expected;
+    double moved = slope_slide(15.0, 0.5f, &expected); /* atan(0.5) = 26.6° */
+    cr_assert_lt(moved, 2.0, "box on a 15 deg slope with friction 0.5 moved %.2f px in 2 s", moved);
+}
+
+Test(dynamics, slope_above_friction_angle_slides, .timeout = 30) {
+    double expected;
+    double moved = slope_slide(35.0, 0.5f, &expected);
+    /* Analytic: a = g (sin 35° - 0.5 cos 35°) = 161 px/s², 322 px in 2 s from rest. */
+    cr_assert_gt(moved, 20.0, "box on a 35 deg slope with friction 0.5 moved only %.2f px in 2 s", moved);
+    cr_assert_float_eq(moved, expected, 0.1 * expected,
+                       "sliding box moved %.2f px, Coulomb friction 0.5 predicts %.2f px (10%%)", moved, expected);
+}
+
+Test(dynamics, friction_combines_as_geometric_mean, .timeout = 30) {
+    /* 20° slope: holds with 0.5 on both (sqrt = 0.5 > tan 20° = 0.36), slides when the box's is
+     * 0.5 and the plank's 0.1 (sqrt(0.05) = 0.22 < 0.36) — so the pair does not take the max. */
+    const float dt = 1.0f / 60.0f;
+    const double th = DEG2RAD(20.0), cx = 700, cy = 600, off = 36.25;
+    double moved[2];
+    for (int k = 0; k < 2; k++) {
+        pp_world w = make_world(0, 980);
+        pp_body_def gd = body_def(PP_BODY_STATIC, (float)cx, (float)cy, (float)th);
+        gd.friction = k ? 0.1f : 0.5f;
+        add_rect(w, gd, 1200, 40);
+        pp_body_def bd = body_def(PP_BODY_DYNAMIC, (float)(cx + off * sin(th)), (float)(cy - off * cos(th)), (float)th);
+        bd.friction = 0.5f;
+        pp_body box = add_rect(w, bd, 32, 32);
+        step_n(w, dt, 6);
+        pp_vec2 p0 = body_pos(w, box);
+        step_n(w, dt, 120);
+        pp_vec2 p1 = body_pos(w, box);
+        moved[k] = hypot(p1.x - p0.x, p1.y - p0.y);
+        pp_world_destroy(w);
+    }
+    cr_log_info("20 deg slope: friction 0.5/0.5 moved %.2f px, 0.5/0.1 moved %.2f px", moved[0], moved[1]);
+    cr_assert_lt(moved[0], 2.0, "friction 0.5 & 0.5 on 20 deg: moved %.2f px", moved[0]);
+    cr_assert_gt(moved[1], 20.0, "friction 0.5 & 0.1 (sqrt 0.22) on 20 deg: moved only %.2f px", moved[1]);
+}

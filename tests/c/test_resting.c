@@ -1,0 +1,63 @@
+/* A box dropped on static ground comes to rest on its surface and stays there. */
+#include "helpers.h"
+
+Test(resting, box_settles_on_ground_and_stays, .timeout = 60) {
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 980);
+    /* Ground 800×40 centred at (400, 500): its top is at y = 480. */
+    pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 400, 500, 0), 800, 40);
+    const float ground_top = 500.0f - 20.0f;
+    /* A 32×32 box whose bottom starts 64 px above the ground. */
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 400, 0), 32, 32);
+
+    /* Settle for 3 s (it lands after ~0.36 s). */
+    step_n(w, dt, 180);
+
+    double worst_gap = 0, worst_angle = 0, worst_dx = 0, lo = 1e9, hi = -1e9;
+    int worst_gap_step = -1, worst_angle_step = -1;
+    for (int i = 0; i < 600; i++) { /* then 10 s, checked every step */
+        PP_OK_OR_FAIL(pp_world_step(w, dt));
+        pp_vec2 p = body_pos(w, box);
+        double a = wrap_angle(body_angle(w, box));
+        cr_assert(isfinite(p.x) && isfinite(p.y) && isfinite(a), "non-finite pose at step %d", i);
+        double bottom = p.y + 16.0;
+        double gap = fabs(bottom - ground_top);
+        if (bottom < lo) lo = bottom;
+        if (bottom > hi) hi = bottom;
+        if (gap > worst_gap) worst_gap = gap, worst_gap_step = i;
+        if (fabs(a) > worst_angle) worst_angle = fabs(a), worst_angle_step = i;
+        if (fabs(p.x - 400.0) > worst_dx) worst_dx = fabs(p.x - 400.0);
+    }
+    pp_contact c[4];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_collide(w, box, ground, c, 4, &n));
+    cr_log_info("resting: bottom in [%.3f, %.3f] (ground top %.1f), worst |angle| %.4f deg, worst x drift %.3f px; "
+                "%d contacts now, depth %.3f",
+                lo, hi, ground_top, RAD2DEG(worst_angle), worst_dx, n, n > 0 ? c[0].depth : 0.0);
+    cr_assert_leq(worst_gap, 1.0, "box bottom %.3f px from the ground top at step %d after settling (range %.3f..%.3f)",
+                  worst_gap, worst_gap_step, lo, hi);
+    cr_assert_leq(RAD2DEG(worst_angle), 0.5, "angle %.4f deg at step %d after settling", RAD2DEG(worst_angle),
+                  worst_angle_step);
+    cr_assert_leq(worst_dx, 2.0, "box drifted %.3f px sideways", worst_dx);
+
+    pp_vec2 v = body_vel(w, box);
+    cr_assert_lt(fabs(v.x) + fabs(v.y), 5.0, "resting box still moves at (%g, %g) px/s", v.x, v.y);
+    pp_world_destroy(w);
+}
+
+Test(resting, box_dropped_tilted_lands_flat, .timeout = 60) {
+    /* Dropped at 20°, a box lands on a corner, tips over and ends flat on a face. */
+    const float dt = 1.0f / 60.0f;
+    pp_world w = make_world(0, 980);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, 500, 0), 800, 40);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 380, (float)DEG2RAD(20.0)), 32, 32);
+    step_n(w, dt, 300);
+    pp_vec2 p = body_pos(w, box);
+    double a = wrap_angle(body_angle(w, box));
+    /* Any face down: the angle is a multiple of 90°. */
+    double off = fabs(wrap_angle(4.0 * a)) / 4.0;
+    cr_assert_leq(RAD2DEG(off), 1.0, "tilted box rests at %.3f deg, not on a face", RAD2DEG(a));
+    cr_assert_leq(fabs(p.y + 16.0 - 480.0), 1.0, "tilted box rests with its bottom at %.3f, ground at 480",
+                  p.y + 16.0);
+    pp_world_destroy(w);
+}
