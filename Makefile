@@ -116,7 +116,7 @@ install: all
 	ln -sf libphyspix.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libphyspix.so
 	install -m 644 $(STATIC) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 $(BUILD)/physpix.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	sed 's|^prefix=.*|prefix=$(PREFIX)|' $(BUILD)/physpix.pc > $(DESTDIR)$(PREFIX)/lib/pkgconfig/physpix.pc
 
 clean:
 	rm -rf $(BUILD)
