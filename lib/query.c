@@ -15,15 +15,15 @@ PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *
     const body *bb = body_lookup(wd, b, fn);
     if (!bb)
         return PP_ERR_INVALID_HANDLE;
-    if (!count || capacity < 0 || (capacity > 0 && !out))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s", fn,
-                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    pp_status st = pp_check_out_buffer(fn, out, capacity, count);
+    if (st)
+        return st;
     if (a.id == b.id)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a and b are the same body", fn);
     const np_settings set = {wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
     const np_body va = body_np_view(ba), vb = body_np_view(bb);
     np_result r;
-    pp_status st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r);
+    st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r);
     if (st)
         return st;
     for (int32_t k = 0; k < r.count && k < capacity; k++) {

@@ -17,6 +17,17 @@ pp_status pp_fail(pp_status status, const char *fmt, ...)
     return status;
 }
 
+pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity, const int32_t *count)
+{
+    if (!count)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: count is NULL", fn);
+    if (capacity < 0)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: capacity is negative (%d)", fn, (int)capacity);
+    if (capacity > 0 && !out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out is NULL with capacity %d", fn, (int)capacity);
+    return PP_OK;
+}
+
 void pp_log(int level, const char *fmt, ...)
 {
     if (!log_fn)

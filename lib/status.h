@@ -8,6 +8,9 @@
  * `return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be > 0, got %g", dt);`. */
 pp_status pp_fail(pp_status status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* Check a caller-owned output buffer (out, capacity, count) as every list call takes it. */
+pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity, const int32_t *count);
+
 /* Send a line to the host's log hook, if one is installed. */
 void pp_log(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -308,9 +308,9 @@ PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity,
     world *wd = world_lookup(w, "pp_world_get_bodies");
     if (!wd)
         return PP_ERR_INVALID_HANDLE;
-    if (!count || capacity < 0 || (capacity > 0 && !out))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_bodies: %s",
-                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    pp_status st = pp_check_out_buffer("pp_world_get_bodies", out, capacity, count);
+    if (st)
+        return st;
     int32_t n = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++)
         if (wd->bodies[i]) {
@@ -327,9 +327,9 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     world *wd = world_lookup(w, "pp_world_get_contacts");
     if (!wd)
         return PP_ERR_INVALID_HANDLE;
-    if (!count || capacity < 0 || (capacity > 0 && !out))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_contacts: %s",
-                       !count ? "count is NULL" : capacity < 0 ? "capacity is negative" : "out is NULL");
+    pp_status st = pp_check_out_buffer("pp_world_get_contacts", out, capacity, count);
+    if (st)
+        return st;
     const int32_t n = wd->contact_count < capacity ? wd->contact_count : capacity;
     if (n > 0)
         memcpy(out, wd->contacts, (size_t)n * sizeof *out);

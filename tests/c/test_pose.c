@@ -97,16 +97,23 @@ static pp_vec2 corner_box_com(pp_world w, pp_body b)
     return v2((float)(p.x + cos(a) * 20 - sin(a) * 10), (float)(p.y + sin(a) * 20 + cos(a) * 10));
 }
 
-Test(pose, velocity_is_that_of_the_centre_of_mass) {
-    /* A 40×20 box with its pivot at the top-left corner, centre of mass (20, 10) local, (220, 210)
-     * world. Set to (10, −20) px/s while spinning at 1 rad/s, the centre of mass moves in a
-     * straight line at exactly that velocity, whatever the pivot does. */
-    pp_world w = make_world(0, 0);
+/* That box, its centre of mass set moving at (10, −20) px/s while it spins at 1 rad/s. */
+static pp_body spinning_corner_box(pp_world w)
+{
     pp_body_def d = body_def(PP_BODY_DYNAMIC, 200, 200, 0);
     d.custom_pivot = 1;
     d.pivot = v2(0, 0);
     pp_body b = add_rect(w, d, 40, 20);
     PP_OK_OR_FAIL(pp_body_set_velocity(w, b, v2(10, -20), 1.0f));
+    return b;
+}
+
+Test(pose, velocity_is_that_of_the_centre_of_mass) {
+    /* A 40×20 box with its pivot at the top-left corner, centre of mass (20, 10) local, (220, 210)
+     * world. Set to (10, −20) px/s while spinning at 1 rad/s, the centre of mass moves in a
+     * straight line at exactly that velocity, whatever the pivot does. */
+    pp_world w = make_world(0, 0);
+    pp_body b = spinning_corner_box(w);
     pp_vec2 v;
     float av;
     PP_OK_OR_FAIL(pp_body_get_velocity(w, b, &v, &av));
@@ -129,11 +136,7 @@ Test(pose, reported_velocity_matches_centre_of_mass_motion) {
     /* The same box spinning at 1 rad/s: get_velocity must match the motion of the centre of mass
      * (central differences), and the pivot, off the centre, must move differently. */
     pp_world w = make_world(0, 0);
-    pp_body_def d = body_def(PP_BODY_DYNAMIC, 200, 200, 0);
-    d.custom_pivot = 1;
-    d.pivot = v2(0, 0);
-    pp_body b = add_rect(w, d, 40, 20);
-    PP_OK_OR_FAIL(pp_body_set_velocity(w, b, v2(10, -20), 1.0f));
+    pp_body b = spinning_corner_box(w);
     const float dt = 1.0f / 240;
     step_n(w, dt, 10);
     pp_vec2 c0 = corner_box_com(w, b), p0 = body_pos(w, b);
