@@ -15,6 +15,17 @@
 
 #include "physpix.h"
 
+/* Criterion's forked workers skip LeakSanitizer's exit-time check, so the sanitized build checks
+ * for leaks explicitly after every test and prints any report; `make test-san` fails on a report.
+ * (Criterion counts a test before its .fini runs, so failing here would not fail the test.) */
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+static inline void pp_test_leak_check(void) { __lsan_do_recoverable_leak_check(); }
+#define PP_TEST_SUITE(name) TestSuite(name, .fini = pp_test_leak_check)
+#else
+#define PP_TEST_SUITE(name) TestSuite(name)
+#endif
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif

@@ -2,6 +2,8 @@
  * worlds are stepped in between (ODE's random generator is process-wide). */
 #include "helpers.h"
 
+PP_TEST_SUITE(determinism);
+
 #define DET_BOXES 6
 #define DET_STEPS 300
 

@@ -1,6 +1,8 @@
 /* Collision response: momentum conservation, restitution, Coulomb friction on a slope. */
 #include "helpers.h"
 
+PP_TEST_SUITE(dynamics);
+
 Test(dynamics, head_on_collision_conserves_momentum, .timeout = 30) {
     const float dt = 1.0f / 60.0f;
     pp_world w = make_world(0, 0);

@@ -1,6 +1,8 @@
 /* Which pairs collide: category/mask bits, static–static pairs; and fixed rotation. */
 #include "helpers.h"
 
+PP_TEST_SUITE(filtering);
+
 /* Two 30×30 dynamic boxes overlapping by 10 px in x, gravity off; steps 30 times.
  * Returns the most contacts seen in a step and how far apart they ended. */
 static void overlap_pair(uint32_t cat_a, uint32_t mask_a, uint32_t cat_b, uint32_t mask_b, int *max_contacts,

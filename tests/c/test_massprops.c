@@ -2,6 +2,8 @@
  * done here pixel by pixel (each pixel a unit square: its own inertia is w·(1+1)/12 = w/6). */
 #include "helpers.h"
 
+PP_TEST_SUITE(massprops);
+
 /* Relative difference |a - b| / |b|. */
 static double rel_err(double a, double b) { return fabs(a - b) / fabs(b); }
 

@@ -1,6 +1,8 @@
 /* Misuse answered with the exact status and a message naming the argument; state left intact. */
 #include "helpers.h"
 
+PP_TEST_SUITE(misuse);
+
 static pp_world misuse_world(void) { return make_world(0, 980); }
 
 static pp_body misuse_box(pp_world w) { return add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 8, 8); }

@@ -2,6 +2,8 @@
  * against the analytic answer: circle–circle at 36 directions, box–ground at 0..90°. */
 #include "helpers.h"
 
+PP_TEST_SUITE(normals);
+
 #define DISC_R 30
 #define CIRCLE_DIRS 36
 #define BOX_HALF 20

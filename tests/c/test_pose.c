@@ -2,6 +2,8 @@
  * sleeping, user data and stats. */
 #include "helpers.h"
 
+PP_TEST_SUITE(pose);
+
 Test(pose, bitmap_to_world_mapping) {
     /* A 10×10 bitmap whose only solid pixel is (9, 0): centre (9.5, 0.5), pivot (5, 5).
      * At angle +90° (turning +x toward +y), local − pivot = (4.5, −4.5) maps to (4.5, 4.5). */

@@ -1,6 +1,8 @@
 /* A box dropped on static ground comes to rest on its surface and stays there. */
 #include "helpers.h"
 
+PP_TEST_SUITE(resting);
+
 Test(resting, box_settles_on_ground_and_stays, .timeout = 60) {
     const float dt = 1.0f / 60.0f;
     pp_world w = make_world(0, 980);
