@@ -36,8 +36,9 @@ static inline uint32_t coverage_fixed(const pp_raster *r, int64_t qx, int64_t qy
     const uint32_t fx = (uint32_t)((hx >> (NP_FIX_BITS - 8)) & 255), fy = (uint32_t)((hy >> (NP_FIX_BITS - 8)) & 255);
     if (x < -1 || y < -1 || x >= r->width || y >= r->height)
         return 0;
-    const uint32_t m00 = raster_solid_clamped(r, (int32_t)x, (int32_t)y), m10 = raster_solid_clamped(r, (int32_t)x + 1, (int32_t)y);
-    const uint32_t m01 = raster_solid_clamped(r, (int32_t)x, (int32_t)y + 1), m11 = raster_solid_clamped(r, (int32_t)x + 1, (int32_t)y + 1);
+    const int32_t x0 = (int32_t)x, y0 = (int32_t)y;
+    const uint32_t m00 = raster_solid_clamped(r, x0, y0), m10 = raster_solid_clamped(r, x0 + 1, y0);
+    const uint32_t m01 = raster_solid_clamped(r, x0, y0 + 1), m11 = raster_solid_clamped(r, x0 + 1, y0 + 1);
     return (m00 * (256 - fx) * (256 - fy) + m10 * fx * (256 - fy) + m01 * (256 - fx) * fy + m11 * fx * fy) >> 8;
 }
 
@@ -129,11 +130,12 @@ static void sample_planes(const grid *g, const pp_raster *ra, const pp_raster *r
         const int32_t py = (g->j0 - RING + cj) * g->s + g->off;
         const int64_t rx = qx0 + cj * djx, ry = qy0 + cj * djy;
         uint8_t *ra_row = sa + (int64_t)cj * g->ex, *rb_row = sb + (int64_t)cj * g->ex;
+        uint16_t *cb_row = cb + (int64_t)cj * g->ex;
         for (int32_t ci = 0; ci < g->ex; ci++) {
             const int32_t px = (g->i0 - RING + ci) * g->s + g->off;
             ra_row[ci] = raster_solid_clamped(ra, px, py);
             rb_row[ci] = sample_fixed(rb, rx + ci * dix, ry + ci * diy);
-            cb[(int64_t)cj * g->ex + ci] = (uint16_t)coverage_fixed(rb, rx + ci * dix, ry + ci * diy);
+            cb_row[ci] = (uint16_t)coverage_fixed(rb, rx + ci * dix, ry + ci * diy);
         }
     }
 }
@@ -144,8 +146,8 @@ typedef struct isect_sums {
     int64_t nx, ny;         /* unnormalised normal, reference grid axes, pointing from reference to other */
 } isect_sums;
 
-static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb, pp_normal_method method,
-                              isect_sums *r)
+static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb,
+                              pp_normal_method method, isect_sums *r)
 {
     *r = (isect_sums){0};
     const int32_t ex = g->ex;
@@ -205,7 +207,8 @@ static void intersection_sums(const grid *g, const uint8_t *sa, const uint8_t *s
  * intersection cells on the normal (Q14), and the other body's coverage summed over the strip's
  * reference cells, which is the overlap length along the strip to sub-pixel precision (for a
  * flat edge, exactly). Each cell's coverage is shared between the two strips whose centres are
- * nearest, by distance, since a tilted strip holds a varying number of cell centres. Returns the number of strips; *tmin is the index of the first. */
+ * nearest, by distance, since a tilted strip holds a varying number of cell centres.
+ * Returns the number of strips; *tmin is the index of the first. */
 enum { STRIP_MIN, STRIP_MAX, STRIP_COVER, STRIP_FIELDS };
 
 static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb, int32_t nqx,
@@ -230,10 +233,10 @@ static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb,
             const int64_t k = (int64_t)cj * g->ex + ci;
             if (!sa[k] || !cb[k])
                 continue;
-            const int64_t x = ci - RING, y = cj - RING, tq = -x * nqy + y * nqx;
-            int32_t *st = strips + STRIP_FIELDS * (floor_div(tq, NP_NORMAL_ONE) - lo);
-            /* Tent-splat the coverage between the two strips whose centres are nearest (8-bit weights). */
-            const int64_t ts = tq - NP_NORMAL_ONE / 2, b0 = floor_div(ts, NP_NORMAL_ONE) - lo;
+            const int64_t x = ci - RING, y = cj - RING;
+            /* Tent-splat the coverage between the two strips whose centres are nearest (8-bit weights):
+             * b0 is the strip whose centre is at or before the cell, w1 the share of the next one. */
+            const int64_t ts = -x * nqy + y * nqx - NP_NORMAL_ONE / 2, b0 = floor_div(ts, NP_NORMAL_ONE) - lo;
             const int32_t w1 = (int32_t)((ts - (b0 + lo) * NP_NORMAL_ONE) >> 6); /* 0..255 */
             if (b0 >= 0)
                 strips[STRIP_FIELDS * b0 + STRIP_COVER] += (cb[k] * (256 - w1)) >> 8;
@@ -241,6 +244,8 @@ static int32_t strips_along(const grid *g, const uint8_t *sa, const uint8_t *sb,
                 strips[STRIP_FIELDS * (b0 + 1) + STRIP_COVER] += (cb[k] * w1) >> 8;
             if (!sb[k])
                 continue;
+            /* The cell's own strip: the later of the two once the cell is past b0's right edge. */
+            int32_t *st = strips + STRIP_FIELDS * (b0 + (w1 >= 128));
             const int32_t p = (int32_t)(x * nqx + y * nqy);
             if (p < st[STRIP_MIN]) st[STRIP_MIN] = p;
             if (p > st[STRIP_MAX]) st[STRIP_MAX] = p;
