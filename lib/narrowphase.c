@@ -1,0 +1,200 @@
+/* The backend-independent halves of the narrowphase: setting a pair up (reference body, grid,
+ * fixed-point sampling steps) and turning its integer core into contacts. Floating point lives
+ * here only, on the CPU, so the backends differ in nothing but who computes the core. */
+#include "narrowphase.h"
+
+#include <limits.h>
+#include <stdlib.h>
+
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+
+static inline int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
+
+static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
+
+/* Reference-local pixel coordinates of a (fractional) inner-cell position. */
+static dvec2 grid_to_local(const np_pair *p, double ci, double cj)
+{
+    return dv((p->i0 + ci) * p->s + p->off + 0.5, (p->j0 + cj) * p->s + p->off + 0.5);
+}
+
+/* The rectangle of the reference grid where the two bodies can overlap; false when empty.
+ * M, t map reference-local to other-local: q = M·l + t. */
+static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, double ms, dvec2 t, int32_t stride,
+                         np_pair *p)
+{
+    double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+    const double cx[2] = {rb->x0, rb->x1}, cy[2] = {rb->y0, rb->y1};
+    for (int k = 0; k < 4; k++) {
+        const dvec2 l = dv_unrot(dv_sub(dv(cx[k & 1], cy[k >> 1]), t), mc, ms);
+        lo_x = fmin(lo_x, l.x), hi_x = fmax(hi_x, l.x);
+        lo_y = fmin(lo_y, l.y), hi_y = fmax(hi_y, l.y);
+    }
+    /* A margin of one cell plus one pixel so unit shifts of the other body stay inside. */
+    const double margin = stride + 1;
+    const int64_t X0 = (int64_t)fmax(ra->x0, floor(lo_x - margin)), X1 = (int64_t)fmin(ra->x1, ceil(hi_x + margin));
+    const int64_t Y0 = (int64_t)fmax(ra->y0, floor(lo_y - margin)), Y1 = (int64_t)fmin(ra->y1, ceil(hi_y + margin));
+    if (X0 >= X1 || Y0 >= Y1)
+        return false;
+    p->s = stride;
+    p->off = stride / 2;
+    const int64_t i0 = ceil_div(X0 - p->off, stride), i1 = floor_div(X1 - 1 - p->off, stride);
+    const int64_t j0 = ceil_div(Y0 - p->off, stride), j1 = floor_div(Y1 - 1 - p->off, stride);
+    if (i1 < i0 || j1 < j0)
+        return false;
+    p->i0 = (int32_t)i0, p->j0 = (int32_t)j0;
+    p->nx = (int32_t)(i1 - i0 + 1), p->ny = (int32_t)(j1 - j0 + 1);
+    return true;
+}
+
+/* The other body is sampled through 16.16 fixed-point affine steps from one rounded origin,
+ * so every backend reads the same pixels. */
+static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
+{
+    const double one = (double)(1 << NP_FIX_BITS);
+    const dvec2 l0 = grid_to_local(p, -NP_RING, -NP_RING);
+    const dvec2 q0 = dv_add(dv_rot(l0, mc, ms), t);
+    p->qx0 = llround(q0.x * one), p->qy0 = llround(q0.y * one);
+    p->dix = llround(mc * p->s * one), p->diy = llround(ms * p->s * one);
+    p->djx = llround(-ms * p->s * one), p->djy = llround(mc * p->s * one);
+    /* The plane's corners bound every sample point (the map is affine); the GPU also needs
+     * q − ½ pixel for the coverage, hence the headroom. */
+    const int64_t ex = p->nx + 2 * NP_RING - 1, ey = p->ny + 2 * NP_RING - 1, lim = (int64_t)1 << 30;
+    p->fits_int32 = true;
+    for (int k = 0; k < 4; k++) {
+        const int64_t i = (k & 1) ? ex : 0, j = (k >> 1) ? ey : 0;
+        const int64_t qx = p->qx0 + i * p->dix + j * p->djx, qy = p->qy0 + i * p->diy + j * p->djy;
+        p->fits_int32 &= qx > -lim && qx < lim && qy > -lim && qy < lim;
+    }
+}
+
+bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
+{
+    if (raster_empty(a->raster) || raster_empty(b->raster))
+        return false;
+    /* The larger body is the reference: its own boundary stays exact on its own grid (a flat ground
+     * gives an exact normal), and the grid is still bounded by the smaller body's box. */
+    p->swap = bounds_area(b->raster) > bounds_area(a->raster);
+    const np_body *A = p->swap ? b : a, *B = p->swap ? a : b;
+    p->ra = A->raster, p->rb = B->raster;
+
+    /* q = M·l + t maps A-local to B-local: M = R(θA − θB), t = pivotB + R(−θB)(posA − posB) − M·pivotA. */
+    const double mc = A->c * B->c + A->s * B->s, ms = A->s * B->c - A->c * B->s;
+    const dvec2 d = dv_unrot(dv_sub(A->pos, B->pos), B->c, B->s);
+    const dvec2 t = dv_sub(dv_add(B->pivot, d), dv_rot(A->pivot, mc, ms));
+    if (!overlap_grid(p->ra, p->rb, mc, ms, t, set->stride, p))
+        return false;
+    sampling_steps(p, mc, ms, t);
+
+    /* A symmetric overlap has no preferred side: use the line between the bodies. */
+    dvec2 n = dv_unrot(dv_sub(B->pos, A->pos), A->c, A->s);
+    if (n.x == 0 && n.y == 0)
+        n = dv(0, 1);
+    p->fallback_n = dv_scale(n, 1.0 / sqrt(dv_dot(n, n)));
+    p->fallback_nqx = (int32_t)lround(p->fallback_n.x * NP_NORMAL_ONE);
+    p->fallback_nqy = (int32_t)lround(p->fallback_n.y * NP_NORMAL_ONE);
+    return true;
+}
+
+/* round(2^14·a/√r2) for 0 ≤ a ≤ √r2 < 2^15.5, exactly: the k with (2k−1)²·r2 ≤ 2^30·a² < (2k+1)²·r2.
+ * The float guess is only a start; the GPU twin (glsl/common.glsl) makes the same tests. */
+static int32_t round_unit_q14(uint32_t a, uint32_t r2)
+{
+    const uint64_t target = (uint64_t)a * a << 30;
+    int64_t k = (int64_t)(NP_NORMAL_ONE * (double)a / sqrt((double)r2) + 0.5);
+    k = k < 0 ? 0 : k > NP_NORMAL_ONE ? NP_NORMAL_ONE : k;
+    while (k > 0 && (uint64_t)((2 * k - 1) * (2 * k - 1)) * r2 > target)
+        k--;
+    while ((uint64_t)((2 * k + 1) * (2 * k + 1)) * r2 <= target)
+        k++;
+    return (int32_t)k;
+}
+
+void np_quantize_normal(int64_t gx, int64_t gy, int32_t *nqx, int32_t *nqy)
+{
+    uint64_t ax = gx < 0 ? 0 - (uint64_t)gx : (uint64_t)gx, ay = gy < 0 ? 0 - (uint64_t)gy : (uint64_t)gy;
+    const uint64_t m = ax > ay ? ax : ay;
+    const int msb = 63 - __builtin_clzll(m);
+    const int shift = msb > 14 ? msb - 14 : 0;
+    ax >>= shift, ay >>= shift;
+    const uint32_t r2 = (uint32_t)(ax * ax + ay * ay);
+    const int32_t kx = round_unit_q14((uint32_t)ax, r2), ky = round_unit_q14((uint32_t)ay, r2);
+    *nqx = gx < 0 ? -kx : kx;
+    *nqy = gy < 0 ? -ky : ky;
+}
+
+/* Inner-cell coordinates of the middle of a strip's intersection, given its projections. */
+static dvec2 strip_point(int32_t strip, int32_t pmin, int32_t pmax, int32_t nqx, int32_t nqy)
+{
+    const double v = 0.5 * ((double)pmin + pmax) / NP_NORMAL_ONE; /* along n */
+    const double u = (double)strip + 0.5;                          /* along t */
+    const double q = (double)NP_NORMAL_ONE;
+    return dv((nqx * v - nqy * u) / q, (nqy * v + nqx * u) / q);
+}
+
+void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, const np_pair *p,
+                    const np_core *core, np_result *out)
+{
+    out->count = 0;
+    if (core->count == 0)
+        return;
+    const np_body *A = p->swap ? b : a;
+    dvec2 n = p->fallback_n;
+    if (core->gx != 0 || core->gy != 0) {
+        n = dv((double)core->gx, (double)core->gy);
+        n = dv_scale(n, 1.0 / sqrt(dv_dot(n, n)));
+    }
+
+    /* Contact points in inner-cell coordinates, with their depths in pixels. */
+    const double cell = p->s / 256.0;
+    dvec2 pts[2];
+    double depth[2];
+    const dvec2 first = strip_point(core->tmin + core->first, core->first_min, core->first_max, core->nqx, core->nqy);
+    if (set->contact_mode == PP_CONTACT_CENTROID || core->first == core->last) {
+        pts[0] = set->contact_mode == PP_CONTACT_CENTROID
+                     ? dv((double)core->sx / core->count, (double)core->sy / core->count)
+                     : first;
+        depth[0] = core->cover_all * cell;
+        out->count = 1;
+    } else {
+        /* The two ends along the tangent, each as deep as the deepest strip of its half. */
+        pts[0] = first;
+        pts[1] = strip_point(core->tmin + core->last, core->last_min, core->last_max, core->nqx, core->nqy);
+        depth[0] = core->cover_lo * cell;
+        depth[1] = core->cover_hi * cell;
+        out->count = 2;
+    }
+
+    const dvec2 nw = dv_rot(n, A->c, A->s);
+    const double sign = p->swap ? -1.0 : 1.0;
+    for (int32_t k = 0; k < out->count; k++) {
+        const dvec2 l = grid_to_local(p, pts[k].x, pts[k].y);
+        const dvec2 w = dv_add(A->pos, dv_rot(dv_sub(l, A->pivot), A->c, A->s));
+        pp_contact *c = &out->contacts[k];
+        c->point = (pp_vec2){(float)w.x, (float)w.y};
+        c->normal = (pp_vec2){(float)(sign * nw.x), (float)(sign * nw.y)};
+        c->depth = (float)depth[k];
+        c->pixel_count = (int32_t)(core->count * p->s * p->s);
+    }
+}
+
+pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_body *b, np_scratch *scratch,
+                             np_result *out)
+{
+    out->count = 0;
+    out->samples = 0;
+    np_pair p;
+    if (!np_pair_setup(set, a, b, &p))
+        return PP_OK;
+    np_core core;
+    const pp_status st = narrow_cpu_core(set, &p, scratch, &core);
+    if (st)
+        return st;
+    out->samples = np_pair_cells(&p);
+    np_pair_finish(set, a, b, &p, &core, out);
+    return PP_OK;
+}
