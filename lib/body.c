@@ -69,6 +69,8 @@ static dvec2 body_com_world(const body *bd)
 void body_free(world *wd, body *bd)
 {
     solver_body_destroy(wd->solver, &bd->sb);
+    if (wd->gpu)
+        gpu_narrow_forget(wd->gpu, &bd->raster);
     raster_free(&bd->raster);
     free(bd);
 }

@@ -20,12 +20,18 @@ PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *
         return st;
     if (a.id == b.id)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a and b are the same body", fn);
-    const np_settings set = {wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
+    /* The pair runs on the world's backend, so a query sees what a step would. */
+    const np_settings set = world_np_settings(wd);
     const np_body va = body_np_view(ba), vb = body_np_view(bb);
-    np_result r;
-    st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r);
-    if (st)
+    np_result r = {0};
+    if ((st = world_reserve_pairs(wd, fn, 1)))
         return st;
+    if (np_pair_setup(&set, &va, &vb, &wd->pairs[0])) {
+        pp_backend ran;
+        if ((st = world_run_cores(wd, fn, 1, np_pair_cells(&wd->pairs[0]), &ran)))
+            return st;
+        np_pair_finish(&set, &va, &vb, &wd->pairs[0], &wd->cores[0], &r);
+    }
     for (int32_t k = 0; k < r.count && k < capacity; k++) {
         out[k] = r.contacts[k];
         out[k].a = a;

@@ -32,6 +32,7 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     r->width = w;
     r->height = h;
     r->words_per_row = (w + 63) / 64;
+    r->gpu_word = -1;
     r->bits = calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
     if (!r->bits)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);

@@ -15,6 +15,8 @@ typedef struct pp_raster {
     uint8_t *weights;        /* width × height relative masses; NULL: every solid pixel weighs 255 */
     int64_t solid_count;     /* number of solid pixels */
     int32_t x0, y0, x1, y1;  /* solid bounds [x0, x1) × [y0, y1); empty when x0 ≥ x1 */
+    int64_t gpu_word;        /* first 32-bit word of the mask in the world's GPU mirror; −1: not mirrored */
+    int32_t dirty_y0, dirty_y1; /* rows edited since the mirror was written; clean when y0 ≥ y1 */
 } pp_raster;
 
 /* Validate a def's bitmap (sizes, limits, planes) without allocating. */
@@ -39,6 +41,15 @@ static inline bool raster_solid_clamped(const pp_raster *r, int32_t x, int32_t y
 static inline uint32_t raster_weight(const pp_raster *r, int32_t x, int32_t y)
 {
     return r->weights ? r->weights[(int64_t)y * r->width + x] : 255u;
+}
+
+/* Rows [y0, y1) changed: the GPU mirror rewrites them before its next use. */
+static inline void raster_mark_dirty(pp_raster *r, int32_t y0, int32_t y1)
+{
+    if (r->dirty_y0 >= r->dirty_y1)
+        r->dirty_y0 = y0, r->dirty_y1 = y1;
+    r->dirty_y0 = y0 < r->dirty_y0 ? y0 : r->dirty_y0;
+    r->dirty_y1 = y1 > r->dirty_y1 ? y1 : r->dirty_y1;
 }
 
 static inline bool raster_empty(const pp_raster *r) { return r->x0 >= r->x1; }

@@ -85,8 +85,6 @@ static pp_status check_world_def(const pp_world_def *d)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_mode %d is unknown", (int)d->contact_mode);
     if ((uint32_t)d->backend > PP_BACKEND_GPU)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: backend %d is unknown", (int)d->backend);
-    if (d->backend == PP_BACKEND_GPU)
-        return pp_fail(PP_ERR_UNSUPPORTED, "pp_world_create: backend GPU: this build has no GPU collision backend");
     if (!(d->pixels_per_meter > 0) || !isfinite(d->pixels_per_meter))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: pixels_per_meter must be finite and > 0");
     if (!(d->contact_slop >= 0) || !isfinite(d->contact_slop))
@@ -119,7 +117,12 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     if (!wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");
     wd->def = d;
+    if (d.backend == PP_BACKEND_GPU && (st = gpu_narrow_create("pp_world_create", &wd->gpu))) {
+        free(wd);
+        return st;
+    }
     if ((st = solver_create(&d, &wd->solver))) {
+        gpu_narrow_destroy(wd->gpu);
         free(wd);
         return st;
     }
@@ -130,6 +133,7 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     if (slot == PP_MAX_WORLDS) {
         pthread_mutex_unlock(&worlds_lock);
         solver_destroy(wd->solver);
+        gpu_narrow_destroy(wd->gpu);
         free(wd);
         return pp_fail(PP_ERR_LIMIT, "pp_world_create: already %d live worlds (PP_MAX_WORLDS)", PP_MAX_WORLDS);
     }
@@ -139,7 +143,7 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     wd->slot = slot;
     wd->handle.id = ((uint64_t)world_generations[slot] << 32) | (slot + 1);
     pthread_mutex_unlock(&worlds_lock);
-    wd->stats.backend = PP_BACKEND_CPU;
+    wd->stats.backend = d.backend == PP_BACKEND_GPU ? PP_BACKEND_GPU : PP_BACKEND_CPU;
     *out = wd->handle;
     return PP_OK;
 }
@@ -163,6 +167,10 @@ PP_API pp_status pp_world_destroy(pp_world w)
     solver_destroy(wd->solver);
     broadphase_free(&wd->broad);
     np_scratch_free(&wd->scratch);
+    gpu_narrow_destroy(wd->gpu);
+    free(wd->pairs);
+    free(wd->cores);
+    free(wd->pair_bodies);
     free(wd->bodies);
     free(wd->generations);
     free(wd->free_slots);
@@ -190,13 +198,68 @@ static double inv_mass(const body *bd)
     return bd->type == PP_BODY_DYNAMIC && bd->mass.mass > 0 ? 1.0 / bd->mass.mass : 0.0;
 }
 
+pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
+{
+    if (n <= wd->pair_capacity)
+        return PP_OK;
+    const int32_t cap = n > 2 * wd->pair_capacity ? n : 2 * wd->pair_capacity;
+    np_pair *p = realloc(wd->pairs, (size_t)cap * sizeof *p);
+    if (p)
+        wd->pairs = p;
+    np_core *c = realloc(wd->cores, (size_t)cap * sizeof *c);
+    if (c)
+        wd->cores = c;
+    int32_t *s = realloc(wd->pair_bodies, (size_t)cap * 2 * sizeof *s);
+    if (s)
+        wd->pair_bodies = s;
+    if (!p || !c || !s)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)cap);
+    wd->pair_capacity = cap;
+    return PP_OK;
+}
+
+/* AUTO sends a batch to the GPU from this many sampled cells on (make bench: the crossover).
+ * A software rasteriser (llvmpipe) never gets AUTO's work: it is the CPU, only slower. */
+#define GPU_AUTO_MIN_CELLS 200000
+
+static pp_backend choose_backend(world *wd, int64_t cells)
+{
+    if (wd->def.backend != PP_BACKEND_AUTO)
+        return wd->def.backend;
+    if (cells < GPU_AUTO_MIN_CELLS)
+        return PP_BACKEND_CPU;
+    if (!wd->gpu_tried) {
+        wd->gpu_tried = true;
+        if (gpu_narrow_create("pp_world_step", &wd->gpu) == PP_OK && gpu_narrow_is_software(wd->gpu))
+            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: the GPU context is a software rasteriser");
+        else if (!wd->gpu)
+            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: %s", pp_last_error());
+    }
+    return wd->gpu && !gpu_narrow_is_software(wd->gpu) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+}
+
+pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran)
+{
+    const np_settings set = world_np_settings(wd);
+    *ran = choose_backend(wd, cells);
+    if (*ran == PP_BACKEND_GPU)
+        return gpu_narrow_run(wd->gpu, fn, &set, wd->pairs, n, &wd->scratch, wd->cores);
+    for (int32_t k = 0; k < n; k++) {
+        pp_status st = narrow_cpu_core(&set, &wd->pairs[k], &wd->scratch, &wd->cores[k]);
+        if (st)
+            return st;
+    }
+    return PP_OK;
+}
+
 /* Broadphase and narrowphase at the current poses; fills wd->contacts. */
 static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
 {
+    static const char *fn = "pp_world_step";
     const double t0 = now_ms();
     bp_proxy *proxies = calloc((size_t)wd->body_capacity + 1, sizeof *proxies);
     if (!proxies)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the broadphase", fn);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         if (!bd)
@@ -208,26 +271,39 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     }
     pp_status st = broadphase_find_pairs(&wd->broad, proxies, wd->body_capacity);
     free(proxies);
-    if (st)
+    if (st || (st = world_reserve_pairs(wd, fn, wd->broad.pair_count)))
         return st;
     const double t1 = now_ms();
 
-    const np_settings set = {wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
-    wd->contact_count = 0;
+    /* Set every pair up, run the cores as one batch, then turn them into contacts. */
+    const np_settings set = world_np_settings(wd);
+    int32_t n = 0;
+    int64_t cells = 0;
     for (int32_t p = 0; p < wd->broad.pair_count; p++) {
-        const body *a = wd->bodies[wd->broad.pairs[p].a], *b = wd->bodies[wd->broad.pairs[p].b];
+        const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
+        const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
+        if (!np_pair_setup(&set, &va, &vb, &wd->pairs[n]))
+            continue;
+        cells += np_pair_cells(&wd->pairs[n]);
+        wd->pair_bodies[2 * n] = ia, wd->pair_bodies[2 * n + 1] = ib;
+        n++;
+    }
+    if ((st = world_run_cores(wd, fn, n, cells, &wd->stats.backend)))
+        return st;
+    wd->contact_count = 0;
+    for (int32_t k = 0; k < n; k++) {
+        const body *a = wd->bodies[wd->pair_bodies[2 * k]], *b = wd->bodies[wd->pair_bodies[2 * k + 1]];
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
-        if ((st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r)))
-            return st;
-        wd->stats.pixels_tested += r.samples;
-        for (int32_t k = 0; k < r.count; k++) {
-            r.contacts[k].a = a->handle;
-            r.contacts[k].b = b->handle;
-            if ((st = push_contact(wd, &r.contacts[k])))
+        np_pair_finish(&set, &va, &vb, &wd->pairs[k], &wd->cores[k], &r);
+        for (int32_t c = 0; c < r.count; c++) {
+            r.contacts[c].a = a->handle;
+            r.contacts[c].b = b->handle;
+            if ((st = push_contact(wd, &r.contacts[c])))
                 return st;
         }
     }
+    wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
     wd->stats.contacts = wd->contact_count;
     *t_broad += t1 - t0;
@@ -299,7 +375,6 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->stats.total_ms = (float)(now_ms() - t_start);
     wd->stats.bodies = wd->live_count;
     wd->stats.awake_bodies = awake;
-    wd->stats.backend = PP_BACKEND_CPU;
     return PP_OK;
 }
 

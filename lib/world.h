@@ -5,6 +5,7 @@
 #include "broadphase.h"
 #include "massprops.h"
 #include "math2d.h"
+#include "narrow_gpu.h"
 #include "narrowphase.h"
 #include "raster.h"
 #include "solver_ode.h"
@@ -42,6 +43,12 @@ typedef struct world {
     pp_contact *contacts;    /* the last substep's contacts */
     int32_t contact_count, contact_capacity;
     np_scratch scratch;
+    np_pair *pairs;          /* this substep's pairs that passed set-up … */
+    np_core *cores;          /* … their integer cores … */
+    int32_t *pair_bodies;    /* … and their bodies' slots, two per pair */
+    int32_t pair_capacity;
+    gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
+    bool gpu_tried;          /* AUTO tried to bring the GPU up */
     pp_step_stats stats;
 } world;
 
@@ -49,10 +56,22 @@ typedef struct world {
 world *world_lookup(pp_world w, const char *fn);
 body *body_lookup(world *wd, pp_body b, const char *fn);
 
+/* Room for n pairs in the world's pair arrays. */
+pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
+
+/* The integer cores of wd->pairs[0, n) (`cells` samples in all) on the backend the world asked
+ * for; returns which one ran. */
+pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran);
+
 /* Refresh cached trig and world bounds after a pose change. */
 void body_update_pose_cache(body *bd);
 
 /* The narrowphase's view of a body at its current pose. */
+static inline np_settings world_np_settings(const world *wd)
+{
+    return (np_settings){wd->def.normal_method, wd->def.contact_mode, wd->def.raster_stride};
+}
+
 static inline np_body body_np_view(const body *bd)
 {
     return (np_body){&bd->raster, bd->pos, bd->pivot, bd->cos_a, bd->sin_a};

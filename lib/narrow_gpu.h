@@ -1,0 +1,26 @@
+/* The GPU backend of the narrowphase core: a world's masks mirrored in one GPU buffer, and all
+ * of a step's pairs run in one batch of four compute passes with one readback. */
+#ifndef PP_NARROW_GPU_H
+#define PP_NARROW_GPU_H
+
+#include "narrowphase.h"
+
+typedef struct gpu_narrow gpu_narrow;
+
+/* A world's GPU state; brings the process's context up on first use. PP_ERR_UNSUPPORTED (with
+ * the EGL/GL reason in pp_last_error()) where no GLES 3.1 compute context can be made. */
+pp_status gpu_narrow_create(const char *fn, gpu_narrow **out);
+void gpu_narrow_destroy(gpu_narrow *g);
+
+/* True when the context is a CPU rasteriser (llvmpipe): real, but never faster than the CPU. */
+bool gpu_narrow_is_software(const gpu_narrow *g);
+
+/* A raster is going away: give its words in the mirror back (no GL call). */
+void gpu_narrow_forget(gpu_narrow *g, pp_raster *r);
+
+/* The integer cores of n pairs: on the GPU where the pair fits its 32-bit arithmetic and its
+ * masks fit the mirror, on the CPU otherwise; the outcome is the same either way. */
+pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
+                         np_scratch *scratch, np_core *out);
+
+#endif

@@ -1,0 +1,134 @@
+/* The GPU backend against the CPU reference: the same contacts bit for bit on random pairs, the
+ * same determinism hash over a 600-step scene, and a clear status where no GPU context exists.
+ * Where EGL gives no GLES 3.1 compute context the comparisons are skipped with the reason. */
+#include "helpers.h"
+
+PP_TEST_SUITE(gpu);
+
+/* Can this machine make a GPU world? If not, *why gets pp_last_error(). */
+static int gpu_available(char *why, size_t n) {
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_GPU;
+    pp_world w = {0};
+    pp_status st = pp_world_create(&d, &w);
+    if (st != PP_OK) {
+        cr_assert_eq(st, PP_ERR_UNSUPPORTED, "a failed GPU world must say UNSUPPORTED, got %s", pp_status_name(st));
+        snprintf(why, n, "%s", pp_last_error());
+        return 0;
+    }
+    pp_world_destroy(w);
+    return 1;
+}
+
+#define SKIP_WITHOUT_GPU()                                                   \
+    do {                                                                     \
+        char why_[512];                                                      \
+        if (!gpu_available(why_, sizeof why_)) {                             \
+            fprintf(stderr, "gpu tests skipped: %s\n", why_);                \
+            cr_skip_test("no GLES 3.1 compute context: %s", why_);           \
+        }                                                                    \
+    } while (0)
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static uint32_t rnd(void) {
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (uint32_t)(rng_state >> 32);
+}
+static double rnd01(void) { return rnd() / 4294967296.0; }
+
+/* A random w×h mask: a box, an ellipse, noise, or an ellipse with holes. Caller frees. */
+static uint8_t *random_mask(int w, int h) {
+    uint8_t *m = calloc((size_t)w * h, 1);
+    cr_assert_not_null(m);
+    const int kind = (int)(rnd() % 4);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const double u = (x + 0.5) / w * 2 - 1, v = (y + 0.5) / h * 2 - 1;
+            m[(size_t)y * w + x] = kind == 0 ? 1 : kind == 2 ? (rnd() & 1) : u * u + v * v <= 1.0;
+        }
+    if (kind == 3)
+        for (int k = 0; k < 6; k++) {
+            const double cx = rnd01() * w, cy = rnd01() * h, r = (0.05 + 0.15 * rnd01()) * (w < h ? w : h);
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++)
+                    if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < r * r)
+                        m[(size_t)y * w + x] = 0;
+        }
+    m[(size_t)(h / 2) * w + w / 2] = 1; /* never empty: a massless dynamic body is refused */
+    return m;
+}
+
+/* Sizes 1..512, log-uniform, so tiny and huge bodies are both common. */
+static int random_side(void) { return (int)exp(rnd01() * log(512.0)) + (rnd() % 2); }
+
+static int same_contacts(const pp_contact *a, const pp_contact *b, int n) {
+    for (int k = 0; k < n; k++)
+        if (memcmp(&a[k].point, &b[k].point, sizeof a[k].point) || memcmp(&a[k].normal, &b[k].normal, sizeof a[k].normal) ||
+            memcmp(&a[k].depth, &b[k].depth, sizeof a[k].depth) || a[k].pixel_count != b[k].pixel_count)
+            return 0;
+    return 1;
+}
+
+#define PARITY_PAIRS 1000
+#define COMBOS 4 /* normal method × contact mode */
+
+Test(gpu, random_pairs_match_the_cpu_bit_for_bit, .timeout = 300) {
+    SKIP_WITHOUT_GPU();
+    pp_world cpu[COMBOS], gpu[COMBOS];
+    for (int c = 0; c < COMBOS; c++) {
+        pp_world_def d = pp_world_def_default();
+        d.normal_method = (c & 1) ? PP_NORMAL_KERNEL : PP_NORMAL_AREA_GRADIENT;
+        d.contact_mode = (c & 2) ? PP_CONTACT_CENTROID : PP_CONTACT_MANIFOLD;
+        d.backend = PP_BACKEND_CPU;
+        cpu[c] = make_world_def(&d);
+        d.backend = PP_BACKEND_GPU;
+        gpu[c] = make_world_def(&d);
+    }
+    int touching = 0, two_point = 0, mismatches = 0, big = 0;
+    for (int i = 0; i < PARITY_PAIRS; i++) {
+        int side[4];
+        for (int k = 0; k < 4; k++) side[k] = random_side();
+        uint8_t *ma = random_mask(side[0], side[1]), *mb = random_mask(side[2], side[3]);
+        big += side[0] * side[1] >= 256 * 256 || side[2] * side[3] >= 256 * 256;
+        /* B's centre somewhere over A's box, both at random angles. */
+        pp_body_def da = body_def(PP_BODY_STATIC, 1000, 1000, (float)(rnd01() * 2 * M_PI));
+        da.width = side[0], da.height = side[1], da.mask = ma;
+        pp_body_def db = body_def(PP_BODY_DYNAMIC, 1000 + (float)((rnd01() - 0.5) * (side[0] + side[2] * 0.5)),
+                                  1000 + (float)((rnd01() - 0.5) * (side[1] + side[3] * 0.5)), (float)(rnd01() * 2 * M_PI));
+        db.width = side[2], db.height = side[3], db.mask = mb;
+        for (int c = 0; c < COMBOS; c++) {
+            const pp_body ac = create_body_ok(cpu[c], &da), bc = create_body_ok(cpu[c], &db);
+            const pp_body ag = create_body_ok(gpu[c], &da);
+            const pp_body bg = create_body_ok(gpu[c], &db);
+            pp_contact kc[2], kg[2];
+            int32_t nc = -1, ng = -1;
+            PP_OK_OR_FAIL(pp_world_collide(cpu[c], ac, bc, kc, 2, &nc));
+            PP_OK_OR_FAIL(pp_world_collide(gpu[c], ag, bg, kg, 2, &ng));
+            if (nc != ng || !same_contacts(kc, kg, nc)) {
+                if (mismatches++ < 5)
+                    cr_log_error("pair %d (%dx%d vs %dx%d) combo %d: cpu %d contacts, gpu %d; first cpu (%.9g,%.9g) "
+                                 "n (%.9g,%.9g) d %.9g px %d, gpu (%.9g,%.9g) n (%.9g,%.9g) d %.9g px %d",
+                                 i, side[0], side[1], side[2], side[3], c, nc, ng, kc[0].point.x, kc[0].point.y,
+                                 kc[0].normal.x, kc[0].normal.y, kc[0].depth, kc[0].pixel_count, kg[0].point.x,
+                                 kg[0].point.y, kg[0].normal.x, kg[0].normal.y, kg[0].depth, kg[0].pixel_count);
+            }
+            touching += nc > 0;
+            two_point += nc == 2;
+            pp_body_destroy(cpu[c], ac), pp_body_destroy(cpu[c], bc);
+            pp_body_destroy(gpu[c], ag), pp_body_destroy(gpu[c], bg);
+        }
+        free(ma);
+        free(mb);
+    }
+    cr_log_info("gpu parity: %d pairs x %d settings, %d touching, %d with two points, %d with a side >= 256 px, "
+                "%d mismatches", PARITY_PAIRS, COMBOS, touching, two_point, big, mismatches);
+    cr_assert_eq(mismatches, 0, "%d of %d comparisons differ", mismatches, PARITY_PAIRS * COMBOS);
+    cr_assert_gt(touching, PARITY_PAIRS * COMBOS / 2, "only %d comparisons had contacts", touching);
+    cr_assert_gt(two_point, PARITY_PAIRS / 2, "only %d comparisons had two-point manifolds", two_point);
+    for (int c = 0; c < COMBOS; c++) {
+        pp_world_destroy(cpu[c]);
+        pp_world_destroy(gpu[c]);
+    }
+}
