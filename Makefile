@@ -125,9 +125,15 @@ $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $(BENCH_SRC) $(STATIC) $(LIBS)
 
+# Narrowphase throughput, CPU against GPU, and what AUTO picks.
+$(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+
 bench: deps
-	$(MAKE) all $(BUILD)/bench/bench
+	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
+	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 
 $(BUILD)/demo/demo: $(DEMO_SRC) $(SHARED)
 	mkdir -p $(BUILD)/demo

@@ -132,3 +132,80 @@ Test(gpu, random_pairs_match_the_cpu_bit_for_bit, .timeout = 300) {
         pp_world_destroy(gpu[c]);
     }
 }
+
+/* A 600-step pile of boxes and discs: the hash of every pose on both backends. */
+static uint64_t pile_hash(pp_backend backend, int *pair_steps, int *gpu_steps) {
+    pp_world_def d = pp_world_def_default();
+    d.backend = backend;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, 560, 0), 800, 40);
+    add_rect(w, body_def(PP_BODY_STATIC, 250, 470, 0.4f), 200, 30);
+    pp_body bodies[14];
+    for (int i = 0; i < 14; i++) {
+        pp_body_def bd = body_def(PP_BODY_DYNAMIC, 200.0f + 37.0f * (i % 7), 300.0f - 50.0f * (i / 7), 0.2f * i);
+        bodies[i] = (i % 4 == 3) ? add_disc(w, bd, 12 + i) : add_rect(w, bd, 16 + 3 * i, 20 + (i % 3) * 9);
+    }
+    uint64_t h = 1469598103934665603ull;
+    *pair_steps = *gpu_steps = 0;
+    for (int s = 0; s < 600; s++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        pp_step_stats st;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+        *pair_steps += st.pairs > 0;
+        *gpu_steps += st.pairs > 0 && st.backend == PP_BACKEND_GPU;
+        for (int i = 0; i < 14; i++) {
+            pp_vec2 p = body_pos(w, bodies[i]);
+            float a = body_angle(w, bodies[i]);
+            const unsigned char *bytes[2] = {(const unsigned char *)&p, (const unsigned char *)&a};
+            const size_t sizes[2] = {sizeof p, sizeof a};
+            for (int k = 0; k < 2; k++)
+                for (size_t j = 0; j < sizes[k]; j++) h = (h ^ bytes[k][j]) * 1099511628211ull;
+        }
+    }
+    /* Non-vacuous: the pile fell onto the ground. */
+    cr_assert_gt(body_pos(w, bodies[13]).y, 400.0f, "the top of the pile did not fall");
+    pp_world_destroy(w);
+    return h;
+}
+
+Test(gpu, a_600_step_scene_hashes_the_same_on_both_backends, .timeout = 120) {
+    SKIP_WITHOUT_GPU();
+    int cpu_pair_steps, cpu_gpu_steps, gpu_pair_steps, gpu_gpu_steps;
+    const uint64_t hc = pile_hash(PP_BACKEND_CPU, &cpu_pair_steps, &cpu_gpu_steps);
+    const uint64_t hg = pile_hash(PP_BACKEND_GPU, &gpu_pair_steps, &gpu_gpu_steps);
+    cr_log_info("determinism hash over 600 steps: CPU %016llx, GPU %016llx (%d steps with pairs, all on the GPU: %d)",
+                (unsigned long long)hc, (unsigned long long)hg, gpu_pair_steps, gpu_gpu_steps);
+    cr_assert_eq(cpu_gpu_steps, 0, "a CPU world reported the GPU backend");
+    cr_assert_gt(gpu_pair_steps, 200, "only %d steps had pairs: the scene tests little", gpu_pair_steps);
+    cr_assert_eq(gpu_gpu_steps, gpu_pair_steps, "%d of %d steps with pairs ran on the GPU", gpu_gpu_steps,
+                 gpu_pair_steps);
+    cr_assert_eq(hc, hg, "the backends diverge: CPU %016llx, GPU %016llx", (unsigned long long)hc,
+                 (unsigned long long)hg);
+}
+
+/* Without a usable EGL the GPU world is refused with the reason; CPU and AUTO worlds still work. */
+Test(gpu, without_egl_gpu_is_unsupported_and_auto_runs_on_the_cpu) {
+    setenv("PHYSPIX_LIBEGL", "/nonexistent/libEGL.so.1", 1);
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_GPU;
+    pp_world w = {0};
+    EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_UNSUPPORTED, "libEGL");
+    cr_assert_eq(w.id, 0, "a failed create wrote a handle");
+    EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_UNSUPPORTED, "libEGL"); /* the same answer, not a crash */
+
+    /* AUTO with a batch large enough to want the GPU: it falls back and steps on the CPU. */
+    d.backend = PP_BACKEND_AUTO;
+    w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 600, 600, 0), 1200, 1200);
+    pp_body big = add_rect(w, body_def(PP_BODY_DYNAMIC, 600, 600, 0.3f), 700, 700);
+    PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+    pp_step_stats st;
+    PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+    cr_assert_eq(st.pairs, 1);
+    cr_assert_gt(st.pixels_tested, 400000, "the batch (%lld samples) is too small to ask for the GPU",
+                 (long long)st.pixels_tested);
+    cr_assert_eq(st.backend, PP_BACKEND_CPU, "AUTO reported backend %d with no EGL", (int)st.backend);
+    cr_assert_gt(st.contacts, 0);
+    (void)big;
+    pp_world_destroy(w);
+}
