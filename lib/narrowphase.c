@@ -61,9 +61,11 @@ static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
     p->qx0 = llround(q0.x * one), p->qy0 = llround(q0.y * one);
     p->dix = llround(mc * p->s * one), p->diy = llround(ms * p->s * one);
     p->djx = llround(-ms * p->s * one), p->djy = llround(mc * p->s * one);
-    /* The plane's corners bound every sample point (the map is affine); the GPU also needs
-     * q − ½ pixel for the coverage, hence the headroom. */
-    const int64_t ex = p->nx + 2 * NP_RING - 1, ey = p->ny + 2 * NP_RING - 1, lim = (int64_t)1 << 30;
+    /* The plane's corners bound every sample point (the map is affine). With bitmaps of at most
+     * 16384 px the points stay within about ±20000 px, so this guard for the GPU's 32-bit 16.16
+     * (headroom for q − ½ pixel) does not trip; a pair that tripped it would run on the CPU. */
+    const int64_t ex = p->nx + 2 * NP_RING - 1, ey = p->ny + 2 * NP_RING - 1;
+    const int64_t lim = ((int64_t)1 << 31) - ((int64_t)1 << NP_FIX_BITS);
     p->fits_int32 = true;
     for (int k = 0; k < 4; k++) {
         const int64_t i = (k & 1) ? ex : 0, j = (k >> 1) ? ey : 0;

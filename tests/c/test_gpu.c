@@ -209,3 +209,25 @@ Test(gpu, without_egl_gpu_is_unsupported_and_auto_runs_on_the_cpu) {
     (void)big;
     pp_world_destroy(w);
 }
+
+/* A 16384 px strip on a 16384 px ground: sample points past 2^30 in 16.16, near the edge of the
+ * GPU's 32-bit arithmetic. The contacts must still be the same. */
+Test(gpu, the_widest_bitmaps_match_at_the_edge_of_32_bit_sampling, .timeout = 60) {
+    SKIP_WITHOUT_GPU();
+    pp_contact kc[2], kg[2];
+    int32_t n[2] = {-1, -1};
+    for (int g = 0; g < 2; g++) {
+        pp_world_def d = pp_world_def_default();
+        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+        pp_world w = make_world_def(&d);
+        pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 8192, 1032, 0), 16384, 64);
+        pp_body strip = add_rect(w, body_def(PP_BODY_DYNAMIC, 8192, 1000, 0.0002f), 16384, 8);
+        PP_OK_OR_FAIL(pp_world_collide(w, strip, ground, g ? kg : kc, 2, &n[g]));
+        pp_world_destroy(w);
+    }
+    cr_assert_eq(n[0], 2, "the strip resting 4 px deep should touch at both ends, got %d contacts", n[0]);
+    cr_assert_eq(n[1], n[0]);
+    cr_assert(same_contacts(kc, kg, n[0]), "CPU (%.9g, %.9g) d %.9g vs GPU (%.9g, %.9g) d %.9g", kc[0].point.x,
+              kc[0].point.y, kc[0].depth, kg[0].point.x, kg[0].point.y, kg[0].depth);
+    cr_assert_float_eq(kc[0].normal.y, 1.0f, 1e-3f, "normal (%g, %g)", kc[0].normal.x, kc[0].normal.y);
+}
