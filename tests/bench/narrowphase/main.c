@@ -36,8 +36,7 @@ typedef struct result {
 
 /* The three worlds of one configuration, with the start poses of the B's. */
 typedef struct scene {
-    pp_world w[ENG_COUNT];
-    int live[ENG_COUNT];
+    pp_world w[ENG_COUNT]; ///< id 0: engine not run
     pp_body *b[ENG_COUNT];
     pp_vec2 *start;
     int n;
@@ -77,6 +76,16 @@ static int parse_options(int argc, char **argv, options *o)
     if (o->quick)
         o->runs = 1;
     return 0;
+}
+
+static void *xmalloc(size_t bytes)
+{
+    void *p = malloc(bytes);
+    if (!p) {
+        fprintf(stderr, "bench_narrow: out of memory (%zu bytes)\n", bytes);
+        exit(1);
+    }
+    return p;
 }
 
 static void check(pp_status st, const char *what)
@@ -139,7 +148,7 @@ static int probe_gpu(void)
 static void scene_free(scene *sc)
 {
     for (int e = 0; e < ENG_COUNT; e++) {
-        if (sc->live[e])
+        if (sc->w[e].id)
             check(pp_world_destroy(sc->w[e]), "pp_world_destroy");
         free(sc->b[e]);
     }
@@ -157,16 +166,12 @@ static void scene_build(scene *sc, int n, int side, int gpu_ok)
     /* Spacing S/2, shrunk when the cap on L leaves less room, so every B stays inside A. */
     const int spacing = g > 1 && (l - side) / (g - 1) < side / 2 ? (int)((l - side) / (g - 1)) : side / 2;
     const long long first = (l - (long long)(g - 1) * spacing) / 2;
-    uint8_t *mask_a = malloc((size_t)(l * l)), *mask_b = malloc((size_t)side * side);
-    sc->start = malloc((size_t)n * sizeof *sc->start);
-    if (!mask_a || !mask_b || !sc->start) {
-        fprintf(stderr, "bench_narrow: out of memory\n");
-        exit(1);
-    }
+    uint8_t *mask_a = xmalloc((size_t)(l * l)), *mask_b = xmalloc((size_t)side * side);
+    sc->start = xmalloc((size_t)n * sizeof *sc->start);
     memset(mask_a, 1, (size_t)(l * l));
     memset(mask_b, 1, (size_t)side * side);
     for (int i = 0; i < n; i++)
-        sc->start[i] = (pp_vec2){(float)(first + (long long)(i % g) * spacing), (float)(first + (long long)(i / g) * spacing)};
+        sc->start[i] = (pp_vec2){(float)(first + (i % g) * spacing), (float)(first + (i / g) * spacing)};
 
     for (int e = 0; e < ENG_COUNT; e++) {
         if (e == ENG_GPU && !gpu_ok)
@@ -176,7 +181,6 @@ static void scene_build(scene *sc, int n, int side, int gpu_ok)
         wd.substeps = 1;
         wd.backend = engine_backend[e];
         check(pp_world_create(&wd, &sc->w[e]), "pp_world_create");
-        sc->live[e] = 1;
         pp_body_def a = pp_body_def_default();
         a.type = PP_BODY_STATIC;
         a.position = (pp_vec2){(float)l / 2, (float)l / 2};
@@ -185,10 +189,7 @@ static void scene_build(scene *sc, int n, int side, int gpu_ok)
         a.category_bits = 1, a.mask_bits = 2;
         pp_body body_a;
         check(pp_body_create(sc->w[e], &a, &body_a), "pp_body_create (A)");
-        if (!(sc->b[e] = malloc((size_t)n * sizeof *sc->b[e]))) {
-            fprintf(stderr, "bench_narrow: out of memory\n");
-            exit(1);
-        }
+        sc->b[e] = xmalloc((size_t)n * sizeof *sc->b[e]);
         for (int i = 0; i < n; i++) {
             pp_body_def b = pp_body_def_default();
             b.position = sc->start[i];
@@ -230,18 +231,21 @@ static int cmp_double(const void *a, const void *b)
 static void measure(int n, int side, const options *o, int gpu_ok, result *r)
 {
     const long long work = (long long)n * side * side;
-    const int k = o->quick ? 3 : (int)((1LL << 24) / work < 3 ? 3 : (1LL << 24) / work > 30 ? 30 : (1LL << 24) / work);
+    /* About 2^24 cells of timed work per run; down to one step per run for the largest, where
+     * llvmpipe takes up to 20 s a step (a floor of three: an estimated 18-minute full run). */
+    const long long kw = (1LL << 24) / work;
+    const int k = o->quick ? 3 : kw < 1 ? 1 : kw > 30 ? 30 : (int)kw;
     double ms[30];
     scene sc;
     scene_build(&sc, n, side, gpu_ok);
     for (int e = 0; e < ENG_COUNT; e++) {
         r->ms[e] = -1;
-        if (sc.live[e])
+        if (sc.w[e].id)
             (void)step_once(&sc, e); /* warm-up: the GPU uploads masks and compiles on first use */
     }
     for (int run = 0; run < o->runs; run++) {
         for (int e = 0; e < ENG_COUNT; e++) {
-            if (!sc.live[e])
+            if (!sc.w[e].id)
                 continue;
             for (int s = 0; s < k; s++) {
                 const pp_step_stats st = step_once(&sc, e);
@@ -260,12 +264,10 @@ static void measure(int n, int side, const options *o, int gpu_ok, result *r)
     scene_free(&sc);
 }
 
-static void fmt_ms(char *buf, size_t size, double ms, const char *spec)
+/* A GPU figure, or "n/a" (negative) where the GPU backend could not run. */
+static void fmt_gpu(char *buf, size_t size, double v, const char *spec)
 {
-    if (ms < 0)
-        snprintf(buf, size, "n/a");
-    else
-        snprintf(buf, size, spec, ms);
+    snprintf(buf, size, v < 0 ? "n/a" : spec, v);
 }
 
 static void print_row(int n, int side, const result *r, FILE *csv)
@@ -278,9 +280,9 @@ static void print_row(int n, int side, const result *r, FILE *csv)
     }
     const double cpu = r->ms[ENG_CPU], gpu = r->ms[ENG_GPU], c = (double)r->cells;
     char g_ms[32], ratio[32], g_rate[32];
-    fmt_ms(g_ms, sizeof g_ms, gpu, "%.3f");
-    fmt_ms(ratio, sizeof ratio, gpu < 0 || cpu <= 0 ? -1 : gpu / cpu, "%.2f");
-    fmt_ms(g_rate, sizeof g_rate, gpu <= 0 ? -1 : c / gpu * 1e-3, "%.1f");
+    fmt_gpu(g_ms, sizeof g_ms, gpu, "%.3f");
+    fmt_gpu(ratio, sizeof ratio, gpu < 0 || cpu <= 0 ? -1 : gpu / cpu, "%.2f");
+    fmt_gpu(g_rate, sizeof g_rate, gpu <= 0 ? -1 : c / gpu * 1e-3, "%.1f");
     const char *auto_name = r->auto_ran == PP_BACKEND_GPU ? "GPU" : "CPU";
     printf("%6d %10s %12lld %10.3f %10s %7s %9.1f %9s %5s %10.3f\n", n, ov, r->cells, cpu, g_ms, ratio,
            cpu > 0 ? c / cpu * 1e-3 : 0.0, g_rate, auto_name, r->ms[ENG_AUTO]);
@@ -310,15 +312,15 @@ static void print_crossover(const int *pairs, int np, const int *sides, int ns, 
             if (best < 0 || r->cells < best)
                 best = r->cells;
         }
-        if (found < 0)
-            printf("  S=%-5d none\n", sides[j]);
-        else
-            printf("  S=%-5d N=%d\n", sides[j], found);
+        char at[32] = "none";
+        if (found >= 0)
+            snprintf(at, sizeof at, "N=%d", found);
+        printf("  S=%-5d %s\n", sides[j], at);
     }
-    if (best < 0)
-        printf("smallest cells/step at which the GPU wins: none measured\n");
-    else
-        printf("smallest cells/step at which the GPU wins: %lld\n", best);
+    char cells[32] = "none measured";
+    if (best >= 0)
+        snprintf(cells, sizeof cells, "%lld", best);
+    printf("smallest cells/step at which the GPU wins: %s\n", cells);
 }
 
 int main(int argc, char **argv)
