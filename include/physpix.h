@@ -138,6 +138,7 @@ typedef struct pp_body_def {
     const uint8_t *mask;      ///< optional collision mask, width·height bytes, non-zero is solid; overrides rgba
     const uint8_t *weights;   ///< optional relative mass per pixel 0..255, width·height bytes
     uint32_t alpha_threshold; ///< sprite alpha at or above which a pixel is solid, 1..255 (default 128)
+    uint32_t detach_islands;  ///< static bodies: nonzero makes islands cut loose by an edit fall as dynamic bodies (default 0)
     uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
 } pp_body_def;
 
@@ -150,6 +151,21 @@ typedef struct pp_contact {
     float depth;         ///< penetration along the normal, px
     int32_t pixel_count; ///< intersecting pixels of the pair (shared by a pair's points)
 } pp_contact;
+
+/// What an event reports.
+typedef enum pp_event_type {
+    PP_EVENT_BODY_SPLIT = 1,     ///< an edit cut `body` apart; `other` is a new body made of one of its islands
+    PP_EVENT_BODY_DESTROYED = 2, ///< an edit left `body` without solid pixels; the handle is now stale
+    PP_EVENT_TYPE_FORCE_U32 = 0x7fffffff
+} pp_event_type;
+
+/// Something that happened to a body, read with pp_world_get_events.
+typedef struct pp_event {
+    pp_event_type type; ///< what happened
+    uint32_t reserved;  ///< zero
+    pp_body body;       ///< the body it happened to (SPLIT: the parent, which keeps the largest island)
+    pp_body other;      ///< SPLIT: the new body; DESTROYED: zero
+} pp_event;
 
 /// What the last pp_world_step did and what it cost.
 typedef struct pp_step_stats {
@@ -192,6 +208,11 @@ PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity,
 PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
 /// Statistics of the last step.
 PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
+/// Write up to capacity events that happened since they were last read, oldest first, and forget those
+/// written; count receives how many were pending (capacity 0 only counts them).
+PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count);
+/// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
+PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
 /// Run the narrowphase on one pair at the current poses, without stepping; count receives the total.
 PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
                                   int32_t *count);
@@ -218,6 +239,19 @@ PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, p
 PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia);
 /// Whether the body is awake (1) or asleep (0); static bodies are never awake.
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
+/// Erase the body's pixels whose centres lie within radius (px) of a world point (px); changed receives how many (may be NULL).
+PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, int32_t *changed);
+/// Make solid, with weight 1..255, the pixels whose centres lie within radius (px) of a world point (px); changed receives how many changed.
+PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
+                                      int32_t *changed);
+/// Overwrite a width×height rectangle at bitmap pixel (x, y): mask bytes non-zero are solid, weights (may be NULL: 255)
+/// 0..255; the part outside the bitmap is clipped. Rows are `width` bytes apart.
+PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t y, int32_t width, int32_t height,
+                                      const uint8_t *mask, const uint8_t *weights);
+/// Copy the collision mask, one byte per pixel (1 solid, 0 empty), rows top to bottom; capacity in bytes ≥ width·height.
+PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
+/// Bitmap size of the body, px; either pointer may be NULL.
+PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t *height);
 /// The host's value given in the body def.
 PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
 

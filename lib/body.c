@@ -32,7 +32,7 @@ body *body_lookup(world *wd, pp_body b, const char *fn)
 }
 
 /* Look up both handles for a body call; returns the status to hand back. */
-static pp_status lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd)
+pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd)
 {
     *wd = world_lookup(w, fn);
     if (!*wd)
@@ -61,7 +61,7 @@ static dvec2 body_com_local(const body *bd)
     return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
 }
 
-static dvec2 body_com_world(const body *bd)
+dvec2 body_com_world(const body *bd)
 {
     return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
 }
@@ -172,6 +172,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     bd->category_bits = def->category_bits;
     bd->mask_bits = def->mask_bits;
     bd->fixed_rotation = def->fixed_rotation != 0;
+    bd->detach_islands = def->detach_islands != 0;
     bd->user_data = def->user_data;
     bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
     bd->pos = dv(def->position.x, def->position.y);
@@ -203,14 +204,10 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     return PP_OK;
 }
 
-PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
+void body_remove(world *wd, body *bd)
 {
-    world *wd;
-    body *bd;
-    pp_status st = lookup(w, b, "pp_body_destroy", &wd, &bd);
-    if (st)
-        return st;
     const uint32_t slot = bd->index;
+    const pp_body b = bd->handle;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
     if (++wd->generations[slot] == 0)
@@ -223,6 +220,16 @@ PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
         if (wd->contacts[i].a.id != b.id && wd->contacts[i].b.id != b.id)
             wd->contacts[n++] = wd->contacts[i];
     wd->contact_count = n;
+}
+
+PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_destroy", &wd, &bd);
+    if (st)
+        return st;
+    body_remove(wd, bd);
     return PP_OK;
 }
 
@@ -230,7 +237,7 @@ PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out)
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_get_position", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_get_position", &wd, &bd);
     if (st)
         return st;
     if (!out)
@@ -243,7 +250,7 @@ PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out)
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_get_angle", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_get_angle", &wd, &bd);
     if (st)
         return st;
     if (!out)
@@ -256,7 +263,7 @@ PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, 
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_set_transform", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_set_transform", &wd, &bd);
     if (st)
         return st;
     if (!finite2(position.x, position.y) || !isfinite(angle))
@@ -276,7 +283,7 @@ PP_API pp_status pp_body_get_velocity(pp_world w, pp_body b, pp_vec2 *linear, fl
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_get_velocity", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_get_velocity", &wd, &bd);
     if (st)
         return st;
     solver_body_state s = {0};
@@ -293,7 +300,7 @@ PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, flo
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_set_velocity", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_set_velocity", &wd, &bd);
     if (st)
         return st;
     if (!finite2(linear.x, linear.y) || !isfinite(angular))
@@ -309,7 +316,7 @@ PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, p
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_apply_impulse", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_apply_impulse", &wd, &bd);
     if (st)
         return st;
     if (!finite2(impulse.x, impulse.y) || !finite2(world_point.x, world_point.y))
@@ -330,7 +337,7 @@ PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *l
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_get_mass", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_get_mass", &wd, &bd);
     if (st)
         return st;
     const dvec2 c = body_com_local(bd);
@@ -347,7 +354,7 @@ PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_is_awake", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_is_awake", &wd, &bd);
     if (st)
         return st;
     if (!awake)
@@ -360,7 +367,7 @@ PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
 {
     world *wd;
     body *bd;
-    pp_status st = lookup(w, b, "pp_body_get_user_data", &wd, &bd);
+    pp_status st = world_body_lookup(w, b, "pp_body_get_user_data", &wd, &bd);
     if (st)
         return st;
     if (!out)

@@ -1,5 +1,6 @@
-/* Collision rasters: building the bit-packed mask from a sprite, a mask or both,
- * and keeping the bounds of the solid pixels. */
+/* Collision rasters: building the bit-packed mask from a sprite, a mask or both, editing
+ * single pixels, and keeping the bounds of the solid pixels exact through per-row and
+ * per-column counts (an edit never rescans the bitmap). */
 #include "raster.h"
 #include "status.h"
 
@@ -34,13 +35,16 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     r->words_per_row = (w + 63) / 64;
     r->gpu_word = -1;
     r->bits = calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
-    if (!r->bits)
+    r->row_count = calloc((size_t)h, sizeof(int32_t));
+    r->col_count = calloc((size_t)w, sizeof(int32_t));
+    if (!r->bits || !r->row_count || !r->col_count) {
+        raster_free(r);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);
+    }
     if (def->weights) {
         r->weights = malloc((size_t)w * (size_t)h);
         if (!r->weights) {
-            free(r->bits);
-            r->bits = NULL;
+            raster_free(r);
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d weight plane", (int)w, (int)h);
         }
         memcpy(r->weights, def->weights, (size_t)w * (size_t)h);
@@ -57,6 +61,8 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
                 continue;
             row[x >> 6] |= (uint64_t)1 << (x & 63);
             r->solid_count++;
+            r->row_count[y]++;
+            r->col_count[x]++;
             if (x < x0) x0 = x;
             if (x >= x1) x1 = x + 1;
             if (y < y0) y0 = y;
@@ -67,9 +73,57 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     return PP_OK;
 }
 
+pp_status raster_ensure_weights(pp_raster *r)
+{
+    if (r->weights)
+        return PP_OK;
+    r->weights = malloc((size_t)r->width * (size_t)r->height);
+    if (!r->weights)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d weight plane", (int)r->width, (int)r->height);
+    memset(r->weights, 255, (size_t)r->width * (size_t)r->height);
+    return PP_OK;
+}
+
+void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weight)
+{
+    uint64_t *word = &r->bits[(int64_t)y * r->words_per_row + (x >> 6)];
+    const uint64_t bit = (uint64_t)1 << (x & 63);
+    if (r->weights)
+        r->weights[(int64_t)y * r->width + x] = (uint8_t)weight;
+    if (((*word & bit) != 0) == solid)
+        return;
+    const int32_t d = solid ? 1 : -1;
+    *word ^= bit;
+    r->solid_count += d;
+    r->row_count[y] += d;
+    r->col_count[x] += d;
+    if (solid) { /* growing is immediate; shrinking waits for raster_edit_done */
+        if (raster_empty(r))
+            r->x0 = x, r->x1 = x + 1, r->y0 = y, r->y1 = y + 1;
+        r->x0 = x < r->x0 ? x : r->x0, r->x1 = x >= r->x1 ? x + 1 : r->x1;
+        r->y0 = y < r->y0 ? y : r->y0, r->y1 = y >= r->y1 ? y + 1 : r->y1;
+    }
+}
+
+void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1)
+{
+    if (r->solid_count == 0) {
+        r->x0 = r->width, r->y0 = r->height, r->x1 = r->y1 = 0;
+    } else {
+        while (r->col_count[r->x0] == 0) r->x0++;
+        while (r->col_count[r->x1 - 1] == 0) r->x1--;
+        while (r->row_count[r->y0] == 0) r->y0++;
+        while (r->row_count[r->y1 - 1] == 0) r->y1--;
+    }
+    if (y0 < y1)
+        raster_mark_dirty(r, y0, y1);
+}
+
 void raster_free(pp_raster *r)
 {
     free(r->bits);
     free(r->weights);
+    free(r->row_count);
+    free(r->col_count);
     memset(r, 0, sizeof *r);
 }

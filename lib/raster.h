@@ -15,6 +15,7 @@ typedef struct pp_raster {
     uint8_t *weights;        /* width × height relative masses; NULL: every solid pixel weighs 255 */
     int64_t solid_count;     /* number of solid pixels */
     int32_t x0, y0, x1, y1;  /* solid bounds [x0, x1) × [y0, y1); empty when x0 ≥ x1 */
+    int32_t *row_count, *col_count; /* solid pixels per row and per column: exact bounds after edits */
     int64_t gpu_word;        /* first 32-bit word of the mask in the world's GPU mirror; −1: not mirrored */
     int32_t dirty_y0, dirty_y1; /* rows edited since the mirror was written; clean when y0 ≥ y1 */
 } pp_raster;
@@ -26,6 +27,15 @@ pp_status raster_check_def(const pp_body_def *def);
 pp_status raster_init(pp_raster *r, const pp_body_def *def);
 
 void raster_free(pp_raster *r);
+
+/* Give the raster a weight plane (every pixel 255) before a write of another weight. */
+pp_status raster_ensure_weights(pp_raster *r);
+
+/* Set one pixel (the weight is stored only where there is a plane); bounds grow at once. */
+void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weight);
+
+/* After a batch of writes touching rows [y0, y1): shrink the bounds, mark the rows dirty. */
+void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1);
 
 static inline bool raster_solid(const pp_raster *r, int32_t x, int32_t y)
 {

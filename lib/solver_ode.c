@@ -85,6 +85,22 @@ static void set_rotation_z(dBodyID b, double angle)
     dBodySetRotation(b, R);
 }
 
+static void set_mass(const pp_solver *s, dBodyID b, double mass, double inertia)
+{
+    dMass m;
+    dMassSetZero(&m);
+    const double I = inertia * s->inv_ppm * s->inv_ppm;
+    /* Only I33 acts in the plane; the other two keep the tensor well-conditioned. */
+    dMassSetParameters(&m, mass, 0, 0, 0, I, I, I, 0, 0, 0);
+    dBodySetMass(b, &m);
+}
+
+void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia)
+{
+    if (!dBodyIsKinematic((dBodyID)sb->body))
+        set_mass(s, (dBodyID)sb->body, mass, inertia);
+}
+
 pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_body *out)
 {
     dBodyID b = dBodyCreate(s->world);
@@ -92,12 +108,7 @@ pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_bod
         dBodySetKinematic(b);
         dBodySetAutoDisableFlag(b, 0);
     } else {
-        dMass m;
-        dMassSetZero(&m);
-        const double I = d->inertia * s->inv_ppm * s->inv_ppm;
-        /* Only I33 acts in the plane; the other two keep the tensor well-conditioned. */
-        dMassSetParameters(&m, d->mass, 0, 0, 0, I, I, I, 0, 0, 0);
-        dBodySetMass(b, &m);
+        set_mass(s, b, d->mass, d->inertia);
         dBodySetLinearDamping(b, d->linear_damping);
         dBodySetAngularDamping(b, d->angular_damping);
     }

@@ -54,6 +54,8 @@ pp_status solver_body_create(pp_solver *s, const solver_body_desc *desc, solver_
 void solver_body_destroy(pp_solver *s, solver_body *sb);
 void solver_body_set_pose(pp_solver *s, const solver_body *sb, dvec2 com_world, double angle);
 void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w);
+/* New mass (mass units) and inertia about the centre of mass (mass·px²) after an edit. */
+void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia);
 void solver_body_wake(const solver_body *sb);
 bool solver_body_is_awake(const solver_body *sb);
 /* Undo ODE's drift out of the plane; call once per body after each step. */

@@ -171,6 +171,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     free(wd->pairs);
     free(wd->cores);
     free(wd->pair_bodies);
+    free(wd->events);
     free(wd->bodies);
     free(wd->generations);
     free(wd->free_slots);
@@ -411,6 +412,38 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     if (n > 0)
         memcpy(out, wd->contacts, (size_t)n * sizeof *out);
     *count = wd->contact_count;
+    return PP_OK;
+}
+
+pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
+{
+    if (wd->event_count == wd->event_capacity) {
+        const int32_t n = wd->event_capacity ? 2 * wd->event_capacity : 64;
+        pp_event *p = realloc(wd->events, (size_t)n * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)n);
+        wd->events = p;
+        wd->event_capacity = n;
+    }
+    wd->events[wd->event_count++] = (pp_event){type, 0, b, other};
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count)
+{
+    world *wd = world_lookup(w, "pp_world_get_events");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    pp_status st = pp_check_out_buffer("pp_world_get_events", out, capacity, count);
+    if (st)
+        return st;
+    const int32_t n = wd->event_count < capacity ? wd->event_count : capacity;
+    if (n > 0) {
+        memcpy(out, wd->events, (size_t)n * sizeof *out);
+        memmove(wd->events, wd->events + n, (size_t)(wd->event_count - n) * sizeof *out);
+    }
+    *count = wd->event_count;
+    wd->event_count -= n;
     return PP_OK;
 }
 

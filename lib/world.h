@@ -22,6 +22,7 @@ typedef struct body {
     double density, friction, restitution, linear_damping, angular_damping;
     uint32_t category_bits, mask_bits;
     bool fixed_rotation;
+    bool detach_islands;     /* static: islands cut loose by an edit become dynamic bodies */
     dvec2 pivot;             /* bitmap coordinates, px */
     dvec2 pos;               /* world position of the pivot, px */
     double angle, cos_a, sin_a;
@@ -49,12 +50,26 @@ typedef struct world {
     int32_t pair_capacity;
     gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
     bool gpu_tried;          /* AUTO tried to bring the GPU up */
+    pp_event *events;        /* since the host last read them, oldest first */
+    int32_t event_count, event_capacity;
     pp_step_stats stats;
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
 body *body_lookup(world *wd, pp_body b, const char *fn);
+
+/* Both lookups at once, as most body calls need them. */
+pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd);
+
+/* Take a body out of the world and free it; its handle goes stale. */
+void body_remove(world *wd, body *bd);
+
+/* World position of the centre of mass (the pivot for massless bodies), px. */
+dvec2 body_com_world(const body *bd);
+
+/* Queue an event for pp_world_get_events. */
+pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

@@ -4,6 +4,7 @@
 
 static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
 static_assert(sizeof(pp_contact) == 40, "pp_contact layout");
+static_assert(sizeof(pp_event) == 24, "pp_event layout");
 static_assert(std::is_trivially_copyable<pp_body_def>::value, "plain data");
 static_assert(std::is_trivially_copyable<pp_step_stats>::value, "plain data");
 

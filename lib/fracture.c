@@ -1,0 +1,169 @@
+/* Splitting a body after an edit: its solid pixels are grouped into 8-connected islands (pixels
+ * touching at a corner hold together); the largest island keeps the body and its handle, each other
+ * island becomes a new body moving as its material did (v + ω × r), with the parent's material and
+ * filter. A static body's islands fall as dynamic bodies when its def asked for detach_islands. */
+#include "edit.h"
+#include "status.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct island {
+    int64_t pixels;
+    int32_t x0, y0, x1, y1; /* bounds, bitmap coordinates */
+} island;
+
+/* Label the islands of the solid bounds (labels 1..n, 0 empty); returns n, or −1 without memory. */
+static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack, island **out)
+{
+    const int32_t bw = r->x1 - r->x0, bh = r->y1 - r->y0;
+    island *isl = NULL;
+    int32_t n = 0, cap = 0;
+    for (int32_t j = 0; j < bh; j++)
+        for (int32_t i = 0; i < bw; i++) {
+            if (label[(int64_t)j * bw + i] || !raster_solid(r, r->x0 + i, r->y0 + j))
+                continue;
+            if (n == cap) {
+                cap = cap ? 2 * cap : 8;
+                island *p = realloc(isl, (size_t)cap * sizeof *p);
+                if (!p) {
+                    free(isl);
+                    return -1;
+                }
+                isl = p;
+            }
+            island *k = &isl[n++];
+            *k = (island){0, i, j, i + 1, j + 1};
+            int64_t top = 0;
+            stack[top++] = (int32_t)((int64_t)j * bw + i);
+            label[(int64_t)j * bw + i] = n;
+            while (top > 0) { /* depth-first flood fill; each pixel is pushed once */
+                const int32_t p = stack[--top], pi = p % bw, pj = p / bw;
+                k->pixels++;
+                k->x0 = pi < k->x0 ? pi : k->x0, k->x1 = pi >= k->x1 ? pi + 1 : k->x1;
+                k->y0 = pj < k->y0 ? pj : k->y0, k->y1 = pj >= k->y1 ? pj + 1 : k->y1;
+                for (int dj = -1; dj <= 1; dj++)
+                    for (int di = -1; di <= 1; di++) {
+                        const int32_t qi = pi + di, qj = pj + dj;
+                        if (qi < 0 || qj < 0 || qi >= bw || qj >= bh)
+                            continue;
+                        const int64_t q = (int64_t)qj * bw + qi;
+                        if (!label[q] && raster_solid(r, r->x0 + qi, r->y0 + qj)) {
+                            label[q] = n;
+                            stack[top++] = (int32_t)q;
+                        }
+                    }
+            }
+        }
+    for (int32_t k = 0; k < n; k++) { /* to bitmap coordinates */
+        isl[k].x0 += r->x0, isl[k].x1 += r->x0;
+        isl[k].y0 += r->y0, isl[k].y1 += r->y0;
+    }
+    *out = isl;
+    return n;
+}
+
+/* Island k as a new body, moving as the parent's material there moves. */
+static pp_status make_child(world *wd, body *parent, const island *k, const uint8_t *mask, const uint8_t *weights,
+                            pp_body *out)
+{
+    const int32_t w = k->x1 - k->x0, h = k->y1 - k->y0;
+    pp_body_def d = pp_body_def_default();
+    d.type = parent->type == PP_BODY_STATIC ? PP_BODY_DYNAMIC : parent->type;
+    const dvec2 centre = dv(k->x0 + 0.5 * w, k->y0 + 0.5 * h); /* the child's pivot, in the parent's bitmap */
+    const dvec2 pos = dv_add(parent->pos, dv_rot(dv_sub(centre, parent->pivot), parent->cos_a, parent->sin_a));
+    d.position = (pp_vec2){(float)pos.x, (float)pos.y};
+    d.angle = (float)parent->angle;
+    d.width = w, d.height = h, d.mask = mask, d.weights = weights;
+    d.density = (float)parent->density, d.friction = (float)parent->friction;
+    d.restitution = (float)parent->restitution;
+    d.linear_damping = (float)parent->linear_damping, d.angular_damping = (float)parent->angular_damping;
+    d.category_bits = parent->category_bits, d.mask_bits = parent->mask_bits;
+    d.fixed_rotation = parent->fixed_rotation, d.detach_islands = parent->detach_islands;
+    d.user_data = parent->user_data;
+    pp_status st = pp_body_create(wd->handle, &d, out);
+    if (st)
+        return st;
+    body *child = wd->bodies[(uint32_t)out->id - 1];
+    /* The float position may sit a hair off; the pose is exact in double. */
+    child->pos = pos;
+    child->angle = parent->angle, child->cos_a = parent->cos_a, child->sin_a = parent->sin_a;
+    body_update_pose_cache(child);
+    if (child->sb.body) {
+        dvec2 v = dv(0, 0);
+        double omega = 0;
+        if (parent->sb.body) {
+            solver_body_state s;
+            solver_body_get_state(wd->solver, &parent->sb, &s);
+            const dvec2 r = dv_sub(body_com_world(child), s.com_world);
+            v = dv_add(s.velocity, dv(-s.angular_velocity * r.y, s.angular_velocity * r.x));
+            omega = s.angular_velocity;
+        }
+        solver_body_set_pose(wd->solver, &child->sb, body_com_world(child), child->angle);
+        solver_body_set_velocity(wd->solver, &child->sb, v, child->fixed_rotation ? 0.0 : omega);
+    }
+    return PP_OK;
+}
+
+pp_status fracture_split(world *wd, body *bd)
+{
+    pp_raster *r = &bd->raster;
+    const int64_t area = (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0);
+    int32_t *label = calloc((size_t)area, sizeof *label), *stack = malloc((size_t)area * sizeof *stack);
+    island *isl = NULL;
+    const int32_t n = label && stack ? label_islands(r, label, stack, &isl) : -1;
+    free(stack);
+    if (n < 0) {
+        free(label);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to find the islands of a %lld-pixel body", (long long)area);
+    }
+    pp_status st = PP_OK;
+    if (n > 1) {
+        int32_t keep = 0; /* the largest island; the first found on a tie */
+        for (int32_t k = 1; k < n; k++)
+            keep = isl[k].pixels > isl[keep].pixels ? k : keep;
+        const int32_t bw = r->x1 - r->x0, bx = r->x0, by = r->y0;
+        edit_span e = {0};
+        for (int32_t k = 0; k < n && !st; k++) {
+            if (k == keep)
+                continue;
+            const island *is = &isl[k];
+            const int32_t w = is->x1 - is->x0, h = is->y1 - is->y0;
+            uint8_t *mask = calloc((size_t)w * h, 1), *weights = r->weights ? calloc((size_t)w * h, 1) : NULL;
+            if (!mask || (r->weights && !weights)) {
+                free(mask);
+                free(weights);
+                st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island", (int)w, (int)h);
+                break;
+            }
+            for (int32_t y = is->y0; y < is->y1; y++)
+                for (int32_t x = is->x0; x < is->x1; x++) {
+                    if (label[(int64_t)(y - by) * bw + (x - bx)] != k + 1)
+                        continue;
+                    const int64_t c = (int64_t)(y - is->y0) * w + (x - is->x0);
+                    mask[c] = 1;
+                    if (weights)
+                        weights[c] = (uint8_t)raster_weight(r, x, y);
+                }
+            pp_body child;
+            st = make_child(wd, bd, is, mask, weights, &child);
+            if (st == PP_ERR_INVALID_ARGUMENT)
+                st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
+            else if (st == PP_OK)
+                st = world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, child);
+            for (int32_t y = is->y0; y < is->y1; y++)
+                for (int32_t x = is->x0; x < is->x1; x++)
+                    if (label[(int64_t)(y - by) * bw + (x - bx)] == k + 1)
+                        edit_pixel(bd, &e, x, y, false, 0);
+            free(mask);
+            free(weights);
+        }
+        raster_edit_done(r, e.y0, e.y1);
+        body_update_pose_cache(bd);
+        if (bd->sb.body)
+            edit_update_solver_body(wd, bd);
+    }
+    free(label);
+    free(isl);
+    return st;
+}

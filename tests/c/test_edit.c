@@ -1,0 +1,247 @@
+/* Editing pixels: exact mass changes, incremental mass properties against a full recomputation,
+ * momentum through a split, the ground erased under a box, emptied bodies destroyed with an event,
+ * misuse, and an edited body on the GPU backend matching the CPU (only dirty rows re-uploaded). */
+#include "helpers.h"
+
+PP_TEST_SUITE(edit);
+
+static void body_mass(pp_world w, pp_body b, float *m, pp_vec2 *c, float *inertia) {
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b, m, c, inertia));
+}
+
+Test(edit, erasing_k_pixels_lowers_the_mass_by_k_times_density) {
+    pp_world w = make_world(0, 0);
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 200, 200, 0.3f);
+    d.density = 2.5f;
+    pp_body b = add_rect(w, d, 64, 40);
+    float m0, m1;
+    body_mass(w, b, &m0, NULL, NULL);
+    int32_t k = -1;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, b, v2(205, 195), 9.5f, &k));
+    body_mass(w, b, &m1, NULL, NULL);
+    cr_assert_gt(k, 200, "the circle erased only %d pixels", k);
+    cr_assert_float_eq(m0 - m1, k * 2.5f, 1e-3f, "mass fell by %g for %d pixels of density 2.5", m0 - m1, k);
+    /* Erasing the same circle again changes nothing. */
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, b, v2(205, 195), 9.5f, &k));
+    cr_assert_eq(k, 0);
+    pp_world_destroy(w);
+}
+
+/* Mass, centre and inertia of a fresh body made from the edited body's mask and weights. */
+static void recomputed(const uint8_t *mask, const uint8_t *weights, int wd, int ht, float *m, pp_vec2 *c, float *inertia) {
+    pp_world w = make_world(0, 0);
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 0, 0, 0);
+    d.width = wd, d.height = ht, d.mask = mask, d.weights = weights;
+    pp_body b = create_body_ok(w, &d);
+    body_mass(w, b, m, c, inertia);
+    pp_world_destroy(w);
+}
+
+Test(edit, incremental_mass_properties_match_a_recomputation_after_1000_edits, .timeout = 60) {
+    enum { W = 96, H = 64 };
+    pp_world w = make_world(0, 0);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 300, 0.7f), W, H);
+    uint8_t weights[W * H];
+    memset(weights, 255, sizeof weights);
+    uint64_t seed = 12345;
+    for (int i = 0; i < 1000; i++) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        const uint32_t r = (uint32_t)(seed >> 33);
+        const int x = (int)(r % W), y = (int)((r >> 8) % H), op = (int)((r >> 16) % 3);
+        int32_t changed;
+        if (op == 0) {
+            pp_vec2 p;
+            PP_OK_OR_FAIL(pp_body_get_position(w, b, &p));
+            /* A small erase near the middle (world point of pixel (x, y) at angle 0.7). */
+            const float lx = x + 0.5f - W / 2.0f, ly = y + 0.5f - H / 2.0f;
+            const pp_vec2 c = v2(p.x + lx * cosf(0.7f) - ly * sinf(0.7f), p.y + lx * sinf(0.7f) + ly * cosf(0.7f));
+            PP_OK_OR_FAIL(pp_body_erase_circle(w, b, c, 1.5f, &changed));
+        } else {
+            /* A 3×2 patch of random mask and weights. */
+            uint8_t m6[6], w6[6];
+            for (int k = 0; k < 6; k++) m6[k] = (uint8_t)((r >> (20 + k)) & 1 || op == 1), w6[k] = (uint8_t)(1 + (r >> k) % 255);
+            PP_OK_OR_FAIL(pp_body_write_pixels(w, b, x, y, 3, 2, m6, w6));
+            for (int k = 0; k < 6; k++)
+                if (x + k % 3 < W && y + k / 3 < H) weights[(y + k / 3) * W + x + k % 3] = w6[k];
+        }
+    }
+    uint8_t mask[W * H];
+    PP_OK_OR_FAIL(pp_body_read_mask(w, b, mask, sizeof mask));
+    int solid = 0;
+    for (int k = 0; k < W * H; k++) solid += mask[k];
+    cr_assert(solid > 100 && solid < W * H - 100, "the edits left %d solid pixels: too few to test", solid);
+    float m, mr, inertia, ir;
+    pp_vec2 c, cr_;
+    body_mass(w, b, &m, &c, &inertia);
+    recomputed(mask, weights, W, H, &mr, &cr_, &ir);
+    cr_log_info("after 1000 edits: mass %.6g vs %.6g, centre (%.6g, %.6g) vs (%.6g, %.6g), inertia %.8g vs %.8g", m, mr,
+                c.x, c.y, cr_.x, cr_.y, inertia, ir);
+    cr_assert(fabsf(m - mr) <= 1e-4f * mr);
+    cr_assert(fabsf(c.x - cr_.x) <= 1e-4f * W && fabsf(c.y - cr_.y) <= 1e-4f * H);
+    cr_assert(fabsf(inertia - ir) <= 1e-4f * ir, "inertia %g vs %g", inertia, ir);
+    pp_world_destroy(w);
+}
+
+/* Linear momentum and angular momentum about the world origin of all dynamic bodies. */
+static void momentum(pp_world w, double *px, double *py, double *l) {
+    pp_body bs[16];
+    int32_t n;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, bs, 16, &n));
+    *px = *py = *l = 0;
+    for (int i = 0; i < n; i++) {
+        float m, inertia, om, ang;
+        pp_vec2 c, v, p;
+        body_mass(w, bs[i], &m, &c, &inertia);
+        PP_OK_OR_FAIL(pp_body_get_velocity(w, bs[i], &v, &om));
+        PP_OK_OR_FAIL(pp_body_get_position(w, bs[i], &p));
+        PP_OK_OR_FAIL(pp_body_get_angle(w, bs[i], &ang));
+        int32_t bw, bh;
+        PP_OK_OR_FAIL(pp_body_get_size(w, bs[i], &bw, &bh));
+        /* Centre of mass in the world: pivot (the bitmap centre) + R(angle)(c − pivot). */
+        const double dx = c.x - bw / 2.0, dy = c.y - bh / 2.0;
+        const double cx = p.x + dx * cos(ang) - dy * sin(ang), cy = p.y + dx * sin(ang) + dy * cos(ang);
+        *px += m * v.x, *py += m * v.y;
+        *l += inertia * om + m * (cx * v.y - cy * v.x);
+    }
+}
+
+Test(edit, cutting_a_spinning_bar_conserves_momentum) {
+    enum { W = 200, H = 8 };
+    pp_world w = make_world(0, 0);
+    /* The halves hang together by one weightless pixel, so the cut removes no mass. */
+    uint8_t mask[W * H], weights[W * H];
+    memset(mask, 1, sizeof mask);
+    memset(weights, 255, sizeof weights);
+    for (int y = 0; y < H - 1; y++) mask[y * W + 100] = 0;
+    weights[(H - 1) * W + 100] = 0;
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 300, 300, 0.4f);
+    d.width = W, d.height = H, d.mask = mask, d.weights = weights;
+    d.linear_velocity = v2(30, -12), d.angular_velocity = 1.7f;
+    pp_body bar = create_body_ok(w, &d);
+    double px0, py0, l0, px1, py1, l1;
+    momentum(w, &px0, &py0, &l0);
+    /* The bridge pixel's centre in the world. */
+    const double lx = 100.5 - W / 2.0, ly = H - 0.5 - H / 2.0;
+    const pp_vec2 bridge = v2((float)(300 + lx * cos(0.4) - ly * sin(0.4)), (float)(300 + lx * sin(0.4) + ly * cos(0.4)));
+    int32_t changed;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, bar, bridge, 0.4f, &changed));
+    cr_assert_eq(changed, 1, "the cut erased %d pixels, not the one bridge", changed);
+    pp_event ev[4];
+    int32_t n;
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 4, &n));
+    cr_assert_eq(n, 1);
+    cr_assert_eq(ev[0].type, PP_EVENT_BODY_SPLIT);
+    cr_assert_eq(ev[0].body.id, bar.id, "the parent keeps its handle");
+    momentum(w, &px1, &py1, &l1);
+    cr_log_info("split bar: p (%.6g, %.6g) -> (%.6g, %.6g), L %.8g -> %.8g", px0, py0, px1, py1, l0, l1);
+    const double pmag = hypot(px0, py0);
+    cr_assert(hypot(px1 - px0, py1 - py0) <= 1e-4 * pmag, "linear momentum changed");
+    cr_assert(fabs(l1 - l0) <= 1e-4 * fabs(l0), "angular momentum %g -> %g", l0, l1);
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 4, &n));
+    cr_assert_eq(n, 0, "events are forgotten once read");
+    pp_world_destroy(w);
+}
+
+Test(edit, a_box_falls_within_5_steps_when_the_ground_under_it_is_erased) {
+    pp_world w = make_world(0, 980);
+    pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 400, 500, 0), 800, 40);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 464, 0), 32, 32);
+    step_n(w, 1.0f / 60.0f, 240);
+    int32_t awake = 1;
+    PP_OK_OR_FAIL(pp_body_is_awake(w, box, &awake));
+    const float rest = body_pos(w, box).y;
+    cr_assert_float_eq(rest, 464.0f, 2.0f, "the box should rest on the ground first (y %g)", rest);
+    int32_t changed;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, ground, v2(400, 500), 60, &changed));
+    cr_assert_gt(changed, 3000);
+    PP_OK_OR_FAIL(pp_body_is_awake(w, box, &awake));
+    cr_assert_eq(awake, 1, "the box resting on the edited ground must wake");
+    step_n(w, 1.0f / 60.0f, 5);
+    const float y5 = body_pos(w, box).y;
+    cr_log_info("box at %.3f, 5 steps after the crater: %.3f", rest, y5);
+    cr_assert_gt(y5, rest + 0.5f, "the box did not fall (y %g -> %g)", rest, y5);
+    pp_world_destroy(w);
+}
+
+Test(edit, erasing_every_pixel_destroys_the_body_with_an_event) {
+    pp_world w = make_world(0, 0);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
+    int32_t changed, n;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, b, v2(100, 100), 50, &changed));
+    cr_assert_eq(changed, 200);
+    pp_event ev[2];
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 2, &n));
+    cr_assert_eq(n, 1);
+    cr_assert_eq(ev[0].type, PP_EVENT_BODY_DESTROYED);
+    cr_assert_eq(ev[0].body.id, b.id);
+    EXPECT_ERR(pp_body_get_position(w, b, &(pp_vec2){0}), PP_ERR_INVALID_HANDLE, "stale");
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, NULL, 0, &n));
+    cr_assert_eq(n, 0);
+    pp_world_destroy(w);
+}
+
+Test(edit, bad_edits_are_refused_and_change_nothing) {
+    pp_world w = make_world(0, 0);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
+    int32_t changed = -1;
+    EXPECT_ERR(pp_body_erase_circle(w, b, v2(NAN, 100), 5, &changed), PP_ERR_INVALID_ARGUMENT, "world_center");
+    EXPECT_ERR(pp_body_erase_circle(w, b, v2(100, 100), -1, &changed), PP_ERR_INVALID_ARGUMENT, "radius");
+    EXPECT_ERR(pp_world_erase_circle(w, v2(100, INFINITY), 5, &changed), PP_ERR_INVALID_ARGUMENT, "world_center");
+    EXPECT_ERR(pp_body_paint_circle(w, b, v2(100, 100), NAN, 255, &changed), PP_ERR_INVALID_ARGUMENT, "radius");
+    EXPECT_ERR(pp_body_paint_circle(w, b, v2(100, 100), 3, 0, &changed), PP_ERR_INVALID_ARGUMENT, "weight");
+    uint8_t ones[4] = {1, 1, 1, 1};
+    EXPECT_ERR(pp_body_write_pixels(w, b, 20, 0, 2, 2, ones, NULL), PP_ERR_INVALID_ARGUMENT, "outside");
+    EXPECT_ERR(pp_body_write_pixels(w, b, -2, -2, 2, 2, ones, NULL), PP_ERR_INVALID_ARGUMENT, "outside");
+    EXPECT_ERR(pp_body_write_pixels(w, b, 0, 0, -2, 2, ones, NULL), PP_ERR_INVALID_ARGUMENT, "width");
+    EXPECT_ERR(pp_body_write_pixels(w, b, 0, 0, 2, 2, NULL, NULL), PP_ERR_INVALID_ARGUMENT, "mask");
+    uint8_t small[10];
+    EXPECT_ERR(pp_body_read_mask(w, b, small, sizeof small), PP_ERR_INVALID_ARGUMENT, "200");
+    EXPECT_ERR(pp_body_erase_circle(w, (pp_body){12345}, v2(1, 1), 1, &changed), PP_ERR_INVALID_HANDLE, "body");
+    float m;
+    body_mass(w, b, &m, NULL, NULL);
+    cr_assert_float_eq(m, 200.0f, 1e-4f, "a refused edit changed the mass to %g", m);
+    /* Partly outside: clipped. A 4×4 hole over the corner (−2..2)² clears the 2×2 inside. */
+    uint8_t zeros[16] = {0};
+    PP_OK_OR_FAIL(pp_body_write_pixels(w, b, -2, -2, 4, 4, zeros, NULL));
+    body_mass(w, b, &m, NULL, NULL);
+    cr_assert_float_eq(m, 196.0f, 1e-4f);
+    pp_world_destroy(w);
+}
+
+Test(edit, painting_adds_weighted_pixels_and_a_static_body_splits_only_when_asked) {
+    pp_world w = make_world(0, 0);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
+    int32_t changed, n;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, b, v2(100, 100), 30, &changed));
+    PP_OK_OR_FAIL(pp_world_get_events(w, NULL, 0, &n));
+    cr_assert_eq(n, 1, "emptied: one DESTROYED event pending");
+
+    b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
+    PP_OK_OR_FAIL(pp_body_paint_circle(w, b, v2(100, 100), 30, 51, &changed)); /* nothing new: all solid, new weight */
+    float m;
+    body_mass(w, b, &m, NULL, NULL);
+    cr_assert_eq(changed, 200);
+    cr_assert_float_eq(m, 200 * 51 / 255.0f, 1e-3f, "repainted at weight 51: mass %g", m);
+
+    /* A static bar cut in two stays one static body; with detach_islands the cut-off part falls. */
+    for (int detach = 0; detach < 2; detach++) {
+        pp_world w2 = make_world(0, 980);
+        pp_body_def d = body_def(PP_BODY_STATIC, 300, 300, 0);
+        d.detach_islands = (uint32_t)detach;
+        pp_body bar = add_rect(w2, d, 200, 10);
+        PP_OK_OR_FAIL(pp_body_erase_circle(w2, bar, v2(330, 300), 8, &changed));
+        PP_OK_OR_FAIL(pp_world_get_bodies(w2, NULL, 0, &n));
+        cr_assert_eq(n, 1 + detach, "detach_islands %d: %d bodies", detach, n);
+        pp_event ev;
+        PP_OK_OR_FAIL(pp_world_get_events(w2, &ev, 1, &n));
+        cr_assert_eq(n, detach);
+        if (detach) {
+            cr_assert_eq(ev.type, PP_EVENT_BODY_SPLIT);
+            step_n(w2, 1.0f / 60.0f, 30);
+            cr_assert_gt(body_pos(w2, ev.other).y, 310.0f, "the detached island should fall");
+            cr_assert_float_eq(body_pos(w2, bar).y, 300.0f, 1e-4f, "the static part stays");
+        }
+        pp_world_destroy(w2);
+    }
+    pp_world_destroy(w);
+}
