@@ -130,8 +130,14 @@ $(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
+# Edit latency: a crater in a large terrain, and the step after it.
+$(BUILD)/bench/bench_edit: tests/bench/edit/main.c $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+
 bench: deps
-	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow
+	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit
+	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 

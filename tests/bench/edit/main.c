@@ -1,0 +1,126 @@
+/* Edit latency: a 32 px crater in a 4096×2048 terrain with 200 boxes resting on it. Times the
+ * erase call itself and the step after it against a step without an edit; median and 99th
+ * percentile over the craters, printed and written as CSV.
+ *
+ *   bench_edit [--csv PATH] [--craters N]
+ */
+#include "physpix.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define TW 4096
+#define TH 2048
+#define TOP 1000.0f /* world y of the terrain's top edge */
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void check(pp_status st, const char *what)
+{
+    if (st != PP_OK) {
+        fprintf(stderr, "bench_edit: %s: %s (%s)\n", what, pp_status_name(st), pp_last_error());
+        exit(1);
+    }
+}
+
+static int cmp(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double pct(double *v, int n, double p)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    return v[(int)(p * (n - 1) + 0.5)];
+}
+
+int main(int argc, char **argv)
+{
+    const char *csv_path = NULL;
+    int craters = 200;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--csv") && i + 1 < argc)
+            csv_path = argv[++i];
+        else if (!strcmp(argv[i], "--craters") && i + 1 < argc)
+            craters = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "usage: bench_edit [--csv PATH] [--craters N]\n");
+            return 2;
+        }
+    }
+    if (craters < 2)
+        craters = 2;
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU;
+    pp_world w;
+    check(pp_world_create(&wd, &w), "pp_world_create");
+    uint8_t *mask = malloc((size_t)TW * TH);
+    memset(mask, 1, (size_t)TW * TH);
+    pp_body_def d = pp_body_def_default();
+    d.type = PP_BODY_STATIC, d.width = TW, d.height = TH, d.mask = mask;
+    d.position = (pp_vec2){TW / 2.0f, TOP + TH / 2.0f};
+    pp_body terrain;
+    check(pp_body_create(w, &d, &terrain), "terrain");
+    uint8_t box[16 * 16];
+    memset(box, 1, sizeof box);
+    for (int i = 0; i < 200; i++) {
+        pp_body_def bd = pp_body_def_default();
+        bd.width = bd.height = 16, bd.mask = box;
+        bd.position = (pp_vec2){48.0f + 20.0f * i, TOP - 8.0f};
+        pp_body b;
+        check(pp_body_create(w, &bd, &b), "box");
+    }
+    for (int s = 0; s < 120; s++)
+        check(pp_world_step(w, 1.0f / 60), "settle");
+
+    double *edit = malloc(sizeof(double) * craters), *after = malloc(sizeof(double) * craters);
+    double *plain = malloc(sizeof(double) * craters);
+    long long erased = 0;
+    for (int k = 0; k < craters; k++) {
+        double t0 = now_ms();
+        check(pp_world_step(w, 1.0f / 60), "step");
+        plain[k] = now_ms() - t0;
+        /* Craters across the surface, below the boxes' row so no box is cut. */
+        const pp_vec2 c = {40.0f + (float)((k * 997) % (TW - 80)), TOP + 100.0f + (float)((k * 131) % 1800)};
+        int32_t changed;
+        t0 = now_ms();
+        check(pp_world_erase_circle(w, c, 32.0f, &changed), "erase");
+        edit[k] = now_ms() - t0;
+        erased += changed;
+        t0 = now_ms();
+        check(pp_world_step(w, 1.0f / 60), "step after the edit");
+        after[k] = now_ms() - t0;
+    }
+    const double e50 = pct(edit, craters, 0.5), e99 = pct(edit, craters, 0.99);
+    const double a50 = pct(after, craters, 0.5), a99 = pct(after, craters, 0.99);
+    const double p50 = pct(plain, craters, 0.5), p99 = pct(plain, craters, 0.99);
+    printf("edit latency: %d craters of radius 32 px in a %d x %d terrain, 200 boxes resting, CPU backend\n", craters,
+           TW, TH);
+    printf("%-26s %10s %10s\n", "", "median ms", "p99 ms");
+    printf("%-26s %10.4f %10.4f\n", "erase call", e50, e99);
+    printf("%-26s %10.4f %10.4f\n", "step after an edit", a50, a99);
+    printf("%-26s %10.4f %10.4f\n", "step without an edit", p50, p99);
+    printf("pixels erased per crater: %.0f\n", (double)erased / craters);
+    if (csv_path) {
+        FILE *f = fopen(csv_path, "w");
+        if (!f) {
+            perror(csv_path);
+            return 1;
+        }
+        fprintf(f, "what,median_ms,p99_ms\nerase,%.6f,%.6f\nstep_after_edit,%.6f,%.6f\nstep_plain,%.6f,%.6f\n", e50,
+                e99, a50, a99, p50, p99);
+        fclose(f);
+        printf("wrote %s\n", csv_path);
+    }
+    free(edit), free(after), free(plain), free(mask);
+    check(pp_world_destroy(w), "pp_world_destroy");
+    return 0;
+}
