@@ -136,6 +136,7 @@ pp_status fracture_split(world *wd, body *bd)
                 st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island", (int)w, (int)h);
                 break;
             }
+            /* Move the island's pixels out of the parent into the child's bitmap. */
             for (int32_t y = is->y0; y < is->y1; y++)
                 for (int32_t x = is->x0; x < is->x1; x++) {
                     if (label[(int64_t)(y - by) * bw + (x - bx)] != k + 1)
@@ -144,6 +145,7 @@ pp_status fracture_split(world *wd, body *bd)
                     mask[c] = 1;
                     if (weights)
                         weights[c] = (uint8_t)raster_weight(r, x, y);
+                    edit_pixel(bd, &e, x, y, false, 0);
                 }
             pp_body child;
             st = make_child(wd, bd, is, mask, weights, &child);
@@ -151,10 +153,6 @@ pp_status fracture_split(world *wd, body *bd)
                 st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
             else if (st == PP_OK)
                 st = world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, child);
-            for (int32_t y = is->y0; y < is->y1; y++)
-                for (int32_t x = is->x0; x < is->x1; x++)
-                    if (label[(int64_t)(y - by) * bw + (x - bx)] == k + 1)
-                        edit_pixel(bd, &e, x, y, false, 0);
             free(mask);
             free(weights);
         }

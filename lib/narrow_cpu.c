@@ -12,12 +12,6 @@
 
 static const int8_t NB[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 
-static inline int64_t floor_div(int64_t a, int64_t b)
-{
-    int64_t q = a / b;
-    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
-
 static inline uint8_t sample_fixed(const pp_raster *r, int64_t qx, int64_t qy)
 {
     const int64_t x = qx >> NP_FIX_BITS, y = qy >> NP_FIX_BITS; /* arithmetic shift = floor */

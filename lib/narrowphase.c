@@ -6,14 +6,6 @@
 #include <limits.h>
 #include <stdlib.h>
 
-static inline int64_t floor_div(int64_t a, int64_t b)
-{
-    int64_t q = a / b;
-    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
-
-static inline int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
-
 static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
 
 /* Reference-local pixel coordinates of a (fractional) inner-cell position. */

@@ -74,6 +74,15 @@ typedef struct np_scratch {
 
 enum { NP_STRIP_MIN, NP_STRIP_MAX, NP_STRIP_COVER, NP_STRIP_FIELDS };
 
+/* Integer division rounding toward −∞ and +∞. */
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+
+static inline int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
+
 /* Set a pair up; false when the bodies' boxes cannot overlap (no contact, nothing to run). */
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p);
 

@@ -172,6 +172,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     free(wd->cores);
     free(wd->pair_bodies);
     free(wd->events);
+    free(wd->proxies);
     free(wd->bodies);
     free(wd->generations);
     free(wd->free_slots);
@@ -180,16 +181,24 @@ PP_API pp_status pp_world_destroy(pp_world w)
     return PP_OK;
 }
 
+/* Room for one more item in an array that doubles as it fills; false without memory. */
+static bool grow_for_one(void **items, int32_t count, int32_t *capacity, size_t size)
+{
+    if (count < *capacity)
+        return true;
+    const int32_t n = *capacity ? 2 * *capacity : 64;
+    void *p = realloc(*items, (size_t)n * size);
+    if (!p)
+        return false;
+    *items = p;
+    *capacity = n;
+    return true;
+}
+
 static pp_status push_contact(world *wd, const pp_contact *c)
 {
-    if (wd->contact_count == wd->contact_capacity) {
-        const int32_t n = wd->contact_capacity ? 2 * wd->contact_capacity : 256;
-        pp_contact *p = realloc(wd->contacts, (size_t)n * sizeof *p);
-        if (!p)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)n);
-        wd->contacts = p;
-        wd->contact_capacity = n;
-    }
+    if (!grow_for_one((void **)&wd->contacts, wd->contact_count, &wd->contact_capacity, sizeof *c))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)wd->contact_count + 1);
     wd->contacts[wd->contact_count++] = *c;
     return PP_OK;
 }
@@ -219,10 +228,10 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
     return PP_OK;
 }
 
-/* AUTO sends a batch to a hardware GPU from this many sampled cells on. Below it the GPU cannot
- * win whatever its speed: one batch's fixed cost (four dispatches and a readback, 0.43 ms measured
- * by make bench) buys the CPU about 20,000 cells at its measured 22 ns a cell. A software
- * rasteriser (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
+/* AUTO sends a batch to a hardware GPU from this many sampled cells on. Not yet a measured
+ * hardware crossover: the smallest GPU batch (one 16² pair) takes 0.43 ms on llvmpipe in make bench,
+ * the CPU's time for about 20,000 cells at its measured ~22 ns a cell. A software rasteriser
+ * (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
 #define GPU_AUTO_MIN_CELLS 20000
 
 static pp_backend choose_backend(world *wd, int64_t cells)
@@ -260,20 +269,22 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
 {
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
-    bp_proxy *proxies = calloc((size_t)wd->body_capacity + 1, sizeof *proxies);
-    if (!proxies)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the broadphase", fn);
+    if (wd->body_capacity > wd->proxy_capacity) {
+        bp_proxy *p = realloc(wd->proxies, (size_t)wd->body_capacity * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the broadphase", fn);
+        wd->proxies = p;
+        wd->proxy_capacity = wd->body_capacity;
+    }
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
-        if (!bd)
-            continue;
-        proxies[i] = (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
-                                bd->type == PP_BODY_DYNAMIC,
-                                bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
-                                true};
+        wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
+                                         bd->type == PP_BODY_DYNAMIC,
+                                         bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
+                                         true}
+                            : (bp_proxy){.live = false};
     }
-    pp_status st = broadphase_find_pairs(&wd->broad, proxies, wd->body_capacity);
-    free(proxies);
+    pp_status st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
     if (st || (st = world_reserve_pairs(wd, fn, wd->broad.pair_count)))
         return st;
     const double t1 = now_ms();
@@ -417,14 +428,8 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
 
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
 {
-    if (wd->event_count == wd->event_capacity) {
-        const int32_t n = wd->event_capacity ? 2 * wd->event_capacity : 64;
-        pp_event *p = realloc(wd->events, (size_t)n * sizeof *p);
-        if (!p)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)n);
-        wd->events = p;
-        wd->event_capacity = n;
-    }
+    if (!grow_for_one((void **)&wd->events, wd->event_count, &wd->event_capacity, sizeof *wd->events))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)wd->event_count + 1);
     wd->events[wd->event_count++] = (pp_event){type, 0, b, other};
     return PP_OK;
 }

@@ -44,6 +44,8 @@ typedef struct world {
     pp_contact *contacts;    /* the last substep's contacts */
     int32_t contact_count, contact_capacity;
     np_scratch scratch;
+    bp_proxy *proxies;       /* the broadphase's view of every slot, refilled each substep */
+    int32_t proxy_capacity;
     np_pair *pairs;          /* this substep's pairs that passed set-up … */
     np_core *cores;          /* … their integer cores … */
     int32_t *pair_bodies;    /* … and their bodies' slots, two per pair */
