@@ -255,6 +255,12 @@ PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t
 /// The host's value given in the body def.
 PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
 
+/// Size of a PNG file's image, px, read from its header without decoding; either pointer may be NULL.
+PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height);
+/// Decode a PNG file (gray, gray+alpha, RGB, RGBA, palette, 8 or 16 bit) into RGBA8 rows top to bottom;
+/// capacity in bytes ≥ width·height·4; width and height receive the size, px, even when capacity is short.
+PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capacity, int32_t *width, int32_t *height);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,140 @@
+/* PNG in, through libpng: every input kind (gray, gray+alpha, RGB, RGBA, palette, 1–16 bit)
+ * normalised to RGBA8 by libpng's own transforms. Sizes are checked against the bitmap limits
+ * from the header alone, before any large allocation. */
+#include "status.h"
+
+#include <png.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* One decode in progress; libpng's error handler longjmps back with its message kept here. */
+typedef struct png_reader {
+    png_structp png;
+    png_infop info;
+    FILE *file;
+    char error[160];
+} png_reader;
+
+static void reader_error(png_structp png, png_const_charp msg)
+{
+    png_reader *r = png_get_error_ptr(png);
+    snprintf(r->error, sizeof r->error, "%s", msg);
+    png_longjmp(png, 1);
+}
+
+static void reader_warning(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
+static void reader_close(png_reader *r)
+{
+    if (r->png)
+        png_destroy_read_struct(&r->png, r->info ? &r->info : NULL, NULL);
+    if (r->file)
+        fclose(r->file);
+}
+
+/* Open the file and check its signature; the caller sets the jump point before reading further. */
+static pp_status reader_open(png_reader *r, const char *fn, const char *path)
+{
+    if (!path)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path is NULL", fn);
+    r->file = fopen(path, "rb");
+    if (!r->file)
+        return pp_fail(PP_ERR_IO, "%s: cannot open '%s'", fn, path);
+    png_byte sig[8];
+    if (fread(sig, 1, sizeof sig, r->file) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0)
+        return pp_fail(PP_ERR_FORMAT, "%s: '%s' is not a PNG file (bad signature)", fn, path);
+    r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, reader_error, reader_warning);
+    r->info = r->png ? png_create_info_struct(r->png) : NULL;
+    if (!r->info)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG decoder", fn);
+    png_init_io(r->png, r->file);
+    png_set_sig_bytes(r->png, sizeof sig);
+    /* Let libpng accept any valid size so that reader_header, not libpng, says LIMIT with our numbers. */
+    png_set_user_limits(r->png, PNG_UINT_31_MAX, PNG_UINT_31_MAX);
+    return PP_OK;
+}
+
+/* Read the header; LIMIT for sizes over the bitmap limits, before anything is allocated for the pixels. */
+static pp_status reader_header(png_reader *r, const char *fn, const char *path, int32_t *w, int32_t *h)
+{
+    png_read_info(r->png, r->info);
+    const png_uint_32 pw = png_get_image_width(r->png, r->info), ph = png_get_image_height(r->png, r->info);
+    if (pw > PP_MAX_BITMAP_SIDE || ph > PP_MAX_BITMAP_SIDE || (uint64_t)pw * ph > PP_MAX_BITMAP_AREA)
+        return pp_fail(PP_ERR_LIMIT, "%s: '%s' is %ux%u px, over PP_MAX_BITMAP_SIDE (%d) or PP_MAX_BITMAP_AREA (%d)",
+                       fn, path, (unsigned)pw, (unsigned)ph, PP_MAX_BITMAP_SIDE, PP_MAX_BITMAP_AREA);
+    *w = (int32_t)pw;
+    *h = (int32_t)ph;
+    return PP_OK;
+}
+
+/* A libpng failure: the file is malformed (truncated, bad CRC, bad header). */
+static pp_status reader_failure(const png_reader *r, const char *fn, const char *path)
+{
+    return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s", fn, path, r->error);
+}
+
+PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height)
+{
+    png_reader r = {0};
+    int32_t w = 0, h = 0;
+    pp_status st = reader_open(&r, "pp_image_info", path);
+    if (st == PP_OK) {
+        if (setjmp(png_jmpbuf(r.png)))
+            st = reader_failure(&r, "pp_image_info", path);
+        else
+            st = reader_header(&r, "pp_image_info", path, &w, &h);
+    }
+    reader_close(&r);
+    if (st == PP_OK) {
+        if (width)
+            *width = w;
+        if (height)
+            *height = h;
+    }
+    return st;
+}
+
+PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capacity, int32_t *width, int32_t *height)
+{
+    const char *fn = "pp_image_load";
+    if (!width || !height)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: width or height is NULL", fn);
+    if (capacity < 0 || (capacity > 0 && !out_rgba))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out_rgba is NULL or capacity negative (%lld)", fn,
+                       (long long)capacity);
+    png_reader r = {0};
+    png_bytep *volatile rows = NULL; /* volatile: read after a longjmp */
+    pp_status st = reader_open(&r, fn, path);
+    if (st == PP_OK) {
+        if (setjmp(png_jmpbuf(r.png))) {
+            st = reader_failure(&r, fn, path);
+        } else if ((st = reader_header(&r, fn, path, width, height)) == PP_OK) {
+            const int64_t need = (int64_t)*width * *height * 4;
+            if (capacity < need) {
+                st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: '%s' needs %lld bytes, capacity is %lld", fn, path,
+                             (long long)need, (long long)capacity);
+            } else {
+                /* Every colour type and depth becomes RGBA8. */
+                png_set_expand(r.png);
+                png_set_strip_16(r.png);
+                png_set_gray_to_rgb(r.png);
+                png_set_add_alpha(r.png, 0xff, PNG_FILLER_AFTER);
+                png_set_interlace_handling(r.png);
+                png_read_update_info(r.png, r.info);
+                rows = malloc((size_t)*height * sizeof *rows);
+                if (!rows) {
+                    st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate %d row pointers", fn, (int)*height);
+                } else {
+                    for (int32_t y = 0; y < *height; y++)
+                        rows[y] = out_rgba + (size_t)y * (size_t)*width * 4;
+                    png_read_image(r.png, rows);
+                    png_read_end(r.png, NULL);
+                }
+            }
+        }
+    }
+    free(rows);
+    reader_close(&r);
+    return st;
+}
