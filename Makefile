@@ -10,12 +10,16 @@ SOMAJOR := 0
 
 # Debian packages the build, the tests and the demo need (see README).
 # EGL/GLES headers build the GPU backend; Mesa's EGL and llvmpipe run it on a machine without a GPU.
-DEPS := gcc g++ make pkg-config libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+DEPS := gcc g++ make pkg-config libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
+        libpng-dev godot3-server python3
+# From PyPI: the Python package's tests.
+PY_DEPS := numpy pytest
+PYTHON ?= python3
 
 WARN     := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wno-unused-parameter
 CFLAGS_  := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
 LIBCFLAGS := $(CFLAGS_) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
-LIBS     := -lode -lm -lpthread -ldl
+LIBS     := -lode -lpng -lm -lpthread -ldl
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC  := $(wildcard lib/*.c)
@@ -26,13 +30,15 @@ SAN_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/san/%.o) $(BUILD)/san/glsl_sources.o
 LIB_HDR  := include/physpix.h $(wildcard lib/*.h)
 TEST_SRC := $(wildcard tests/c/*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)
-DEMO_SRC := $(wildcard demo/*.c)
+DEMO_SRC := demo/demo.c
+PLUGIN_SRC := plugin/plugin.c plugin/classes.c
 
 SONAME   := libphyspix.so.$(SOMAJOR)
 SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
+PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile demo bench install clean
+.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot demo bench install clean
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -40,16 +46,19 @@ deps:
 	@missing=""; for p in $(DEPS); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
-	if [ -z "$$missing" ]; then exit 0; fi; \
-	if [ "$$(id -u)" = 0 ]; then \
-	  echo "make deps: installing$$missing"; \
-	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
-	else \
-	  echo "make deps: missing packages; run as root:"; \
-	  echo "  apt-get install -y$$missing"; exit 1; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "make deps: installing$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing || exit 1; \
+	  else \
+	    echo "make deps: missing packages; run as root:"; \
+	    echo "  apt-get install -y$$missing"; exit 1; \
+	  fi; \
 	fi
+	@$(PYTHON) -c 'import numpy, pytest' 2>/dev/null || { \
+	  echo "make deps: installing from PyPI: $(PY_DEPS)"; $(PYTHON) -m pip install --quiet $(PY_DEPS); }
 
-all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc
+all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc $(PLUGIN)
 
 $(BUILD)/obj/%.o: lib/%.c $(LIB_HDR) | $(BUILD)/obj
 	$(CC) $(LIBCFLAGS) -c $< -o $@
@@ -82,11 +91,16 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf libphyspix.so.$(VERSION) $(BUILD)/$(SONAME)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
+# The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h include/physpix_plugin.h $(SHARED)
+	$(CC) $(LIBCFLAGS) -Iplugin -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) -L$(BUILD) -l:$(SONAME) \
+	  -Wl,-rpath,'$$ORIGIN' -lpthread
+
 $(STATIC): $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/physpix.pc: Makefile | $(BUILD)
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lpng -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
 
 $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 	mkdir -p $@
@@ -112,6 +126,18 @@ test-san: $(BUILD)/tests/test_c_san
 	  if grep -q "ERROR: LeakSanitizer" $(BUILD)/tests/san.log; then echo "test-san: LeakSanitizer found leaks"; exit 1; fi; \
 	  exit $$rc
 
+# The plugin interface through the reference host's loader: manifests, version refusal, every method.
+$(BUILD)/tests/test_plugin: tests/plugin/test_plugin.c demo/plugin_host.c demo/plugin_host.h include/physpix_plugin.h | $(BUILD)/tests
+	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/plugin/test_plugin.c demo/plugin_host.c -lcriterion -ldl -lm
+
+$(BUILD)/demo/host: demo/host.c demo/plugin_host.c demo/plugin_host.h include/physpix_plugin.h
+	mkdir -p $(BUILD)/demo
+	$(CC) $(CFLAGS_) -O2 -g -o $@ demo/host.c demo/plugin_host.c -ldl -lm
+
+test-plugin: all $(BUILD)/tests/test_plugin $(BUILD)/demo/host
+	$(BUILD)/tests/test_plugin --jobs 2
+	$(BUILD)/demo/host plugin/physpix.plugin
+
 test-c: $(BUILD)/tests/test_c
 	$< --jobs 2
 
@@ -120,6 +146,12 @@ test: deps
 	$(MAKE) test-compile
 	$(MAKE) test-c
 	$(MAKE) test-san
+	$(MAKE) test-plugin
+	$(MAKE) test-python
+	$(MAKE) test-godot
+
+# The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
+include plugin/python/python.mk plugin/godot/godot.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench
@@ -146,8 +178,9 @@ $(BUILD)/demo/demo: $(DEMO_SRC) $(SHARED)
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $(DEMO_SRC) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' $(LIBS)
 
 demo: deps
-	$(MAKE) all $(BUILD)/demo/demo
+	$(MAKE) all $(BUILD)/demo/demo $(BUILD)/demo/host
 	$(BUILD)/demo/demo
+	$(BUILD)/demo/host plugin/physpix.plugin
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig

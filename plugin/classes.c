@@ -1,0 +1,465 @@
+/* The plugin's classes, PhysPixWorld and PhysPixBody: one table entry per method (name, doc with units,
+ * typed arguments, result) beside its implementation, each a thin call into the C ABI. Arguments
+ * arrive checked against the table by plugin.c; what is left here is ranges, sizes and names. */
+#include "plugin.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define ARG(name, T) {name, PP_VARIANT_##T, 0, NULL}
+/* The argument list as a static compound literal, and its length. */
+#define ARGS(...)                                                                                      \
+    .arg_count = (int32_t)(sizeof((const pp_plugin_arg[]){__VA_ARGS__}) / sizeof(pp_plugin_arg)),     \
+    .args = (const pp_plugin_arg[]) { __VA_ARGS__ }
+#define METHOD(fn, name_, ret_, doc_, ...) \
+    {{.name = name_, .doc = doc_, .return_type = PP_VARIANT_##ret_, __VA_ARGS__}, fn}
+#define RETURNS_BODY .return_class = "PhysPixBody"
+
+/* ---- argument helpers ---- */
+
+/* An INT argument that must lie in [lo, hi]; 0 and ret set to ERROR otherwise. */
+static int int_in(const pp_variant *a, int64_t lo, int64_t hi, const char *what, int32_t *out, pp_variant *ret)
+{
+    if (a->as.integer < lo || a->as.integer > hi) {
+        ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s must be in %lld..%lld, got %lld", what, (long long)lo,
+                  (long long)hi, (long long)a->as.integer);
+        return 0;
+    }
+    *out = (int32_t)a->as.integer;
+    return 1;
+}
+
+static int body_type_named(const pp_variant *a, const char *method, pp_body_type *out, pp_variant *ret)
+{
+    static const char *names[] = {"dynamic", "static", "kinematic"}; /* in pp_body_type order */
+    for (int i = 0; i < 3; i++)
+        if (strcmp(a->as.string.data, names[i]) == 0)
+            return *out = (pp_body_type)i, 1;
+    ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: type must be \"dynamic\", \"static\" or \"kinematic\", got \"%s\"",
+              method, a->as.string.data);
+    return 0;
+}
+
+/* Grow an array to hold n elements; 0 and ret set to ERROR on out of memory. */
+static int reserve(void **items, int32_t *capacity, int32_t n, size_t size, pp_variant *ret)
+{
+    if (n <= *capacity)
+        return 1;
+    void *grown = realloc(*items, (size_t)n * size);
+    if (!grown) {
+        ret_error(ret, PP_ERR_OUT_OF_MEMORY, "out of memory growing a list to %d items", (int)n);
+        return 0;
+    }
+    *items = grown;
+    *capacity = n;
+    return 1;
+}
+
+/* An index into a list of count items; 0 and ret set to ERROR when out of range. */
+static int index_in(const pp_variant *a, int32_t count, const char *method, const char *list, pp_variant *ret)
+{
+    if (a->as.integer >= 0 && a->as.integer < count)
+        return 1;
+    ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: index %lld is outside the %d %s read last", method,
+              (long long)a->as.integer, (int)count, list);
+    return 0;
+}
+
+static void ret_body(plugin_object *world_self, pp_body b, pp_variant *ret)
+{
+    if (b.id == 0)
+        return; /* ret stays NIL */
+    const uint64_t id = object_for_body(world_self->world_object, b);
+    if (id)
+        ret_object(ret, id);
+    else
+        ret_error(ret, PP_ERR_OUT_OF_MEMORY, "out of memory making a PhysPixBody object");
+}
+
+/* ---- PhysPixWorld ---- */
+
+static void world_step(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.step";
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    if (ret_ok(ret, pp_world_step(self->world, (float)a[0].as.real), m) &&
+        ret_ok(ret, pp_world_get_contacts(self->world, NULL, 0, &n), m) &&
+        reserve((void **)&c->contacts, &c->contact_capacity, n, sizeof *c->contacts, ret))
+        ret_ok(ret, pp_world_get_contacts(self->world, c->contacts, n, &c->contact_count), m);
+}
+
+/* Create a body from a def whose bitmap the caller filled, and answer its object. */
+static void add_body(plugin_object *self, pp_body_def *d, const pp_variant *pos, const pp_variant *type,
+                     const char *m, pp_variant *ret)
+{
+    pp_body b;
+    d->position = pos->as.vec2;
+    if (body_type_named(type, m, &d->type, ret) && ret_ok(ret, pp_body_create(self->world, d, &b), m))
+        ret_body(self, b, ret);
+}
+
+/* A plane given as bytes must be exactly width·height·channels long: the library cannot check it. */
+static int plane_sized(const pp_variant *bytes, const pp_variant *w, const pp_variant *h, int channels,
+                       const char *m, pp_body_def *d, pp_variant *ret)
+{
+    if (!int_in(w, 1, PP_MAX_BITMAP_SIDE, "width", &d->width, ret) ||
+        !int_in(h, 1, PP_MAX_BITMAP_SIDE, "height", &d->height, ret))
+        return 0;
+    const int64_t need = (int64_t)d->width * d->height * channels;
+    if (bytes->as.bytes.length != need) {
+        ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: %dx%d px needs %lld bytes, got %lld", m, (int)d->width,
+                  (int)d->height, (long long)need, (long long)bytes->as.bytes.length);
+        return 0;
+    }
+    return 1;
+}
+
+static void world_add_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_body_def d = pp_body_def_default();
+    d.mask = a[0].as.bytes.data;
+    if (plane_sized(&a[0], &a[1], &a[2], 1, "PhysPixWorld.add_body", &d, ret))
+        add_body(self, &d, &a[3], &a[4], "PhysPixWorld.add_body", ret);
+}
+
+static void world_add_body_rgba(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_body_def d = pp_body_def_default();
+    d.rgba = a[0].as.bytes.data;
+    if (plane_sized(&a[0], &a[1], &a[2], 4, "PhysPixWorld.add_body_rgba", &d, ret))
+        add_body(self, &d, &a[3], &a[4], "PhysPixWorld.add_body_rgba", ret);
+}
+
+static void world_add_body_png(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.add_body_png";
+    pp_body_def d = pp_body_def_default();
+    if (!ret_ok(ret, pp_image_info(a[0].as.string.data, &d.width, &d.height), m))
+        return;
+    const int64_t size = (int64_t)d.width * d.height * 4;
+    uint8_t *rgba = malloc((size_t)size);
+    if (!rgba) {
+        ret_error(ret, PP_ERR_OUT_OF_MEMORY, "%s: out of memory for %lld bytes", m, (long long)size);
+        return;
+    }
+    d.rgba = rgba;
+    if (ret_ok(ret, pp_image_load(a[0].as.string.data, rgba, size, &d.width, &d.height), m))
+        add_body(self, &d, &a[1], &a[2], m, ret);
+    free(rgba);
+}
+
+static void world_erase_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    int32_t changed = 0;
+    if (ret_ok(ret, pp_world_erase_circle(self->world, a[0].as.vec2, (float)a[1].as.real, &changed),
+               "PhysPixWorld.erase_circle"))
+        ret_int(ret, changed);
+}
+
+static void world_get_body_count(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.get_body_count";
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    if (ret_ok(ret, pp_world_get_bodies(self->world, NULL, 0, &n), m) &&
+        reserve((void **)&c->bodies, &c->body_capacity, n, sizeof *c->bodies, ret) &&
+        ret_ok(ret, pp_world_get_bodies(self->world, c->bodies, n, &c->body_count), m))
+        ret_int(ret, c->body_count);
+}
+
+static void world_get_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    if (index_in(&a[0], self->cache->body_count, "PhysPixWorld.get_body", "bodies", ret))
+        ret_body(self, self->cache->bodies[a[0].as.integer], ret);
+}
+
+static void world_get_contact_count(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_int(ret, self->cache->contact_count);
+}
+
+/* The contact an index argument names, or NULL with ret set to ERROR. */
+static const pp_contact *contact_at(plugin_object *self, const pp_variant *a, const char *m, pp_variant *ret)
+{
+    return index_in(a, self->cache->contact_count, m, "contacts", ret) ? &self->cache->contacts[a->as.integer]
+                                                                         : NULL;
+}
+
+static void world_get_contact_point(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_point", ret);
+    if (c)
+        ret_vec2(ret, c->point);
+}
+
+static void world_get_contact_normal(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_normal", ret);
+    if (c)
+        ret_vec2(ret, c->normal);
+}
+
+static void world_get_contact_depth(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_depth", ret);
+    if (c)
+        ret_float(ret, c->depth);
+}
+
+static void world_get_contact_body_a(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_body_a", ret);
+    if (c)
+        ret_body(self, c->a, ret);
+}
+
+static void world_get_contact_body_b(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_body_b", ret);
+    if (c)
+        ret_body(self, c->b, ret);
+}
+
+static void world_get_event_count(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.get_event_count";
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    if (ret_ok(ret, pp_world_get_events(self->world, NULL, 0, &n), m) &&
+        reserve((void **)&c->events, &c->event_capacity, n, sizeof *c->events, ret) &&
+        ret_ok(ret, pp_world_get_events(self->world, c->events, n, &c->event_count), m))
+        ret_int(ret, c->event_count);
+}
+
+static const pp_event *event_at(plugin_object *self, const pp_variant *a, const char *m, pp_variant *ret)
+{
+    return index_in(a, self->cache->event_count, m, "events", ret) ? &self->cache->events[a->as.integer] : NULL;
+}
+
+static void world_get_event_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_type", ret);
+    if (e)
+        ret_string(ret, e->type == PP_EVENT_BODY_SPLIT ? "split" : "destroyed");
+}
+
+static void world_get_event_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_body", ret);
+    if (e)
+        ret_body(self, e->body, ret);
+}
+
+static void world_get_event_other(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_other", ret);
+    if (e)
+        ret_body(self, e->other, ret);
+}
+
+static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_step_stats s;
+    if (ret_ok(ret, pp_world_get_stats(self->world, &s), "PhysPixWorld.get_step_ms"))
+        ret_float(ret, s.total_ms);
+}
+
+static const method_def world_methods[] = {
+    METHOD(world_step, "step", NIL, "advance the world by dt seconds (0 < dt <= 1)", ARGS(ARG("dt", FLOAT))),
+    METHOD(world_add_body, "add_body", OBJECT,
+           "add a body from a collision mask (width*height bytes, non-zero solid) at a world position, px",
+           ARGS(ARG("mask", BYTES), ARG("width", INT), ARG("height", INT), ARG("position", VEC2),
+                ARG("type", STRING)),
+           RETURNS_BODY),
+    METHOD(world_add_body_rgba, "add_body_rgba", OBJECT,
+           "add a body from an RGBA8 sprite (alpha >= 128 solid) at a world position, px",
+           ARGS(ARG("rgba", BYTES), ARG("width", INT), ARG("height", INT), ARG("position", VEC2),
+                ARG("type", STRING)),
+           RETURNS_BODY),
+    METHOD(world_add_body_png, "add_body_png", OBJECT, "add a body from a PNG sprite file at a world position, px",
+           ARGS(ARG("path", STRING), ARG("position", VEC2), ARG("type", STRING)), RETURNS_BODY),
+    METHOD(world_erase_circle, "erase_circle", INT,
+           "erase every body's pixels within radius (px) of a world point (px); returns pixels erased",
+           ARGS(ARG("center", VEC2), ARG("radius", FLOAT))),
+    METHOD(world_get_body_count, "get_body_count", INT, "read the live bodies; returns how many", .arg_count = 0),
+    METHOD(world_get_body, "get_body", OBJECT, "the index-th body read by get_body_count",
+           ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_get_contact_count, "get_contact_count", INT, "contacts of the last step", .arg_count = 0),
+    METHOD(world_get_contact_point, "get_contact_point", VEC2, "world contact point, px", ARGS(ARG("index", INT))),
+    METHOD(world_get_contact_normal, "get_contact_normal", VEC2, "unit normal from body a to body b",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_contact_depth, "get_contact_depth", FLOAT, "penetration along the normal, px",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_contact_body_a, "get_contact_body_a", OBJECT, "first body of a contact", ARGS(ARG("index", INT)),
+           RETURNS_BODY),
+    METHOD(world_get_contact_body_b, "get_contact_body_b", OBJECT, "second body of a contact",
+           ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_get_event_count, "get_event_count", INT, "read (and forget) the pending events; returns how many",
+           .arg_count = 0),
+    METHOD(world_get_event_type, "get_event_type", STRING, "\"split\" or \"destroyed\"", ARGS(ARG("index", INT))),
+    METHOD(world_get_event_body, "get_event_body", OBJECT, "the body an event happened to (split: the parent)",
+           ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_get_event_other, "get_event_other", OBJECT, "split: the new body; destroyed: nil",
+           ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_get_step_ms, "get_step_ms", FLOAT, "wall time of the last step, milliseconds", .arg_count = 0),
+};
+
+/* ---- PhysPixBody ---- */
+
+static void body_get_position(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 p;
+    if (ret_ok(ret, pp_body_get_position(self->world, self->body, &p), "PhysPixBody.get_position"))
+        ret_vec2(ret, p);
+}
+
+static void body_get_angle(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float angle;
+    if (ret_ok(ret, pp_body_get_angle(self->world, self->body, &angle), "PhysPixBody.get_angle"))
+        ret_float(ret, angle);
+}
+
+static void body_set_transform(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_set_transform(self->world, self->body, a[0].as.vec2, (float)a[1].as.real),
+           "PhysPixBody.set_transform");
+}
+
+static void body_get_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 v;
+    if (ret_ok(ret, pp_body_get_velocity(self->world, self->body, &v, NULL), "PhysPixBody.get_velocity"))
+        ret_vec2(ret, v);
+}
+
+static void body_get_angular_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float w;
+    if (ret_ok(ret, pp_body_get_velocity(self->world, self->body, NULL, &w), "PhysPixBody.get_angular_velocity"))
+        ret_float(ret, w);
+}
+
+static void body_set_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_set_velocity(self->world, self->body, a[0].as.vec2, (float)a[1].as.real),
+           "PhysPixBody.set_velocity");
+}
+
+static void body_apply_impulse(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_apply_impulse(self->world, self->body, a[0].as.vec2, a[1].as.vec2),
+           "PhysPixBody.apply_impulse");
+}
+
+static void body_get_mass(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float mass;
+    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, &mass, NULL, NULL), "PhysPixBody.get_mass"))
+        ret_float(ret, mass);
+}
+
+static void body_get_center_of_mass(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 c;
+    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, NULL, &c, NULL), "PhysPixBody.get_center_of_mass"))
+        ret_vec2(ret, c);
+}
+
+static void body_get_inertia(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float inertia;
+    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, NULL, NULL, &inertia), "PhysPixBody.get_inertia"))
+        ret_float(ret, inertia);
+}
+
+static void body_is_awake(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    int32_t awake;
+    if (ret_ok(ret, pp_body_is_awake(self->world, self->body, &awake), "PhysPixBody.is_awake"))
+        ret_bool(ret, awake);
+}
+
+static void body_erase_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    int32_t changed;
+    if (ret_ok(ret, pp_body_erase_circle(self->world, self->body, a[0].as.vec2, (float)a[1].as.real, &changed),
+               "PhysPixBody.erase_circle"))
+        ret_int(ret, changed);
+}
+
+static void body_paint_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    int32_t weight, changed;
+    if (int_in(&a[2], 1, 255, "PhysPixBody.paint_circle: weight", &weight, ret) &&
+        ret_ok(ret,
+               pp_body_paint_circle(self->world, self->body, a[0].as.vec2, (float)a[1].as.real, (uint8_t)weight,
+                                    &changed),
+               "PhysPixBody.paint_circle"))
+        ret_int(ret, changed);
+}
+
+static void body_read_mask(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixBody.read_mask";
+    int32_t w, h;
+    if (!ret_ok(ret, pp_body_get_size(self->world, self->body, &w, &h), m))
+        return;
+    const int64_t size = (int64_t)w * h;
+    uint8_t *mask = ret_bytes(ret, size);
+    if (mask && !ret_ok(ret, pp_body_read_mask(self->world, self->body, mask, size), m))
+        free(mask); /* ret now holds the error, not the bytes */
+}
+
+static void body_get_size(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    int32_t w, h;
+    if (ret_ok(ret, pp_body_get_size(self->world, self->body, &w, &h), "PhysPixBody.get_size"))
+        ret_vec2(ret, (pp_vec2){(float)w, (float)h});
+}
+
+static void body_get_world(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_object(ret, self->world_object);
+}
+
+static const method_def body_methods[] = {
+    METHOD(body_get_position, "get_position", VEC2, "world position of the pivot, px", .arg_count = 0),
+    METHOD(body_get_angle, "get_angle", FLOAT, "rotation, radians", .arg_count = 0),
+    METHOD(body_set_transform, "set_transform", NIL, "teleport: pivot to position (px), rotation to angle (radians)",
+           ARGS(ARG("position", VEC2), ARG("angle", FLOAT))),
+    METHOD(body_get_velocity, "get_velocity", VEC2, "velocity of the centre of mass, px/s", .arg_count = 0),
+    METHOD(body_get_angular_velocity, "get_angular_velocity", FLOAT, "angular velocity, rad/s", .arg_count = 0),
+    METHOD(body_set_velocity, "set_velocity", NIL, "set linear (px/s) and angular (rad/s) velocity",
+           ARGS(ARG("linear", VEC2), ARG("angular", FLOAT))),
+    METHOD(body_apply_impulse, "apply_impulse", NIL, "apply an impulse (mass*px/s) at a world point (px)",
+           ARGS(ARG("impulse", VEC2), ARG("point", VEC2))),
+    METHOD(body_get_mass, "get_mass", FLOAT, "mass, mass units (density x weighted solid pixels)", .arg_count = 0),
+    METHOD(body_get_center_of_mass, "get_center_of_mass", VEC2, "centre of mass in bitmap coordinates, px",
+           .arg_count = 0),
+    METHOD(body_get_inertia, "get_inertia", FLOAT, "moment of inertia about the centre of mass, mass*px^2",
+           .arg_count = 0),
+    METHOD(body_is_awake, "is_awake", BOOL, "whether the body is awake", .arg_count = 0),
+    METHOD(body_erase_circle, "erase_circle", INT,
+           "erase pixels within radius (px) of a world point (px); returns pixels erased",
+           ARGS(ARG("center", VEC2), ARG("radius", FLOAT))),
+    METHOD(body_paint_circle, "paint_circle", INT,
+           "make pixels within radius (px) of a world point (px) solid with weight 1..255; returns pixels changed",
+           ARGS(ARG("center", VEC2), ARG("radius", FLOAT), ARG("weight", INT))),
+    METHOD(body_read_mask, "read_mask", BYTES, "the collision mask, width*height bytes (1 solid), rows top to bottom",
+           .arg_count = 0),
+    METHOD(body_get_size, "get_size", VEC2, "bitmap width and height, px", .arg_count = 0),
+    METHOD(body_get_world, "get_world", OBJECT, "the PhysPixWorld the body lives in", .arg_count = 0,
+           .return_class = "PhysPixWorld"),
+};
+
+const class_def plugin_classes[CLASS_COUNT] = {
+    [CLASS_WORLD] = {{.name = "PhysPixWorld", .base = "RefCounted", .doc = "a PhysPix world with default settings",
+                      .instantiable = 1, .method_count = (int32_t)(sizeof world_methods / sizeof world_methods[0])},
+                     OBJECT_WORLD, world_methods},
+    [CLASS_BODY] = {{.name = "PhysPixBody", .base = "RefCounted",
+                     .doc = "a body of a PhysPixWorld, made by its add_body* methods",
+                     .method_count = (int32_t)(sizeof body_methods / sizeof body_methods[0])},
+                    OBJECT_BODY, body_methods},
+};

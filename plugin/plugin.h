@@ -1,0 +1,67 @@
+/* Private to the engine plugin: the object table shared by the dispatcher (plugin.c) and the
+ * class methods (classes.c), and the variant helpers both use. */
+#ifndef PP_PLUGIN_PRIVATE_H
+#define PP_PLUGIN_PRIVATE_H
+
+#include "physpix_plugin.h"
+
+typedef enum object_kind { OBJECT_FREE = 0, OBJECT_WORLD, OBJECT_BODY } object_kind;
+
+/* What a world object keeps between calls: the lists its indexed getters read. */
+typedef struct world_cache {
+    pp_contact *contacts; /* of the last step */
+    int32_t contact_count, contact_capacity;
+    pp_event *events; /* read by the last get_event_count */
+    int32_t event_count, event_capacity;
+    pp_body *bodies; /* read by the last get_body_count */
+    int32_t body_count, body_capacity;
+    uint64_t *body_objects; /* body slot → the object wrapping it, so a body keeps one object id */
+    int32_t body_object_capacity;
+} world_cache;
+
+/* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */
+typedef struct plugin_object {
+    object_kind kind;
+    uint32_t generation;
+    int32_t next_free;
+    pp_world world;        /* both kinds */
+    pp_body body;          /* BODY */
+    uint64_t world_object; /* the world object it belongs to (a world: itself) */
+    world_cache *cache;    /* WORLD */
+} plugin_object;
+
+/* A method's description (public) and implementation; args arrive checked and converted. */
+typedef void (*method_fn)(plugin_object *self, const pp_variant *args, pp_variant *ret);
+typedef struct method_def {
+    pp_plugin_method desc;
+    method_fn fn;
+} method_def;
+
+typedef struct class_def {
+    pp_plugin_class desc; /* desc.methods is filled from `methods` at start-up */
+    object_kind kind;
+    const method_def *methods;
+} class_def;
+
+enum { CLASS_WORLD = 0, CLASS_BODY = 1, CLASS_COUNT = 2 };
+extern const class_def plugin_classes[CLASS_COUNT];
+
+/* The object table (plugin.c). */
+plugin_object *object_get(uint64_t id);
+uint64_t object_new(object_kind kind, plugin_object **out);
+void object_free(uint64_t id);
+uint64_t object_for_body(uint64_t world_object, pp_body body); /* 0 on out of memory */
+
+/* Results (plugin.c). The error forms copy their message; a failed library call adds pp_last_error(). */
+void ret_int(pp_variant *ret, int64_t v);
+void ret_float(pp_variant *ret, double v);
+void ret_bool(pp_variant *ret, int v);
+void ret_vec2(pp_variant *ret, pp_vec2 v);
+void ret_object(pp_variant *ret, uint64_t id);
+void ret_string(pp_variant *ret, const char *s);
+uint8_t *ret_bytes(pp_variant *ret, int64_t length); /* NULL (and ret an ERROR) on out of memory */
+void ret_error(pp_variant *ret, pp_status status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* PP_OK: leaves ret alone and returns 1; otherwise ret becomes ERROR "<method>: <pp_last_error()>", returns 0. */
+int ret_ok(pp_variant *ret, pp_status status, const char *method);
+
+#endif
