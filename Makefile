@@ -120,14 +120,17 @@ test-compile: | $(BUILD)/tests
 
 # Leaks are checked after each test (tests/c/helpers.h); the runner's own exit check is off because
 # Criterion keeps 48 bytes to its exit. Any LeakSanitizer report fails the target.
-test-san: $(BUILD)/tests/test_c_san
-	@ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=leak_check_at_exit=0 UBSAN_OPTIONS=print_stacktrace=1 \
-	  $< --jobs 2 > $(BUILD)/tests/san.log 2>&1; rc=$$?; cat $(BUILD)/tests/san.log; \
-	  if grep -q "ERROR: LeakSanitizer" $(BUILD)/tests/san.log; then echo "test-san: LeakSanitizer found leaks"; exit 1; fi; \
+# $(call run_san,binary,log): run a sanitized Criterion binary; fail on its status or on any LeakSanitizer report.
+run_san = @ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=leak_check_at_exit=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  $(1) --jobs 2 > $(2) 2>&1; rc=$$?; cat $(2); \
+	  if grep -q "ERROR: LeakSanitizer" $(2); then echo "$@: LeakSanitizer found leaks"; exit 1; fi; \
 	  exit $$rc
 
+test-san: $(BUILD)/tests/test_c_san
+	$(call run_san,$<,$(BUILD)/tests/san.log)
+
 # The plugin interface through the reference host's loader: manifests, version refusal, every method.
-$(BUILD)/tests/test_plugin: tests/plugin/test_plugin.c demo/plugin_host.c demo/plugin_host.h include/physpix_plugin.h | $(BUILD)/tests
+$(BUILD)/tests/test_plugin: tests/plugin/test_plugin.c demo/plugin_host.c $(PLUGIN) demo/plugin_host.h include/physpix_plugin.h | $(BUILD)/tests
 	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/plugin/test_plugin.c demo/plugin_host.c -lcriterion -ldl -lm
 
 $(BUILD)/demo/host: demo/host.c demo/plugin_host.c demo/plugin_host.h include/physpix_plugin.h
@@ -135,7 +138,7 @@ $(BUILD)/demo/host: demo/host.c demo/plugin_host.c demo/plugin_host.h include/ph
 	$(CC) $(CFLAGS_) -O2 -g -o $@ demo/host.c demo/plugin_host.c -ldl -lm
 
 test-plugin: all $(BUILD)/tests/test_plugin $(BUILD)/demo/host
-	$(BUILD)/tests/test_plugin --jobs 2
+	$(call run_san,$(BUILD)/tests/test_plugin,$(BUILD)/tests/plugin.log)
 	$(BUILD)/demo/host plugin/physpix.plugin
 
 test-c: $(BUILD)/tests/test_c

@@ -28,6 +28,15 @@ static void ode_init_once(void)
     ode_ok = dInitODE2(0) && dCheckConfiguration("ODE_double_precision");
 }
 
+/* A host that unloads the library (as a plugin) gets ODE's process-wide data back. */
+__attribute__((destructor)) static void ode_close(void)
+{
+    if (ode_ok) {
+        dCleanupODEAllDataForThread();
+        dCloseODE();
+    }
+}
+
 static pp_status ode_ready(void)
 {
     pthread_once(&ode_once, ode_init_once);
