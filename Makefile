@@ -116,7 +116,7 @@ $(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h | $(BUILD)/tests
 test-compile: | $(BUILD)/tests
 	$(CC) -std=c11 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_c.c -o $(BUILD)/tests/header_c.o
 	$(CXX) -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_cpp.cpp -o $(BUILD)/tests/header_cpp.o
-	@echo "public header compiles as C11 and C++17 with -Werror"
+	@echo "public headers compile as C11 and C++17 with -Werror"
 
 # Leaks are checked after each test (tests/c/helpers.h); the runner's own exit check is off because
 # Criterion keeps 48 bytes to its exit. Any LeakSanitizer report fails the target.
@@ -187,7 +187,9 @@ demo: deps
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig
-	install -m 644 include/physpix.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 include/physpix.h include/physpix_plugin.h $(DESTDIR)$(PREFIX)/include/
+	install -m 755 $(PLUGIN) $(DESTDIR)$(PREFIX)/lib/
+	sed 's|"../build/libphyspix_plugin.so"|"libphyspix_plugin.so"|' plugin/physpix.plugin > $(DESTDIR)$(PREFIX)/lib/physpix.plugin
 	install -m 755 $(SHARED) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf libphyspix.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libphyspix.so

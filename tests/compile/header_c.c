@@ -1,5 +1,6 @@
-/* The public header compiles as C11 with -Werror, and its structs have the documented layout. */
+/* The public headers compile as C11 with -Werror, and its structs have the documented layout. */
 #include "physpix.h"
+#include "physpix_plugin.h"
 #include <stddef.h>
 
 _Static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
@@ -9,6 +10,9 @@ _Static_assert(sizeof(pp_event) == 24, "pp_event layout");
 _Static_assert(sizeof(pp_body_def) == 128, "pp_body_def layout");
 _Static_assert(sizeof(pp_status) == 4 && sizeof(pp_body_type) == 4, "enums are 32-bit");
 _Static_assert(offsetof(pp_world_def, struct_size) == 0, "struct_size first");
+_Static_assert(sizeof(pp_variant) == 24 && offsetof(pp_variant, as) == 8, "pp_variant layout");
+_Static_assert(offsetof(pp_host_interface, struct_size) == 0 && offsetof(pp_plugin_interface, struct_size) == 0,
+               "struct_size first");
 _Static_assert(offsetof(pp_body_def, struct_size) == 0, "struct_size first");
 
 int physpix_header_c_check(void);
