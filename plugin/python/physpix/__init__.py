@@ -1,0 +1,41 @@
+"""PhysPix for Python: 2D rigid bodies whose shapes are bitmaps, through ctypes and the C ABI.
+
+Names mirror include/physpix.h: World(**pp_world_def fields), world.create_body(mask=…, **pp_body_def fields).
+Units: pixels, seconds, radians; world y points down. The library is found through PHYSPIX_LIBRARY,
+a source checkout's build/ folder, or the system's library path.
+"""
+
+from . import _native
+from .enums import Backend, BodyType, ContactMode, EventType, NormalMethod, Status
+from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleError, LimitError, OutOfMemoryError,
+                     PhysPixError, PhysPixIOError, UnsupportedError)
+from .image import image_info, load_png
+from .world import Body, Contact, Event, StepStats, World
+
+__version__ = "0.1.0"
+
+#: Version of the loaded library, (major, minor, patch).
+library_version = (_native.version // 10000, _native.version // 100 % 100, _native.version % 100)
+#: Path of the loaded libphyspix.
+library_path = _native.path
+
+_log_hook = None  # the ctypes callback must outlive its installation
+
+
+def set_log_hook(fn):
+    """Install fn(level, message) as the library's log hook (0 debug … 3 error); None removes it."""
+    global _log_hook
+    if fn is None:
+        _native.lib.pp_set_log_hook(_native.pp_log_fn(), None)
+        _log_hook = None
+        return
+    _log_hook = _native.pp_log_fn(lambda level, msg, user: fn(level, msg.decode("utf-8", "replace")))
+    _native.lib.pp_set_log_hook(_log_hook, None)
+
+
+__all__ = [
+    "World", "Body", "Contact", "Event", "StepStats", "load_png", "image_info", "set_log_hook",
+    "Backend", "BodyType", "ContactMode", "EventType", "NormalMethod", "Status",
+    "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
+    "FormatError", "UnsupportedError", "LimitError", "AbiError", "library_version", "library_path",
+]

@@ -1,0 +1,47 @@
+"""The public enums of physpix.h as IntEnums; members are also accepted as lower-case strings."""
+from enum import IntEnum
+
+
+class Status(IntEnum):
+    """pp_status: the result of every call that can fail."""
+    OK = 0
+    INVALID_ARGUMENT = 1
+    INVALID_HANDLE = 2
+    OUT_OF_MEMORY = 3
+    IO = 4
+    FORMAT = 5
+    UNSUPPORTED = 6
+    LIMIT = 7
+    ABI = 8
+
+
+class Backend(IntEnum):
+    """pp_backend: which collision backend runs the narrowphase."""
+    AUTO = 0
+    CPU = 1
+    GPU = 2
+
+
+class NormalMethod(IntEnum):
+    """pp_normal_method: how a contact normal is estimated."""
+    AREA_GRADIENT = 0
+    KERNEL = 1
+
+
+class ContactMode(IntEnum):
+    """pp_contact_mode: how many contact points a colliding pair produces."""
+    MANIFOLD = 0
+    CENTROID = 1
+
+
+class BodyType(IntEnum):
+    """pp_body_type: how a body moves."""
+    DYNAMIC = 0
+    STATIC = 1
+    KINEMATIC = 2
+
+
+class EventType(IntEnum):
+    """pp_event_type: what an event reports."""
+    BODY_SPLIT = 1
+    BODY_DESTROYED = 2

@@ -1,0 +1,69 @@
+"""Exceptions: PhysPixError and one subclass per pp_status, each carrying the library's message."""
+from .enums import Status
+
+
+class PhysPixError(Exception):
+    """A call into libphyspix failed; .status is the pp_status, .message pp_last_error()'s text."""
+    status = None
+
+    def __init__(self, message, status=None, function=None):
+        super().__init__(message)
+        self.message = message
+        if status is not None:
+            self.status = status
+        self.function = function
+
+
+class InvalidArgumentError(PhysPixError):
+    """PP_ERR_INVALID_ARGUMENT: NULL, NaN, out-of-range or inconsistent argument."""
+    status = Status.INVALID_ARGUMENT
+
+
+class InvalidHandleError(PhysPixError):
+    """PP_ERR_INVALID_HANDLE: a null, destroyed or stale world or body handle."""
+    status = Status.INVALID_HANDLE
+
+
+class OutOfMemoryError(PhysPixError):
+    """PP_ERR_OUT_OF_MEMORY: an allocation failed; nothing was changed."""
+    status = Status.OUT_OF_MEMORY
+
+
+class PhysPixIOError(PhysPixError):
+    """PP_ERR_IO: a file could not be read or written."""
+    status = Status.IO
+
+
+class FormatError(PhysPixError):
+    """PP_ERR_FORMAT: a file's contents are malformed."""
+    status = Status.FORMAT
+
+
+class UnsupportedError(PhysPixError):
+    """PP_ERR_UNSUPPORTED: the feature is not available here (e.g. no GPU)."""
+    status = Status.UNSUPPORTED
+
+
+class LimitError(PhysPixError):
+    """PP_ERR_LIMIT: a size over the documented PP_MAX_* limits."""
+    status = Status.LIMIT
+
+
+class AbiError(PhysPixError):
+    """PP_ERR_ABI: a def struct whose struct_size does not match the library."""
+    status = Status.ABI
+
+
+_BY_STATUS = {cls.status: cls for cls in (InvalidArgumentError, InvalidHandleError, OutOfMemoryError,
+                                          PhysPixIOError, FormatError, UnsupportedError, LimitError, AbiError)}
+
+
+def error_for(status, message, function, name):
+    """The exception for a failed call: its status's subclass (PhysPixError for an unknown status)."""
+    try:
+        status = Status(status)
+    except ValueError:
+        status = int(status)
+    if not message:  # the library promises a message; never raise an empty one
+        message = f"{function} failed with {name}"
+    return _BY_STATUS.get(int(status), PhysPixError)(message, status, function)

@@ -1,0 +1,427 @@
+"""World and Body: the C ABI's calls as methods and properties, numpy arrays in and out.
+
+Units everywhere: pixels, seconds, radians; world y points down. Every failing call raises
+the PhysPixError subclass of its status with the library's message.
+"""
+import weakref
+from ctypes import byref, c_float, c_int32, c_uint64
+from dataclasses import dataclass, fields as dataclass_fields
+
+import numpy as np
+
+from . import _native as N
+from .enums import Backend, BodyType, ContactMode, EventType, NormalMethod
+from .errors import PhysPixError
+
+lib = N.lib
+
+# Def fields that take an enum: the enum class accepts members, ints and lower-case names.
+_ENUM_FIELDS = {"backend": Backend, "normal_method": NormalMethod, "contact_mode": ContactMode, "type": BodyType}
+# Body def fields that create_body fills from the numpy arrays, never from keywords.
+_PLANE_FIELDS = ("rgba", "mask", "weights")
+
+
+def enum_value(cls, value, what):
+    """An enum member from a member, an int or a case-insensitive name such as "area_gradient"."""
+    if isinstance(value, str):
+        try:
+            return cls[value.upper()]
+        except KeyError:
+            choices = ", ".join(repr(m.name.lower()) for m in cls)
+            raise ValueError(f"{what}: {value!r} is not one of {choices}") from None
+    try:
+        return cls(value)
+    except ValueError:
+        choices = ", ".join(f"{m.name.lower()!r} ({int(m)})" for m in cls)
+        raise ValueError(f"{what}: {value!r} is not one of {choices}") from None
+
+
+def vec2(value, what="vector"):
+    """A pp_vec2 from any (x, y) pair of numbers."""
+    try:
+        x, y = value
+        return N.pp_vec2(float(x), float(y))
+    except (TypeError, ValueError):
+        raise TypeError(f"{what}: expected an (x, y) pair of numbers, got {value!r}") from None
+
+
+def _fill_def(struct, values, caller, skip=()):
+    """Set def fields from keywords named as in the C struct; unknown names are a TypeError."""
+    types = dict(struct._fields_)
+    for name, value in values.items():
+        if name in skip:
+            raise TypeError(f"{caller}(): {name!r} comes from the arrays, not from a keyword")
+        if name not in types:
+            raise TypeError(f"{caller}() got an unexpected keyword argument {name!r}")
+        if name in _ENUM_FIELDS:
+            value = enum_value(_ENUM_FIELDS[name], value, name)
+        elif types[name] is N.pp_vec2:
+            value = vec2(value, name)
+        try:
+            setattr(struct, name, value)
+        except TypeError as exc:  # ctypes' own message does not say which field
+            raise TypeError(f"{name}: {exc}") from None
+
+
+def _read_list(fn, item_type, *args, guess=0):
+    """All items of a snapshot getter (bodies, contacts, collide): read with a first guess of the count
+    (0: just ask it), then again with the total the library reported if that was more."""
+    capacity, count = guess, c_int32(0)
+    while True:
+        buf = (item_type * capacity)() if capacity else None
+        fn(*args, buf, capacity, byref(count))
+        if count.value <= capacity:
+            return list(buf[:count.value]) if capacity else []
+        capacity = count.value
+
+
+def _as_u8(array, name, ndim, channels=None):
+    """A C-contiguous uint8 copy-free view where possible; integer arrays must hold 0..255."""
+    a = np.asarray(array)
+    if a.ndim != ndim or (channels is not None and a.shape[-1] != channels):
+        want = "(height, width, 4)" if channels else "(height, width)"
+        raise ValueError(f"{name}: expected an array of shape {want}, got shape {a.shape}")
+    if a.dtype != np.uint8:
+        if a.dtype.kind not in "iu" or (a.size and (a.min() < 0 or a.max() > 255)):
+            raise ValueError(f"{name}: expected uint8 values 0..255, got dtype {a.dtype}")
+        a = a.astype(np.uint8)
+    return np.ascontiguousarray(a)
+
+
+def _mask_u8(mask):
+    """A collision mask as C-contiguous uint8: any dtype, non-zero is solid."""
+    m = np.asarray(mask)
+    if m.ndim != 2:
+        raise ValueError(f"mask: expected an array of shape (height, width), got shape {m.shape}")
+    return np.ascontiguousarray(m != 0, dtype=np.uint8)
+
+
+def _u8_ptr(array):
+    return None if array is None else array.ctypes.data_as(N.u8p)
+
+
+def _planes(mask, rgba, weights):
+    """Validated planes and their common (height, width); a disagreement between them is a ValueError."""
+    planes = {}
+    if mask is not None:
+        planes["mask"] = _mask_u8(mask)
+    if rgba is not None:
+        planes["rgba"] = _as_u8(rgba, "rgba", 3, channels=4)
+    if weights is not None:
+        planes["weights"] = _as_u8(weights, "weights", 2)
+    shapes = {name: a.shape[:2] for name, a in planes.items()}
+    if len(set(shapes.values())) > 1:
+        raise ValueError("planes disagree in (height, width): " + ", ".join(f"{k} {v}" for k, v in shapes.items()))
+    if not planes:
+        raise ValueError("create_body needs a mask or an rgba array")
+    if "weights" in planes and len(planes) == 1:
+        raise ValueError("weights alone are not a shape: give a mask or an rgba array too")
+    return planes, next(iter(shapes.values()))
+
+
+@dataclass(frozen=True)
+class Contact:
+    """One contact point: normal points from a to b; point in world px, depth in px."""
+    a: "Body"
+    b: "Body"
+    point: tuple
+    normal: tuple
+    depth: float
+    pixel_count: int
+
+
+@dataclass(frozen=True)
+class Event:
+    """Something that happened to a body (SPLIT: other is the new body; DESTROYED: other is None)."""
+    type: EventType
+    body: "Body"
+    other: "Body | None"
+
+
+@dataclass(frozen=True)
+class StepStats:
+    """What the last step did: times in milliseconds, counts, and the backend that ran."""
+    broadphase_ms: float
+    narrowphase_ms: float
+    solver_ms: float
+    total_ms: float
+    bodies: int
+    awake_bodies: int
+    pairs: int
+    contacts: int
+    pixels_tested: int
+    backend: Backend
+
+
+def _destroy_world(world_id):
+    """Finalizer of a World never closed: destroy it, quietly (at exit nobody can handle an error)."""
+    try:
+        lib.pp_world_destroy(N.pp_world(world_id))
+    except PhysPixError:
+        pass
+
+
+class World:
+    """A physics world; keywords are pp_world_def field names (gravity=(0, 980) px/s², backend="cpu", …)."""
+
+    def __init__(self, **fields):
+        d = lib.pp_world_def_default()
+        _fill_def(d, fields, "World")
+        self._handle = N.pp_world()
+        lib.pp_world_create(byref(d), byref(self._handle))
+        self._finalizer = weakref.finalize(self, _destroy_world, self._handle.id)
+
+    def close(self):
+        """Destroy the world and its bodies; later calls with it raise InvalidHandleError. Idempotent."""
+        if self._finalizer.detach() is not None:
+            lib.pp_world_destroy(self._handle)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self):
+        state = "closed" if not self._finalizer.alive else "open"
+        return f"<physpix.World id={self._handle.id:#x} {state}>"
+
+    @property
+    def id(self):
+        """The opaque pp_world handle value."""
+        return self._handle.id
+
+    def _body(self, handle):
+        return Body(self, handle.id) if handle.id else None
+
+    def step(self, dt):
+        """Advance the world by dt seconds (0 < dt ≤ 1)."""
+        lib.pp_world_step(self._handle, dt)
+
+    def create_body(self, mask=None, rgba=None, weights=None, **fields):
+        """A body from numpy planes (mask (h, w) non-zero solid; rgba (h, w, 4) uint8; weights (h, w) 0..255)
+        and pp_body_def fields as keywords (type="static", position=(x, y) px, angle rad, density, …)."""
+        planes, (height, width) = _planes(mask, rgba, weights)
+        d = lib.pp_body_def_default()
+        _fill_def(d, fields, "create_body", skip=_PLANE_FIELDS + ("width", "height"))
+        d.width, d.height = width, height
+        for name, array in planes.items():
+            setattr(d, name, _u8_ptr(array))
+        handle = N.pp_body()
+        # `planes` keeps the arrays alive through the call; the library copies them.
+        lib.pp_body_create(self._handle, byref(d), byref(handle))
+        return Body(self, handle.id)
+
+    def bodies(self):
+        """Every live body."""
+        return [Body(self, h.id) for h in _read_list(lib.pp_world_get_bodies, N.pp_body, self._handle)]
+
+    def _contacts(self, raw):
+        return [Contact(Body(self, c.a.id), Body(self, c.b.id), (c.point.x, c.point.y), (c.normal.x, c.normal.y),
+                        c.depth, c.pixel_count) for c in raw]
+
+    def contacts(self):
+        """The contacts of the last substep."""
+        return self._contacts(_read_list(lib.pp_world_get_contacts, N.pp_contact, self._handle))
+
+    def collide(self, a, b):
+        """Run the narrowphase on one pair at the current poses, without stepping; normals point from a to b."""
+        # A pair makes at most two contacts (MANIFOLD): one call, not a count then a read of the narrowphase.
+        return self._contacts(_read_list(lib.pp_world_collide, N.pp_contact, self._handle, a._handle, b._handle,
+                                         guess=4))
+
+    def events(self):
+        """The events since they were last read, oldest first; reading forgets them."""
+        out = []
+        count = c_int32(0)
+        lib.pp_world_get_events(self._handle, None, 0, byref(count))
+        # Reading consumes what it writes, so read until nothing is pending rather than re-asking a total.
+        while count.value > 0:
+            buf = (N.pp_event * count.value)()
+            lib.pp_world_get_events(self._handle, buf, count.value, byref(count))
+            written = min(count.value, len(buf))
+            out += [Event(EventType(e.type), Body(self, e.body.id), self._body(e.other)) for e in buf[:written]]
+            count.value -= written
+        return out
+
+    def stats(self):
+        """Statistics of the last step."""
+        s = N.pp_step_stats()
+        lib.pp_world_get_stats(self._handle, byref(s))
+        values = {f.name: getattr(s, f.name) for f in dataclass_fields(StepStats)}
+        values["backend"] = Backend(values["backend"])
+        return StepStats(**values)
+
+    def erase_circle(self, center, radius):
+        """Erase every body's pixels within radius px of a world point (px); returns the pixels erased."""
+        changed = c_int32(0)
+        lib.pp_world_erase_circle(self._handle, vec2(center, "center"), radius, byref(changed))
+        return changed.value
+
+
+class Body:
+    """A body of a World: a value handle; equal when world and body ids are."""
+
+    __slots__ = ("_world", "_handle")
+
+    def __init__(self, world, body_id):
+        self._world = world
+        self._handle = N.pp_body(body_id)
+
+    def __eq__(self, other):
+        return isinstance(other, Body) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
+    def _key(self):
+        return self._world._handle.id, self._handle.id
+
+    def __repr__(self):
+        return f"<physpix.Body id={self._handle.id:#x}>"
+
+    def _call(self, fn, *args):
+        return fn(self._world._handle, self._handle, *args)
+
+    @property
+    def world(self):
+        """The World the body lives in."""
+        return self._world
+
+    @property
+    def id(self):
+        """The opaque pp_body handle value."""
+        return self._handle.id
+
+    def destroy(self):
+        """Destroy the body; its handle becomes stale."""
+        self._call(lib.pp_body_destroy)
+
+    @property
+    def position(self):
+        """World position of the pivot, (x, y) px; setting it teleports the body."""
+        p = N.pp_vec2()
+        self._call(lib.pp_body_get_position, byref(p))
+        return p.x, p.y
+
+    @position.setter
+    def position(self, value):
+        self.set_transform(value, self.angle)
+
+    @property
+    def angle(self):
+        """Rotation, radians (positive turns +x toward +y); setting it turns the body about its pivot."""
+        a = c_float()
+        self._call(lib.pp_body_get_angle, byref(a))
+        return a.value
+
+    @angle.setter
+    def angle(self, value):
+        self.set_transform(self.position, value)
+
+    def set_transform(self, position, angle):
+        """Teleport: pivot to position (px), rotation to angle (radians); wakes the body."""
+        self._call(lib.pp_body_set_transform, vec2(position, "position"), angle)
+
+    def _velocities(self):
+        v, w = N.pp_vec2(), c_float()
+        self._call(lib.pp_body_get_velocity, byref(v), byref(w))
+        return (v.x, v.y), w.value
+
+    @property
+    def velocity(self):
+        """Velocity of the centre of mass, (x, y) px/s."""
+        return self._velocities()[0]
+
+    @velocity.setter
+    def velocity(self, value):
+        self.set_velocity(value, self._velocities()[1])
+
+    @property
+    def angular_velocity(self):
+        """Angular velocity, rad/s."""
+        return self._velocities()[1]
+
+    @angular_velocity.setter
+    def angular_velocity(self, value):
+        self.set_velocity(self._velocities()[0], value)
+
+    def set_velocity(self, linear, angular):
+        """Set the centre of mass velocity (px/s) and angular velocity (rad/s); wakes the body."""
+        self._call(lib.pp_body_set_velocity, vec2(linear, "linear"), angular)
+
+    def apply_impulse(self, impulse, point):
+        """Apply an impulse (mass·px/s) at a world point (px); dynamic bodies only."""
+        self._call(lib.pp_body_apply_impulse, vec2(impulse, "impulse"), vec2(point, "point"))
+
+    def _mass(self):
+        m, c, i = c_float(), N.pp_vec2(), c_float()
+        self._call(lib.pp_body_get_mass, byref(m), byref(c), byref(i))
+        return m.value, (c.x, c.y), i.value
+
+    @property
+    def mass(self):
+        """Mass, mass units (density × Σ weight/255 over solid pixels)."""
+        return self._mass()[0]
+
+    @property
+    def center_of_mass(self):
+        """Centre of mass in bitmap coordinates, (x, y) px from the bitmap's top-left corner."""
+        return self._mass()[1]
+
+    @property
+    def inertia(self):
+        """Moment of inertia about the centre of mass, mass·px²."""
+        return self._mass()[2]
+
+    @property
+    def is_awake(self):
+        """Whether the body is awake (static bodies never are)."""
+        awake = c_int32()
+        self._call(lib.pp_body_is_awake, byref(awake))
+        return bool(awake.value)
+
+    @property
+    def size(self):
+        """Bitmap size, (width, height) px."""
+        w, h = c_int32(), c_int32()
+        self._call(lib.pp_body_get_size, byref(w), byref(h))
+        return w.value, h.value
+
+    @property
+    def user_data(self):
+        """The host's integer given as user_data at creation."""
+        u = c_uint64()
+        self._call(lib.pp_body_get_user_data, byref(u))
+        return u.value
+
+    def erase_circle(self, center, radius):
+        """Erase the pixels whose centres lie within radius px of a world point (px); returns how many."""
+        changed = c_int32(0)
+        self._call(lib.pp_body_erase_circle, vec2(center, "center"), radius, byref(changed))
+        return changed.value
+
+    def paint_circle(self, center, radius, weight=255):
+        """Make solid, with weight 1..255, the pixels within radius px of a world point (px); returns how many changed."""
+        # c_uint8 would wrap 256 to 0 silently; the library cannot see what was meant.
+        if not 0 <= int(weight) <= 255:
+            raise ValueError(f"weight: {weight!r} is outside 0..255")
+        changed = c_int32(0)
+        self._call(lib.pp_body_paint_circle, vec2(center, "center"), radius, weight, byref(changed))
+        return changed.value
+
+    def write_pixels(self, x, y, mask, weights=None):
+        """Overwrite the rectangle at bitmap pixel (x, y) with mask (h, w; non-zero solid) and weights (0..255)."""
+        m = _mask_u8(mask)
+        wt = None if weights is None else _as_u8(weights, "weights", 2)
+        if wt is not None and wt.shape != m.shape:
+            raise ValueError(f"weights shape {wt.shape} differs from mask shape {m.shape}")
+        h, w = m.shape
+        self._call(lib.pp_body_write_pixels, x, y, w, h, _u8_ptr(m), _u8_ptr(wt))
+
+    def read_mask(self):
+        """The collision mask as a (height, width) uint8 array, 1 solid, 0 empty."""
+        w, h = self.size
+        out = np.empty((h, w), dtype=np.uint8)
+        self._call(lib.pp_body_read_mask, _u8_ptr(out), out.nbytes)
+        return out

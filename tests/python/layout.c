@@ -1,0 +1,77 @@
+/* Prints the size and field offsets of every public struct of physpix.h as JSON, so that the
+ * Python tests can check the ctypes mirror against what the C compiler lays out. */
+#include "physpix.h"
+
+#include <stddef.h>
+#include <stdio.h>
+
+static int first_struct = 1, first_field;
+
+static void begin(const char *name, size_t size)
+{
+    printf("%s\n  \"%s\": {\"size\": %zu, \"fields\": [", first_struct ? "{" : ",", name, size);
+    first_struct = 0;
+    first_field = 1;
+}
+
+static void field(const char *name, size_t offset, size_t size)
+{
+    printf("%s\n    [\"%s\", %zu, %zu]", first_field ? "" : ",", name, offset, size);
+    first_field = 0;
+}
+
+static void end(void) { printf("]}"); }
+
+#define S(T) begin(#T, sizeof(T))
+#define F(T, f) field(#f, offsetof(T, f), sizeof(((T *)0)->f))
+
+int main(void)
+{
+    S(pp_vec2); F(pp_vec2, x); F(pp_vec2, y); end();
+    S(pp_world); F(pp_world, id); end();
+    S(pp_body); F(pp_body, id); end();
+
+    S(pp_world_def);
+    F(pp_world_def, struct_size); F(pp_world_def, gravity); F(pp_world_def, substeps);
+    F(pp_world_def, solver_iterations); F(pp_world_def, exact_solver); F(pp_world_def, backend);
+    F(pp_world_def, normal_method); F(pp_world_def, contact_mode); F(pp_world_def, raster_stride);
+    F(pp_world_def, pixels_per_meter); F(pp_world_def, contact_slop); F(pp_world_def, contact_erp);
+    F(pp_world_def, contact_cfm); F(pp_world_def, bounce_threshold); F(pp_world_def, allow_sleep);
+    F(pp_world_def, sleep_linear_speed); F(pp_world_def, sleep_angular_speed); F(pp_world_def, sleep_time);
+    end();
+
+    S(pp_body_def);
+    F(pp_body_def, struct_size); F(pp_body_def, type); F(pp_body_def, position); F(pp_body_def, angle);
+    F(pp_body_def, custom_pivot); F(pp_body_def, pivot); F(pp_body_def, linear_velocity);
+    F(pp_body_def, angular_velocity); F(pp_body_def, density); F(pp_body_def, friction);
+    F(pp_body_def, restitution); F(pp_body_def, linear_damping); F(pp_body_def, angular_damping);
+    F(pp_body_def, category_bits); F(pp_body_def, mask_bits); F(pp_body_def, fixed_rotation);
+    F(pp_body_def, width); F(pp_body_def, height); F(pp_body_def, rgba); F(pp_body_def, mask);
+    F(pp_body_def, weights); F(pp_body_def, alpha_threshold); F(pp_body_def, detach_islands);
+    F(pp_body_def, user_data);
+    end();
+
+    S(pp_contact);
+    F(pp_contact, a); F(pp_contact, b); F(pp_contact, point); F(pp_contact, normal); F(pp_contact, depth);
+    F(pp_contact, pixel_count);
+    end();
+
+    S(pp_event); F(pp_event, type); F(pp_event, reserved); F(pp_event, body); F(pp_event, other); end();
+
+    S(pp_step_stats);
+    F(pp_step_stats, broadphase_ms); F(pp_step_stats, narrowphase_ms); F(pp_step_stats, solver_ms);
+    F(pp_step_stats, total_ms); F(pp_step_stats, bodies); F(pp_step_stats, awake_bodies); F(pp_step_stats, pairs);
+    F(pp_step_stats, contacts); F(pp_step_stats, pixels_tested); F(pp_step_stats, backend);
+    F(pp_step_stats, reserved);
+    end();
+
+    /* The enums, whose size ctypes takes on trust. */
+    S(pp_status); end();
+    S(pp_backend); end();
+    S(pp_normal_method); end();
+    S(pp_contact_mode); end();
+    S(pp_body_type); end();
+    S(pp_event_type); end();
+    printf("\n}\n");
+    return 0;
+}
