@@ -1,0 +1,185 @@
+extends SceneTree
+# PhysPix inside a real Godot 3.2 through PhysPixWorld: a crate falls onto terrain and rests,
+# the terrain under it is erased and it falls again, a cut bar splits, bad calls are refused.
+# Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
+
+const PhysPixWorld = preload("res://physpix_world.gdns")
+const DT = 1.0 / 60.0
+
+var failures = 0
+
+
+func check(cond, what):
+	print(("ok   " if cond else "FAIL ") + what)
+	if not cond:
+		failures += 1
+
+
+func solid_mask(w, h):
+	var m = PoolByteArray()
+	m.resize(w * h)
+	for i in range(w * h):
+		m[i] = 1
+	return m
+
+
+func is_int(x):
+	return typeof(x) == TYPE_INT
+
+
+func steps(world, n):
+	for i in range(n):
+		world.step(DT)
+
+
+func _init():
+	# A runtime error stops _init, and with no quit() pending the engine then hangs; quit(1) first
+	# makes any early stop exit 1. Only the end of this function turns it into quit(0).
+	quit(1)
+	var w = PhysPixWorld.new()
+	check(w != null, "PhysPixWorld.new() gives an instance (Server.64 entry found)")
+	if w == null:
+		return
+
+	# Bodies: terrain 400×100 with its top at y = 300, a 24×24 crate, an 80×8 bar, a 4×4 pebble.
+	var terrain = w.add_body_mask(solid_mask(400, 100), 400, 100, Vector2(200, 350), "static")
+	var crate = w.add_body_mask(solid_mask(24, 24), 24, 24, Vector2(200, 200))
+	var bar = w.add_body_mask(solid_mask(80, 8), 80, 8, Vector2(80, 200), "dynamic")
+	var pebble = w.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(350, 50))
+	check(is_int(terrain) and is_int(crate) and is_int(bar) and is_int(pebble),
+		"add_body_mask returns int handles (terrain %s, crate %s, bar %s)" % [terrain, crate, bar])
+	check(w.get_mass(crate) == 576.0, "crate mass %s == 24·24 pixels × density 1" % w.get_mass(crate))
+
+	# An Image made in GDScript: RGBA8 directly, and LA8 converted on a copy.
+	var img = Image.new()
+	img.create(24, 24, false, Image.FORMAT_RGBA8)
+	img.fill(Color(0.8, 0.5, 0.2, 1.0))
+	img.lock()
+	for y in range(8):
+		for x in range(24):
+			img.set_pixel(x, y, Color(0, 0, 0, 0.2))  # alpha 51 < 128: not solid
+	img.unlock()
+	var sprite = w.add_body_image(img, Vector2(-500, 0), "static")
+	check(is_int(sprite) and w.get_mass(sprite) == 0.0,
+		"add_body_image makes a static body (mass %s: static bodies have none)" % w.get_mass(sprite))
+	var sprite_dyn = w.add_body_image(img, Vector2(-800, 0))
+	check(w.get_mass(sprite_dyn) == 24.0 * 16.0,
+		"add_body_image mass %s == 384 opaque pixels (24×16) × density 1" % w.get_mass(sprite_dyn))
+	var la = Image.new()
+	la.create(10, 10, false, Image.FORMAT_LA8)
+	la.fill(Color(1, 1, 1, 1))
+	var la_body = w.add_body_image(la, Vector2(-1100, 0))
+	check(w.get_mass(la_body) == 100.0,
+		"add_body_image of an LA8 image, converted: mass %s == 100" % w.get_mass(la_body))
+	check(la.get_format() == Image.FORMAT_LA8, "the caller's LA8 image keeps its format")
+	w.destroy_body(sprite)
+	w.destroy_body(sprite_dyn)
+	w.destroy_body(la_body)
+
+	# world_erase_circle over the pebble erases all of it: a "destroyed" event.
+	var erased = w.world_erase_circle(Vector2(350, 50), 5.0)
+	var events = w.get_events()
+	check(erased == 16, "world_erase_circle erased %s pixels of the 4×4 pebble" % erased)
+	check(events.size() == 1 and events[0]["type"] == "destroyed" and events[0]["body"] == pebble,
+		"a destroyed event for the pebble: %s" % [events])
+	check(w.get_bodies().size() == 3, "3 bodies left: %s" % [w.get_bodies()])
+
+	# The crate falls 88 px and rests on the terrain: centre at 300 − 12 = 288.
+	var contact = null
+	for i in range(150):
+		w.step(DT)
+		for c in w.get_contacts():
+			if contact == null and ((c["a"] == terrain and c["b"] == crate) or (c["a"] == crate and c["b"] == terrain)):
+				contact = c
+	var rest = w.get_position(crate)
+	var v = w.get_linear_velocity(crate)
+	print("crate at rest: position %s, velocity %s, angle %s" % [rest, v, w.get_angle(crate)])
+	check(abs(rest.y - 288.0) <= 1.5, "crate rests at y %.2f, within 1.5 px of 288" % rest.y)
+	check(abs(rest.x - 200.0) <= 1.0, "crate stays at x %.2f (200)" % rest.x)
+	check(v.length() < 1.0 and abs(w.get_angular_velocity(crate)) < 0.01,
+		"crate velocity %s (|v| %.3f px/s) and spin %.4f rad/s are ~0" % [v, v.length(), w.get_angular_velocity(crate)])
+	var t = w.get_transform(crate)
+	check(typeof(t) == TYPE_TRANSFORM2D and t.origin.distance_to(rest) < 1e-3, "get_transform origin %s" % t.origin)
+	check(contact != null, "a terrain–crate contact was reported: %s" % [contact])
+	if contact != null:
+		var down = 1.0 if contact["a"] == crate else -1.0  # normal points from a to b
+		check(contact["normal"].y * down > 0.9 and contact["pixel_count"] > 0,
+			"contact normal %s points from the crate down into the terrain" % contact["normal"])
+
+	# Erase the terrain under the crate (a bowl 60 px wide, 47 px deep): it falls again.
+	var hole = w.erase_circle(terrain, Vector2(200, 320), 30.0)
+	check(hole > 2000, "erase_circle removed %s terrain pixels" % hole)
+	steps(w, 30)
+	var fallen = w.get_position(crate)
+	print("crate after the terrain under it was erased: position %s" % fallen)
+	check(fallen.y > rest.y + 10.0, "crate fell again: y %.2f > %.2f + 10" % [fallen.y, rest.y])
+	check(fallen.y < 350.0, "and stays in the bowl: y %.2f < 350" % fallen.y)
+
+	# Cut the resting bar through its middle: a split event with a new body.
+	var before = w.get_bodies()
+	var bar_at = w.get_position(bar)
+	var cut = w.erase_circle(bar, bar_at, 6.0)
+	events = w.get_events()
+	var after = w.get_bodies()
+	print("bar at %s cut by %s pixels: events %s, bodies %s -> %s" % [bar_at, cut, events, before, after])
+	check(cut > 0 and cut < 160, "erase_circle on the bar removed %s pixels" % cut)
+	check(events.size() == 1 and events[0]["type"] == "split" and events[0]["body"] == bar,
+		"one split event for the bar")
+	if events.size() == 1:
+		var piece = events[0]["other"]
+		check(piece != 0 and not (piece in before) and (piece in after), "split's other %s is a new body" % piece)
+		var total = w.get_mass(bar) + w.get_mass(piece)
+		check(total == 640.0 - cut, "pieces' masses %s + %s == 640 − %s" % [w.get_mass(bar), w.get_mass(piece), cut])
+	check(after.size() == before.size() + 1, "bodies grew by one: %d -> %d" % [before.size(), after.size()])
+	steps(w, 10)
+
+	# Bad calls are refused with nil and a message; the engine carries on.
+	var r = w.step("x")
+	var err = w.get_last_error()
+	print("step(\"x\") -> %s, get_last_error: %s" % [r, err])
+	check(r == null and err.find("step") >= 0 and err.find("String") >= 0, "step(\"x\") refused")
+	w.step(DT)
+	check(w.get_last_error() == "", "a good call clears the error")
+	check(w.get_position() == null and w.get_last_error().find("got 0 arguments") >= 0, "missing argument refused")
+	check(w.get_position(123456789) == null and w.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"stale handle: %s" % w.get_last_error())
+	check(w.add_body_image(w, Vector2()) == null and w.get_last_error().find("expected Image") >= 0,
+		"a non-Image object refused: %s" % w.get_last_error())
+	var gone = Node.new()
+	gone.free()
+	check(w.add_body_image(gone, Vector2()) == null and w.get_last_error().find("freed") >= 0,
+		"a freed object refused: %s" % w.get_last_error())
+	check(w.add_body_mask(solid_mask(4, 4), 5, 4, Vector2()) == null,
+		"mask of the wrong size refused: %s" % w.get_last_error())
+	check(w.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "floppy") == null,
+		"unknown body type refused: %s" % w.get_last_error())
+	check(w.paint_circle(crate, fallen, 3.0, 300) == null, "weight 300 refused: %s" % w.get_last_error())
+	check(w.step(5.0) == null and w.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"step(5.0) refused by PhysPix: %s" % w.get_last_error())
+
+	# An erase and a paint of the same circle inside the crate: the mass comes back.
+	var centre = w.get_position(crate)
+	var dug = w.erase_circle(crate, centre, 4.0)
+	var mass_dug = w.get_mass(crate)
+	var painted = w.paint_circle(crate, centre, 4.0, 255)
+	check(is_int(painted) and dug > 0 and painted == dug and mass_dug == 576.0 - dug and w.get_mass(crate) == 576.0,
+		"erase_circle then paint_circle in the crate: %s and %s pixels, mass 576 -> %s -> %s"
+			% [dug, painted, mass_dug, w.get_mass(crate)])
+
+	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
+	# made and dropped in turn must all succeed.
+	var made = 0
+	for i in range(5000):
+		var scratch = PhysPixWorld.new()
+		scratch.step(DT)
+		if scratch.get_last_error() != "":
+			print(scratch.get_last_error())
+			break
+		made += 1
+	check(made == 5000, "%d worlds made and dropped one after another (the destructor frees each)" % made)
+
+	if failures == 0:
+		print("RESULT: PASS")
+		quit(0)
+	else:
+		print("RESULT: FAIL (%d checks)" % failures)
