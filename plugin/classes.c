@@ -7,6 +7,7 @@
 #include <string.h>
 
 #define ARG(name, T) {name, PP_VARIANT_##T, 0, NULL}
+#define BODY_ARG(name) {name, PP_VARIANT_OBJECT, 0, "PhysPixBody"}
 /* The argument list as a static compound literal, and its length. */
 #define ARGS(...)                                                                                      \
     .arg_count = (int32_t)(sizeof((const pp_plugin_arg[]){__VA_ARGS__}) / sizeof(pp_plugin_arg)),     \
@@ -258,6 +259,29 @@ static void world_get_event_other(plugin_object *self, const pp_variant *a, pp_v
         ret_body(self, e->other, ret);
 }
 
+static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.collide";
+    const plugin_object *pa = object_get(a[0].as.object), *pb = object_get(a[1].as.object);
+    if (pa->world_object != self->world_object || pb->world_object != self->world_object) {
+        ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: both bodies must belong to this world", m);
+        return;
+    }
+    /* Two contacts per pair in MANIFOLD mode: a first guess that the second call rarely needs to grow. */
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    for (int32_t capacity = 4; reserve((void **)&c->contacts, &c->contact_capacity, capacity, sizeof *c->contacts, ret);
+         capacity = n) {
+        if (!ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, capacity, &n), m))
+            break;
+        c->contact_count = n <= capacity ? n : 0;
+        if (n <= capacity) {
+            ret_int(ret, n);
+            break;
+        }
+    }
+}
+
 static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_step_stats s;
@@ -285,7 +309,8 @@ static const method_def world_methods[] = {
     METHOD(world_get_body_count, "get_body_count", INT, "read the live bodies; returns how many", .arg_count = 0),
     METHOD(world_get_body, "get_body", OBJECT, "the index-th body read by get_body_count",
            ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_get_contact_count, "get_contact_count", INT, "contacts of the last step", .arg_count = 0),
+    METHOD(world_get_contact_count, "get_contact_count", INT, "contacts of the last step (or collide)",
+           .arg_count = 0),
     METHOD(world_get_contact_point, "get_contact_point", VEC2, "world contact point, px", ARGS(ARG("index", INT))),
     METHOD(world_get_contact_normal, "get_contact_normal", VEC2, "unit normal from body a to body b",
            ARGS(ARG("index", INT))),
@@ -302,6 +327,10 @@ static const method_def world_methods[] = {
            ARGS(ARG("index", INT)), RETURNS_BODY),
     METHOD(world_get_event_other, "get_event_other", OBJECT, "split: the new body; destroyed: nil",
            ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_collide, "collide", INT,
+           "run the narrowphase on two bodies at their current poses; returns how many contacts, which replace "
+           "the list get_contact_* read",
+           ARGS(BODY_ARG("a"), BODY_ARG("b"))),
     METHOD(world_get_step_ms, "get_step_ms", FLOAT, "wall time of the last step, milliseconds", .arg_count = 0),
 };
 

@@ -343,9 +343,10 @@ static int check_arg(const char *cls, const pp_plugin_method *m, int i, const pp
     }
     if (a->type == PP_VARIANT_OBJECT) {
         const plugin_object *o = object_get(in->as.object);
-        if (!o || strcmp(class_of(o->kind)->desc.name, a->class_name) != 0) {
+        if (!o || (a->class_name && strcmp(class_of(o->kind)->desc.name, a->class_name) != 0)) {
             ret_error(ret, o ? PP_ERR_INVALID_ARGUMENT : PP_ERR_INVALID_HANDLE,
-                      "%s.%s: argument %d (%s) must be a live %s object", cls, m->name, i + 1, a->name, a->class_name);
+                      "%s.%s: argument %d (%s) must be a live %s object", cls, m->name, i + 1, a->name,
+                      a->class_name ? a->class_name : "plugin");
             return 0;
         }
     }
@@ -403,6 +404,8 @@ PP_API pp_status pp_plugin_entry(const pp_host_interface *host, pp_plugin_interf
     }
     for (int i = 0; i < CLASS_COUNT; i++) {
         const class_def *c = &plugin_classes[i];
+        if (c->desc.method_count > (int32_t)(sizeof public_methods[i] / sizeof public_methods[i][0]))
+            return PP_ERR_LIMIT; /* a class table outgrew its public copy: a build error in spirit */
         for (int32_t k = 0; k < c->desc.method_count; k++)
             public_methods[i][k] = c->methods[k].desc;
         public_classes[i] = c->desc;

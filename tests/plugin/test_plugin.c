@@ -299,6 +299,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_event_type", {V_INT(0)}},
         {"get_event_body", {V_INT(0)}},
         {"get_event_other", {V_INT(0)}},
+        {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
     };
     const recipe body_recipes[] = {
@@ -385,6 +386,16 @@ Test(methods, bodies_made_through_the_plugin_have_the_mass_of_their_pixels_and_f
     const pp_vec2 size = call(crate, "get_size", NULL, 0).as.vec2;
     cr_assert(size.x == 16 && size.y == 16);
 
+    /* The box overlaps the ground by 1 px: collide gives the manifold's two points, normal +y (box → ground). */
+    cr_assert_eq(call(world, "collide", (pp_variant[]){V_OBJ(box), V_OBJ(ground)}, 2).as.integer, 2);
+    for (int i = 0; i < 2; i++) {
+        const pp_vec2 n = call(world, "get_contact_normal", (pp_variant[]){V_INT(i)}, 1).as.vec2;
+        const double depth = call(world, "get_contact_depth", (pp_variant[]){V_INT(i)}, 1).as.real;
+        cr_assert(fabs(n.x) < 1e-6 && fabs(n.y - 1) < 1e-6, "normal (%g, %g)", n.x, n.y);
+        cr_assert(fabs(depth - 1.0) <= 0.5, "depth %g px for a 1 px overlap", depth);
+        cr_assert_eq(call(world, "get_contact_body_a", (pp_variant[]){V_INT(i)}, 1).as.object, box);
+    }
+
     pp_variant mask = call(box, "read_mask", NULL, 0);
     cr_assert_eq(mask.type, PP_VARIANT_BYTES);
     cr_assert_eq(mask.as.bytes.length, BOX * BOX);
@@ -430,6 +441,13 @@ Test(methods, misuse_of_objects_and_levels_gets_a_status_and_a_message)
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "width must be in 1..16384, got -5");
     ret = call(world, "add_body_png", (pp_variant[]){V_STR("/nonexistent.png"), V_VEC2(0, 0), V_STR("dynamic")}, 3);
     expect_error(&ret, PP_ERR_IO, "cannot open '/nonexistent.png'");
+    ret = call(world, "collide", (pp_variant[]){V_OBJ(world), V_OBJ(box)}, 2);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "argument 1 (a) must be a live PhysPixBody object");
+    uint64_t other_box, other_ground;
+    const uint64_t other = make_scene(&other_box, &other_ground);
+    ret = call(world, "collide", (pp_variant[]){V_OBJ(box), V_OBJ(other_ground)}, 2);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "both bodies must belong to this world");
+    plugin.api.object_destroy(other, &ret);
     ret = call(world, "get_contact_point", (pp_variant[]){V_INT(1000)}, 1);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "index 1000 is outside");
     ret = call(box, "paint_circle", (pp_variant[]){V_VEC2(50, 91), V_FLOAT(3), V_INT(0)}, 3);
