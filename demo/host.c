@@ -20,12 +20,6 @@ static void host_log(int level, const char *message, void *user)
     fprintf(level >= 3 ? stderr : stdout, "[plugin] %s\n", message);
 }
 
-static const char *type_name(pp_variant_type t)
-{
-    static const char *names[] = {"nil", "bool", "int", "float", "vec2", "string", "bytes", "object", "error"};
-    return (uint32_t)t < sizeof names / sizeof names[0] ? names[t] : "?";
-}
-
 /* Call a method; an ERROR result is fatal for the scene. The caller clears STRING and BYTES results. */
 static pp_variant host_call(uint64_t object, const char *method, const pp_variant *args, int argc)
 {
@@ -44,11 +38,6 @@ static pp_variant host_call(uint64_t object, const char *method, const pp_varian
 #define CALL(obj, method, ...)                                                                        \
     host_call(obj, method, (const pp_variant[]){{.type = PP_VARIANT_NIL}, __VA_ARGS__} + 1,             \
               (int)(sizeof((const pp_variant[]){{.type = PP_VARIANT_NIL}, __VA_ARGS__}) / sizeof(pp_variant)) - 1)
-#define V_FLOAT(x) {.type = PP_VARIANT_FLOAT, .as.real = (x)}
-#define V_INT(x) {.type = PP_VARIANT_INT, .as.integer = (x)}
-#define V_VEC2(x, y) {.type = PP_VARIANT_VEC2, .as.vec2 = {(float)(x), (float)(y)}}
-#define V_STR(s) {.type = PP_VARIANT_STRING, .as.string = {(s), (int64_t)strlen(s)}}
-#define V_BYTES(p, n) {.type = PP_VARIANT_BYTES, .as.bytes = {(p), (int64_t)(n)}}
 
 static void expect(int ok, const char *what, double value)
 {
@@ -69,8 +58,8 @@ static void list_classes(void)
             char sig[256] = "";
             for (int32_t a = 0; a < m->arg_count; a++)
                 snprintf(sig + strlen(sig), sizeof sig - strlen(sig), "%s%s: %s", a ? ", " : "", m->args[a].name,
-                         type_name(m->args[a].type));
-            printf("  %s(%s) -> %s\n", m->name, sig, m->return_class ? m->return_class : type_name(m->return_type));
+                         host_type_name(m->args[a].type));
+            printf("  %s(%s) -> %s\n", m->name, sig, m->return_class ? m->return_class : host_type_name(m->return_type));
         }
     }
 }

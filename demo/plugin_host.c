@@ -160,3 +160,9 @@ const pp_plugin_class *host_plugin_class(const host_plugin *p, const char *name)
             return &p->api.classes[i];
     return NULL;
 }
+
+const char *host_type_name(pp_variant_type t)
+{
+    static const char *names[] = {"nil", "bool", "int", "float", "vec2", "string", "bytes", "object", "error"};
+    return (uint32_t)t < sizeof names / sizeof names[0] ? names[t] : "unknown";
+}

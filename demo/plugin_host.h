@@ -6,6 +6,7 @@
 #include "physpix_plugin.h"
 
 #include <stddef.h>
+#include <string.h>
 
 /// This host's platform tag in a manifest's [libraries] section, e.g. "linux.x86_64".
 #if defined(__linux__) && defined(__x86_64__)
@@ -39,6 +40,17 @@ pp_status host_plugin_load(const char *manifest_path, const pp_host_interface *h
 
 /// Deinitialise every level and unload the library.
 void host_plugin_unload(host_plugin *p);
+
+/// Variants to pass as arguments (the data stays the caller's): a float, an int, a vec2 (px), a string, bytes, an object.
+#define V_FLOAT(x) ((pp_variant){.type = PP_VARIANT_FLOAT, .as.real = (x)})
+#define V_INT(x) ((pp_variant){.type = PP_VARIANT_INT, .as.integer = (x)})
+#define V_VEC2(x, y) ((pp_variant){.type = PP_VARIANT_VEC2, .as.vec2 = {(float)(x), (float)(y)}})
+#define V_STR(s) ((pp_variant){.type = PP_VARIANT_STRING, .as.string = {(s), (int64_t)strlen(s)}})
+#define V_BYTES(p, n) ((pp_variant){.type = PP_VARIANT_BYTES, .as.bytes = {(p), (int64_t)(n)}})
+#define V_OBJ(o) ((pp_variant){.type = PP_VARIANT_OBJECT, .as.object = (o)})
+
+/// A variant type's name as the plugin's messages spell it ("float", "vec2", ...).
+const char *host_type_name(pp_variant_type t);
 
 /// The class of that name, or NULL.
 const pp_plugin_class *host_plugin_class(const host_plugin *p, const char *name);

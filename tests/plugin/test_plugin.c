@@ -200,13 +200,6 @@ static uint64_t ok_object(pp_variant v)
     return v.as.object;
 }
 
-#define V_FLOAT(x) ((pp_variant){.type = PP_VARIANT_FLOAT, .as.real = (x)})
-#define V_INT(x) ((pp_variant){.type = PP_VARIANT_INT, .as.integer = (x)})
-#define V_VEC2(x, y) ((pp_variant){.type = PP_VARIANT_VEC2, .as.vec2 = {(float)(x), (float)(y)}})
-#define V_STR(s) ((pp_variant){.type = PP_VARIANT_STRING, .as.string = {(s), (int64_t)strlen(s)}})
-#define V_BYTES(p, n) ((pp_variant){.type = PP_VARIANT_BYTES, .as.bytes = {(p), (int64_t)(n)}})
-#define V_OBJ(o) ((pp_variant){.type = PP_VARIANT_OBJECT, .as.object = (o)})
-
 enum { BOX = 20, GROUND_W = 200, GROUND_H = 20 };
 static uint8_t box_mask[BOX * BOX], box_rgba[BOX * BOX * 4], ground_mask[GROUND_W * GROUND_H];
 
@@ -265,12 +258,6 @@ static pp_variant wrong_for(pp_variant_type t, uint64_t other_class_object)
     case PP_VARIANT_BYTES: return V_OBJ(other_class_object);
     default: return V_VEC2(1, 1);
     }
-}
-
-static const char *type_word(pp_variant_type t)
-{
-    static const char *names[] = {"nil", "bool", "int", "float", "vec2", "string", "bytes", "object", "error"};
-    return names[t];
 }
 
 TestSuite(methods, .init = load_plugin, .fini = unload_plugin);
@@ -347,7 +334,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
                 args[i] = wrong_for(m->args[i].type, targets[t].other);
                 char says[256];
                 snprintf(says, sizeof says, "%s.%s: argument %d (%s) must be %s", c->name, m->name, (int)i + 1,
-                         m->args[i].name, type_word(m->args[i].type));
+                         m->args[i].name, host_type_name(m->args[i].type));
                 pp_variant ret = call(targets[t].object, m->name, args, m->arg_count);
                 expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
                 calls++;
