@@ -267,19 +267,19 @@ static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *
         ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: both bodies must belong to this world", m);
         return;
     }
-    /* Two contacts per pair in MANIFOLD mode: a first guess that the second call rarely needs to grow. */
+    /* Two contacts per pair in MANIFOLD mode: a first capacity that the second call rarely needs to grow. */
     world_cache *c = self->cache;
     int32_t n = 0;
-    for (int32_t capacity = 4; reserve((void **)&c->contacts, &c->contact_capacity, capacity, sizeof *c->contacts, ret);
-         capacity = n) {
-        if (!ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, capacity, &n), m))
-            break;
-        c->contact_count = n <= capacity ? n : 0;
-        if (n <= capacity) {
-            ret_int(ret, n);
-            break;
-        }
-    }
+    c->contact_count = 0;
+    if (!reserve((void **)&c->contacts, &c->contact_capacity, 4, sizeof *c->contacts, ret) ||
+        !ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, c->contact_capacity, &n), m))
+        return;
+    if (n > c->contact_capacity &&
+        (!reserve((void **)&c->contacts, &c->contact_capacity, n, sizeof *c->contacts, ret) ||
+         !ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, n, &n), m)))
+        return;
+    c->contact_count = n;
+    ret_int(ret, n);
 }
 
 static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_variant *ret)
