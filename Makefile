@@ -11,7 +11,7 @@ SOMAJOR := 0
 # Debian packages the build, the tests and the demo need (see README).
 # EGL/GLES headers build the GPU backend; Mesa's EGL and llvmpipe run it on a machine without a GPU.
 DEPS := gcc g++ make pkg-config libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
-        libpng-dev godot3-server python3
+        libpng-dev libcjson-dev godot3-server python3
 # From PyPI: the Python package's tests.
 PY_DEPS := numpy pytest
 PYTHON ?= python3
@@ -19,7 +19,7 @@ PYTHON ?= python3
 WARN     := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wno-unused-parameter
 CFLAGS_  := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
 LIBCFLAGS := $(CFLAGS_) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
-LIBS     := -lode -lpng -lm -lpthread -ldl
+LIBS     := -lode -lpng -lcjson -lm -lpthread -ldl
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 
 LIB_SRC  := $(wildcard lib/*.c)
@@ -30,7 +30,6 @@ SAN_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/san/%.o) $(BUILD)/san/glsl_sources.o
 LIB_HDR  := include/physpix.h $(wildcard lib/*.h)
 TEST_SRC := $(wildcard tests/c/*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)
-DEMO_SRC := demo/demo.c
 PLUGIN_SRC := plugin/plugin.c plugin/classes.c
 
 SONAME   := libphyspix.so.$(SOMAJOR)
@@ -38,7 +37,7 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot demo bench install clean
+.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo demo bench install clean
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -100,7 +99,7 @@ $(STATIC): $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/physpix.pc: Makefile | $(BUILD)
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lpng -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lpng -lcjson -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
 
 $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 	mkdir -p $@
@@ -152,9 +151,13 @@ test: deps
 	$(MAKE) test-plugin
 	$(MAKE) test-python
 	$(MAKE) test-godot
+	$(MAKE) test-demo
 
 # The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
 include plugin/python/python.mk plugin/godot/godot.mk
+
+# The demo: scene, sprites, renderer; its rules live beside it.
+include demo/demo.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench
@@ -175,15 +178,6 @@ bench: deps
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
-
-$(BUILD)/demo/demo: $(DEMO_SRC) $(SHARED)
-	mkdir -p $(BUILD)/demo
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $(DEMO_SRC) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' $(LIBS)
-
-demo: deps
-	$(MAKE) all $(BUILD)/demo/demo $(BUILD)/demo/host
-	$(BUILD)/demo/demo
-	$(BUILD)/demo/host plugin/physpix.plugin
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig

@@ -185,6 +185,49 @@ typedef struct pp_step_stats {
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
 typedef void (*pp_log_fn)(int level, const char *msg, void *user);
 
+/// A renderer's view of a world: the world point at the image centre, the scale and the image size.
+typedef struct pp_camera {
+    pp_vec2 center; ///< world point shown at the image centre, px (default 480, 270)
+    float zoom;     ///< image pixels per world pixel, > 0 (default 1)
+    int32_t width;  ///< image width, image px, 1..PP_MAX_BITMAP_SIDE (default 960)
+    int32_t height; ///< image height, image px, 1..PP_MAX_BITMAP_SIDE (default 540)
+} pp_camera;
+
+/// What a timed edit does.
+typedef enum pp_edit_type {
+    PP_EDIT_ERASE_CIRCLE = 1, ///< erase pixels within the circle (one body, or every body when `body` is zero)
+    PP_EDIT_PAINT_CIRCLE = 2, ///< make pixels within the circle solid with `weight` (one body)
+    PP_EDIT_TYPE_FORCE_U32 = 0x7fffffff
+} pp_edit_type;
+
+/// An edit the world applies by itself at the start of the first step that begins at or after `time`.
+typedef struct pp_timed_edit {
+    double time;       ///< world time at which it applies, s
+    pp_edit_type type; ///< erase or paint
+    uint32_t weight;   ///< PAINT: weight of the painted pixels, 1..255; ERASE: ignored
+    pp_body body;      ///< the body edited; zero for ERASE means every body
+    pp_vec2 center;    ///< world point, px
+    float radius;      ///< circle radius, px, ≥ 0
+    uint32_t reserved; ///< zero
+} pp_timed_edit;
+
+/// Cell flags written by pp_world_debug_collision.
+#define PP_CELL_A 1u        ///< the first body is solid in this cell
+#define PP_CELL_B 2u        ///< the second body is solid in this cell
+#define PP_CELL_CRITICAL 4u ///< an intersection cell with a neighbour outside the intersection
+
+/// A pair's intersection raster on the narrowphase's sampling grid, for debug views (the poster's Figure 1c).
+typedef struct pp_collision_view {
+    int32_t width;          ///< grid width, cells
+    int32_t height;         ///< grid height, cells
+    pp_vec2 origin;         ///< world position of the centre of cell (0, 0), px
+    pp_vec2 step_x;         ///< world offset from a cell to its neighbour along the grid's x, px
+    pp_vec2 step_y;         ///< world offset from a cell to its neighbour along the grid's y, px
+    pp_vec2 normal;         ///< the pair's global normal from a to b, unit; zero when they do not touch
+    int32_t intersection;   ///< intersection cells
+    int32_t critical;       ///< critical cells
+} pp_collision_view;
+
 /// Library version as MAJOR·10000 + MINOR·100 + PATCH.
 PP_API uint32_t pp_version(void);
 /// Static name of a status, e.g. "PP_ERR_LIMIT"; never NULL.
@@ -260,6 +303,40 @@ PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height
 /// Decode a PNG file (gray, gray+alpha, RGB, RGBA, palette, 8 or 16 bit) into RGBA8 rows top to bottom;
 /// capacity in bytes ≥ width·height·4; width and height receive the size, px, even when capacity is short.
 PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capacity, int32_t *width, int32_t *height);
+
+/// Encode RGBA8 rows (top to bottom, width·4 bytes apart) as a PNG file; sizes up to the bitmap limits.
+PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height);
+
+/// Pivot of the body in bitmap coordinates, px.
+PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out);
+/// Type of the body (dynamic, static or kinematic).
+PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out);
+/// Copy the body's look as RGBA8 rows: the sprite where solid, transparent where not; without a sprite, solid
+/// pixels are opaque gray of their weight. Capacity in bytes ≥ width·height·4.
+PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
+
+/// Simulated time since the world was created, s (the sum of the dt of every step).
+PP_API pp_status pp_world_get_time(pp_world w, double *seconds);
+/// The world's camera (a scene file's, or the default).
+PP_API pp_status pp_world_get_camera(pp_world w, pp_camera *out);
+/// Replace the world's camera.
+PP_API pp_status pp_world_set_camera(pp_world w, const pp_camera *camera);
+/// Schedule an edit at a world time, s; edits due at once apply at the start of the next step, in time order.
+PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit);
+/// Write up to capacity edits still pending, in the order they will apply; count receives the total.
+PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, int32_t capacity, int32_t *count);
+/// Run the narrowphase on a pair and write its sampled grid: cells (PP_CELL_* flags) and, when local_normals is
+/// not NULL, each critical cell's 3×3-kernel normal in world axes (zero elsewhere); capacity in cells.
+/// The view is filled even when capacity is short (then PP_ERR_INVALID_ARGUMENT and nothing written).
+PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint8_t *cells, pp_vec2 *local_normals,
+                                          int64_t capacity, pp_collision_view *view);
+
+/// Create a world from a JSON scene file (see README, "Scene files"); PNG paths are relative to the file.
+PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
+/// Write the whole state of a world into a new folder (world.json and PNG planes), atomically by rename.
+PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder);
+/// Create a world from a snapshot folder; stepping it continues exactly as the saved world would have.
+PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out);
 
 #ifdef __cplusplus
 }
