@@ -72,6 +72,7 @@ void body_free(world *wd, body *bd)
     if (wd->gpu)
         gpu_narrow_forget(wd->gpu, &bd->raster);
     raster_free(&bd->raster);
+    free(bd->sprite);
     free(bd);
 }
 
@@ -152,6 +153,15 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         return st;
     }
     bd->type = def->type;
+    if (def->rgba) {
+        const size_t bytes = (size_t)def->width * (size_t)def->height * 4;
+        if (!(bd->sprite = malloc(bytes))) {
+            body_free(wd, bd);
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d sprite", (int)def->width,
+                           (int)def->height);
+        }
+        memcpy(bd->sprite, def->rgba, bytes);
+    }
     mass_sums_of_raster(&bd->sums, &bd->raster);
     if (def->type == PP_BODY_DYNAMIC && bd->raster.solid_count == 0)
         st = pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: a dynamic body needs solid pixels; the bitmap (%s) has none",
@@ -200,6 +210,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     bd->handle.id = ((uint64_t)wd->generations[slot] << 32) | (slot + 1);
     wd->bodies[slot] = bd;
     wd->live_count++;
+    bd->serial = wd->next_serial++;
     *out = bd->handle;
     return PP_OK;
 }
@@ -373,5 +384,56 @@ PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
     if (!out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_user_data: out is NULL");
     *out = bd->user_data;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_get_pivot", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_pivot: out is NULL");
+    *out = (pp_vec2){(float)bd->pivot.x, (float)bd->pivot.y};
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_get_type", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_type: out is NULL");
+    *out = bd->type;
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_read_rgba", &wd, &bd);
+    if (st)
+        return st;
+    const pp_raster *r = &bd->raster;
+    const int64_t need = (int64_t)r->width * r->height * 4;
+    if (!out || capacity < need)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_read_rgba: out is NULL or capacity %lld < %lld bytes",
+                       (long long)capacity, (long long)need);
+    for (int32_t y = 0; y < r->height; y++)
+        for (int32_t x = 0; x < r->width; x++) {
+            const int64_t k = ((int64_t)y * r->width + x) * 4;
+            const uint8_t gray = (uint8_t)raster_weight(r, x, y);
+            const uint8_t look[4] = {gray, gray, gray, 255};
+            if (!raster_solid(r, x, y))
+                memset(out + k, 0, 4);
+            else
+                memcpy(out + k, bd->sprite ? bd->sprite + k : look, 4);
+        }
     return PP_OK;
 }

@@ -65,7 +65,7 @@ static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack,
 
 /* Island k as a new body, moving as the parent's material there moves. */
 static pp_status make_child(world *wd, body *parent, const island *k, const uint8_t *mask, const uint8_t *weights,
-                            pp_body *out)
+                            const uint8_t *sprite, pp_body *out)
 {
     const int32_t w = k->x1 - k->x0, h = k->y1 - k->y0;
     pp_body_def d = pp_body_def_default();
@@ -74,7 +74,7 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     const dvec2 pos = dv_add(parent->pos, dv_rot(dv_sub(centre, parent->pivot), parent->cos_a, parent->sin_a));
     d.position = (pp_vec2){(float)pos.x, (float)pos.y};
     d.angle = (float)parent->angle;
-    d.width = w, d.height = h, d.mask = mask, d.weights = weights;
+    d.width = w, d.height = h, d.mask = mask, d.weights = weights, d.rgba = sprite;
     d.density = (float)parent->density, d.friction = (float)parent->friction;
     d.restitution = (float)parent->restitution;
     d.linear_damping = (float)parent->linear_damping, d.angular_damping = (float)parent->angular_damping;
@@ -130,9 +130,11 @@ pp_status fracture_split(world *wd, body *bd)
             const island *is = &isl[k];
             const int32_t w = is->x1 - is->x0, h = is->y1 - is->y0;
             uint8_t *mask = calloc((size_t)w * h, 1), *weights = r->weights ? calloc((size_t)w * h, 1) : NULL;
-            if (!mask || (r->weights && !weights)) {
+            uint8_t *sprite = bd->sprite ? calloc((size_t)w * h, 4) : NULL;
+            if (!mask || (r->weights && !weights) || (bd->sprite && !sprite)) {
                 free(mask);
                 free(weights);
+                free(sprite);
                 st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island", (int)w, (int)h);
                 break;
             }
@@ -145,16 +147,19 @@ pp_status fracture_split(world *wd, body *bd)
                     mask[c] = 1;
                     if (weights)
                         weights[c] = (uint8_t)raster_weight(r, x, y);
+                    if (sprite)
+                        memcpy(sprite + 4 * c, bd->sprite + 4 * ((int64_t)y * r->width + x), 4);
                     edit_pixel(bd, &e, x, y, false, 0);
                 }
             pp_body child;
-            st = make_child(wd, bd, is, mask, weights, &child);
+            st = make_child(wd, bd, is, mask, weights, sprite, &child);
             if (st == PP_ERR_INVALID_ARGUMENT)
                 st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
             else if (st == PP_OK)
                 st = world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, child);
             free(mask);
             free(weights);
+            free(sprite);
         }
         raster_edit_done(r, e.y0, e.y1);
         body_update_pose_cache(bd);

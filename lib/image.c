@@ -1,4 +1,4 @@
-/* PNG in, through libpng: every input kind (gray, gray+alpha, RGB, RGBA, palette, 1–16 bit)
+/* PNG in and out, through libpng: every input kind (gray, gray+alpha, RGB, RGBA, palette, 1–16 bit)
  * normalised to RGBA8 by libpng's own transforms. Sizes are checked against the bitmap limits
  * from the header alone, before any large allocation. */
 #include "status.h"
@@ -8,24 +8,24 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-/* One decode in progress; libpng's error handler longjmps back with its message kept here. */
-typedef struct png_reader {
+/* One decode or encode in progress; libpng's error handler longjmps back with its message kept here. */
+typedef struct png_session {
     png_structp png;
     png_infop info;
     FILE *file;
     char error[160];
-} png_reader;
+} png_session;
 
-static void reader_error(png_structp png, png_const_charp msg)
+static void session_error(png_structp png, png_const_charp msg)
 {
-    png_reader *r = png_get_error_ptr(png);
+    png_session *r = png_get_error_ptr(png);
     snprintf(r->error, sizeof r->error, "%s", msg);
     png_longjmp(png, 1);
 }
 
-static void reader_warning(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+static void session_warning(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
 
-static void reader_close(png_reader *r)
+static void reader_close(png_session *r)
 {
     if (r->png)
         png_destroy_read_struct(&r->png, r->info ? &r->info : NULL, NULL);
@@ -34,7 +34,7 @@ static void reader_close(png_reader *r)
 }
 
 /* Open the file and check its signature; the caller sets the jump point before reading further. */
-static pp_status reader_open(png_reader *r, const char *fn, const char *path)
+static pp_status reader_open(png_session *r, const char *fn, const char *path)
 {
     if (!path)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path is NULL", fn);
@@ -44,7 +44,7 @@ static pp_status reader_open(png_reader *r, const char *fn, const char *path)
     png_byte sig[8];
     if (fread(sig, 1, sizeof sig, r->file) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0)
         return pp_fail(PP_ERR_FORMAT, "%s: '%s' is not a PNG file (bad signature)", fn, path);
-    r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, reader_error, reader_warning);
+    r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, session_error, session_warning);
     r->info = r->png ? png_create_info_struct(r->png) : NULL;
     if (!r->info)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG decoder", fn);
@@ -56,7 +56,7 @@ static pp_status reader_open(png_reader *r, const char *fn, const char *path)
 }
 
 /* Read the header; LIMIT for sizes over the bitmap limits, before anything is allocated for the pixels. */
-static pp_status reader_header(png_reader *r, const char *fn, const char *path, int32_t *w, int32_t *h)
+static pp_status reader_header(png_session *r, const char *fn, const char *path, int32_t *w, int32_t *h)
 {
     png_read_info(r->png, r->info);
     const png_uint_32 pw = png_get_image_width(r->png, r->info), ph = png_get_image_height(r->png, r->info);
@@ -69,14 +69,14 @@ static pp_status reader_header(png_reader *r, const char *fn, const char *path, 
 }
 
 /* A libpng failure: the file is malformed (truncated, bad CRC, bad header). */
-static pp_status reader_failure(const png_reader *r, const char *fn, const char *path)
+static pp_status reader_failure(const png_session *r, const char *fn, const char *path)
 {
     return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s", fn, path, r->error);
 }
 
 PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height)
 {
-    png_reader r = {0};
+    png_session r = {0};
     int32_t w = 0, h = 0;
     pp_status st = reader_open(&r, "pp_image_info", path);
     if (st == PP_OK) {
@@ -103,7 +103,7 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
     if (capacity < 0 || (capacity > 0 && !out_rgba))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out_rgba is NULL or capacity negative (%lld)", fn,
                        (long long)capacity);
-    png_reader r = {0};
+    png_session r = {0};
     png_bytep *volatile rows = NULL; /* volatile: read after a longjmp */
     pp_status st = reader_open(&r, fn, path);
     if (st == PP_OK) {
@@ -136,5 +136,42 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
     }
     free(rows);
     reader_close(&r);
+    return st;
+}
+
+PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height)
+{
+    const char *fn = "pp_image_save";
+    if (!path || !rgba)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path or rgba is NULL", fn);
+    if (width < 1 || height < 1)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: size %dx%d must be at least 1x1 px", fn, (int)width, (int)height);
+    if (width > PP_MAX_BITMAP_SIDE || height > PP_MAX_BITMAP_SIDE || (int64_t)width * height > PP_MAX_BITMAP_AREA)
+        return pp_fail(PP_ERR_LIMIT, "%s: %dx%d px is over PP_MAX_BITMAP_SIDE (%d) or PP_MAX_BITMAP_AREA (%d)", fn,
+                       (int)width, (int)height, PP_MAX_BITMAP_SIDE, PP_MAX_BITMAP_AREA);
+    png_session wr = {0};
+    wr.file = fopen(path, "wb");
+    if (!wr.file)
+        return pp_fail(PP_ERR_IO, "%s: cannot create '%s'", fn, path);
+    pp_status st = PP_OK;
+    wr.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning);
+    wr.info = wr.png ? png_create_info_struct(wr.png) : NULL;
+    if (!wr.info) {
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
+    } else if (setjmp(png_jmpbuf(wr.png))) {
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr.error);
+    } else {
+        png_init_io(wr.png, wr.file);
+        png_set_IHDR(wr.png, wr.info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
+                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_write_info(wr.png, wr.info);
+        for (int32_t y = 0; y < height; y++)
+            png_write_row(wr.png, rgba + (size_t)y * (size_t)width * 4);
+        png_write_end(wr.png, NULL);
+    }
+    if (wr.png)
+        png_destroy_write_struct(&wr.png, wr.info ? &wr.info : NULL);
+    if (fclose(wr.file) != 0 && st == PP_OK)
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s' (disk full?)", fn, path);
     return st;
 }

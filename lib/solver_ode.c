@@ -69,11 +69,8 @@ pp_status solver_create(const pp_world_def *def, pp_solver **out)
     dWorldSetGravity(s->world, def->gravity.x * s->inv_ppm, def->gravity.y * s->inv_ppm, 0);
     dWorldSetQuickStepNumIterations(s->world, def->solver_iterations);
     dWorldSetContactSurfaceLayer(s->world, def->contact_slop * s->inv_ppm);
-    dWorldSetAutoDisableFlag(s->world, def->allow_sleep ? 1 : 0);
-    dWorldSetAutoDisableLinearThreshold(s->world, def->sleep_linear_speed * s->inv_ppm);
-    dWorldSetAutoDisableAngularThreshold(s->world, def->sleep_angular_speed);
-    dWorldSetAutoDisableTime(s->world, def->sleep_time);
-    dWorldSetAutoDisableSteps(s->world, 0);
+    /* Sleep is the world's (world.c): ODE's auto-disable timers cannot be read back for snapshots. */
+    dWorldSetAutoDisableFlag(s->world, 0);
     *out = s;
     return PP_OK;
 }
@@ -87,8 +84,10 @@ void solver_destroy(pp_solver *s)
     free(s);
 }
 
-static void set_rotation_z(dBodyID b, double angle)
+static void set_rotation_z(solver_body *sb, double angle)
 {
+    dBodyID b = sb->body;
+    sb->rotation_angle = angle;
     dMatrix3 R;
     dRFromAxisAndAngle(R, 0, 0, 1, angle);
     dBodySetRotation(b, R);
@@ -145,11 +144,10 @@ void solver_body_destroy(pp_solver *s, solver_body *sb)
     sb->body = sb->plane = NULL;
 }
 
-void solver_body_set_pose(pp_solver *s, const solver_body *sb, dvec2 com, double angle)
+void solver_body_set_pose(pp_solver *s, solver_body *sb, dvec2 com, double angle)
 {
-    dBodyID b = sb->body;
-    dBodySetPosition(b, com.x * s->inv_ppm, com.y * s->inv_ppm, 0);
-    set_rotation_z(b, angle);
+    dBodySetPosition(sb->body, com.x * s->inv_ppm, com.y * s->inv_ppm, 0);
+    set_rotation_z(sb, angle);
 }
 
 void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w)
@@ -162,6 +160,14 @@ void solver_body_wake(const solver_body *sb)
 {
     if (sb->body)
         dBodyEnable(sb->body);
+}
+
+/* As ODE's auto-disable does: a sleeping body keeps no velocity. */
+void solver_body_sleep(const solver_body *sb)
+{
+    dBodySetLinearVel(sb->body, 0, 0, 0);
+    dBodySetAngularVel(sb->body, 0, 0, 0);
+    dBodyDisable(sb->body);
 }
 
 bool solver_body_is_awake(const solver_body *sb) { return dBodyIsEnabled((dBodyID)sb->body) != 0; }
@@ -204,7 +210,7 @@ void solver_add_contact(pp_solver *s, const solver_contact *c)
 
 /* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;
  * project the body back to a pure z rotation, as ODE's own plane-2D demo does. */
-void solver_body_flatten(const solver_body *sb)
+void solver_body_flatten(solver_body *sb)
 {
     dBodyID b = sb->body;
     if (!dBodyIsEnabled(b))
@@ -213,11 +219,35 @@ void solver_body_flatten(const solver_body *sb)
     const dReal *v = dBodyGetLinearVel(b);
     const double angle = atan2(R[4], R[0]), wz = w[2];
     const double px = p[0], py = p[1], vx = v[0], vy = v[1];
-    set_rotation_z(b, angle);
+    set_rotation_z(sb, angle);
     dBodySetAngularVel(b, 0, 0, wz);
     dBodySetPosition(b, px, py, 0);
     dBodySetLinearVel(b, vx, vy, 0);
 }
+
+void solver_body_save(const solver_body *sb, solver_exact_state *out)
+{
+    dBodyID b = sb->body;
+    const dReal *p = dBodyGetPosition(b), *v = dBodyGetLinearVel(b), *w = dBodyGetAngularVel(b);
+    *out = (solver_exact_state){p[0], p[1], sb->rotation_angle, v[0], v[1], w[2], dBodyIsEnabled(b) != 0};
+}
+
+/* Rebuild exactly what ODE held: the rotation from the same angle by the same calls. */
+void solver_body_restore(solver_body *sb, const solver_exact_state *in)
+{
+    dBodyID b = sb->body;
+    dBodySetPosition(b, in->px, in->py, 0);
+    set_rotation_z(sb, in->rotation_angle);
+    dBodySetLinearVel(b, in->vx, in->vy, 0);
+    dBodySetAngularVel(b, 0, 0, in->wz);
+    if (in->enabled)
+        dBodyEnable(b);
+    else
+        dBodyDisable(b);
+}
+
+uint64_t solver_get_steps(const pp_solver *s) { return s->steps; }
+void solver_set_steps(pp_solver *s, uint64_t steps) { s->steps = steps; }
 
 void solver_step(pp_solver *s, double h)
 {

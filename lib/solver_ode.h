@@ -14,6 +14,7 @@ typedef struct pp_solver pp_solver;
 typedef struct solver_body {
     void *body;
     void *plane;
+    double rotation_angle;     /* rad, the angle ODE's rotation was last built from (snapshots rebuild it bit for bit) */
 } solver_body;
 
 /* What the solver needs to create or update a body. */
@@ -52,18 +53,33 @@ void solver_destroy(pp_solver *s);
 
 pp_status solver_body_create(pp_solver *s, const solver_body_desc *desc, solver_body *out);
 void solver_body_destroy(pp_solver *s, solver_body *sb);
-void solver_body_set_pose(pp_solver *s, const solver_body *sb, dvec2 com_world, double angle);
+void solver_body_set_pose(pp_solver *s, solver_body *sb, dvec2 com_world, double angle);
 void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w);
 /* New mass (mass units) and inertia about the centre of mass (mass·px²) after an edit. */
 void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia);
 void solver_body_wake(const solver_body *sb);
+void solver_body_sleep(const solver_body *sb);
 bool solver_body_is_awake(const solver_body *sb);
 /* Undo ODE's drift out of the plane; call once per body after each step. */
-void solver_body_flatten(const solver_body *sb);
+void solver_body_flatten(solver_body *sb);
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
 
 /* Add a contact joint for the next step. */
 void solver_add_contact(pp_solver *s, const solver_contact *c);
+
+/* The exact ODE state of a body, in ODE's units, for snapshots. */
+typedef struct solver_exact_state {
+    double px, py;             /* centre of mass, m */
+    double rotation_angle;     /* rad */
+    double vx, vy, wz;         /* m/s, rad/s */
+    bool enabled;
+} solver_exact_state;
+
+void solver_body_save(const solver_body *sb, solver_exact_state *out);
+void solver_body_restore(solver_body *sb, const solver_exact_state *in);
+/* Solver steps taken so far (they seed QuickStep's shuffle). */
+uint64_t solver_get_steps(const pp_solver *s);
+void solver_set_steps(pp_solver *s, uint64_t steps);
 
 /* Advance by h seconds (one substep) and drop the contact joints. */
 void solver_step(pp_solver *s, double h);

@@ -117,6 +117,7 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     if (!wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");
     wd->def = d;
+    wd->camera = (pp_camera){{480.0f, 270.0f}, 1.0f, 960, 540};
     if (d.backend == PP_BACKEND_GPU && (st = gpu_narrow_create("pp_world_create", &wd->gpu))) {
         free(wd);
         return st;
@@ -177,6 +178,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     free(wd->generations);
     free(wd->free_slots);
     free(wd->contacts);
+    free(wd->edits);
     free(wd);
     return PP_OK;
 }
@@ -358,6 +360,50 @@ static void sync_bodies(world *wd)
     }
 }
 
+/* A dynamic body slower than the sleep speeds for sleep_time goes to sleep, as ODE's auto-disable
+ * would, but with its timer here so that a snapshot can save it. ODE wakes a sleeping body that an
+ * awake one touches; its timer then starts again. */
+static void update_sleep(world *wd, double h)
+{
+    const pp_world_def *d = &wd->def;
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        body *bd = wd->bodies[i];
+        if (!bd || bd->type != PP_BODY_DYNAMIC || !solver_body_is_awake(&bd->sb))
+            continue;
+        if (bd->slow_time >= d->sleep_time)
+            bd->slow_time = 0; /* woken since it slept */
+        if (!d->allow_sleep)
+            continue;
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed && fabs(s.angular_velocity) <= d->sleep_angular_speed;
+        bd->slow_time = slow ? bd->slow_time + h : 0;
+        if (bd->slow_time >= d->sleep_time)
+            solver_body_sleep(&bd->sb);
+    }
+}
+
+/* Apply, in order, the timed edits due at a step that starts now: those nearest this step or earlier. */
+static pp_status apply_due_edits(world *wd, float dt)
+{
+    while (wd->edit_count > 0 && wd->edits[0].time < wd->time + 0.5 * dt) {
+        const pp_timed_edit e = wd->edits[0];
+        memmove(wd->edits, wd->edits + 1, (size_t)--wd->edit_count * sizeof e);
+        pp_status st;
+        if (e.type == PP_EDIT_PAINT_CIRCLE)
+            st = pp_body_paint_circle(wd->handle, e.body, e.center, e.radius, (uint8_t)e.weight, NULL);
+        else if (e.body.id == 0)
+            st = pp_world_erase_circle(wd->handle, e.center, e.radius, NULL);
+        else
+            st = pp_body_erase_circle(wd->handle, e.body, e.center, e.radius, NULL);
+        if (st == PP_ERR_INVALID_HANDLE)
+            pp_log(1, "physpix: a timed edit at t = %g s skipped: its body is gone", e.time);
+        else if (st)
+            return st;
+    }
+    return PP_OK;
+}
+
 PP_API pp_status pp_world_step(pp_world w, float dt)
 {
     world *wd = world_lookup(w, "pp_world_step");
@@ -368,6 +414,9 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     const double t_start = now_ms();
     double t_broad = 0, t_narrow = 0, t_solver = 0;
     wd->stats.pixels_tested = 0;
+    pp_status est = apply_due_edits(wd, dt);
+    if (est)
+        return est;
     const double h = (double)dt / wd->def.substeps;
     for (int32_t k = 0; k < wd->def.substeps; k++) {
         pp_status st = find_contacts(wd, &t_broad, &t_narrow);
@@ -377,6 +426,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         add_contact_joints(wd);
         solver_step(wd->solver, h);
         sync_bodies(wd);
+        update_sleep(wd, h);
         t_solver += now_ms() - t0;
     }
     int32_t awake = 0;
@@ -389,6 +439,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->stats.total_ms = (float)(now_ms() - t_start);
     wd->stats.bodies = wd->live_count;
     wd->stats.awake_bodies = awake;
+    wd->time += dt;
     return PP_OK;
 }
 
@@ -460,5 +511,100 @@ PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out)
     if (!out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_stats: out is NULL");
     *out = wd->stats;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_time(pp_world w, double *seconds)
+{
+    world *wd = world_lookup(w, "pp_world_get_time");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!seconds)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_time: seconds is NULL");
+    *seconds = wd->time;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_camera(pp_world w, pp_camera *out)
+{
+    world *wd = world_lookup(w, "pp_world_get_camera");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_camera: out is NULL");
+    *out = wd->camera;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_set_camera(pp_world w, const pp_camera *c)
+{
+    static const char *fn = "pp_world_set_camera";
+    world *wd = world_lookup(w, fn);
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!c)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: camera is NULL", fn);
+    if (!isfinite(c->center.x) || !isfinite(c->center.y) || !(c->zoom > 0) || !isfinite(c->zoom))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: center must be finite and zoom finite and > 0", fn);
+    if (c->width < 1 || c->height < 1 || c->width > PP_MAX_BITMAP_SIDE || c->height > PP_MAX_BITMAP_SIDE)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: size %dx%d must be within 1..%d px", fn, (int)c->width,
+                       (int)c->height, PP_MAX_BITMAP_SIDE);
+    wd->camera = *c;
+    return PP_OK;
+}
+
+static pp_status check_timed_edit(world *wd, const pp_timed_edit *e)
+{
+    static const char *fn = "pp_world_schedule_edit";
+    if (!isfinite(e->time))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: time must be finite, got %g", fn, e->time);
+    if (e->type != PP_EDIT_ERASE_CIRCLE && e->type != PP_EDIT_PAINT_CIRCLE)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is unknown", fn, (int)e->type);
+    if (!isfinite(e->center.x) || !isfinite(e->center.y) || !(e->radius >= 0) || !isfinite(e->radius))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: center must be finite and radius finite and ≥ 0", fn);
+    if (e->type == PP_EDIT_PAINT_CIRCLE && (e->weight < 1 || e->weight > 255))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: paint weight must be 1..255, got %u", fn, (unsigned)e->weight);
+    if (e->type == PP_EDIT_PAINT_CIRCLE && e->body.id == 0)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a paint edit needs a body", fn);
+    if (e->body.id != 0 && !body_lookup(wd, e->body, fn))
+        return PP_ERR_INVALID_HANDLE;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
+{
+    world *wd = world_lookup(w, "pp_world_schedule_edit");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!edit)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_schedule_edit: edit is NULL");
+    pp_status st = check_timed_edit(wd, edit);
+    if (st)
+        return st;
+    if (!grow_for_one((void **)&wd->edits, wd->edit_count, &wd->edit_capacity, sizeof *edit))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_schedule_edit: no memory for %d edits", (int)wd->edit_count + 1);
+    /* Stable in time: after every edit due no later. */
+    int32_t at = wd->edit_count;
+    while (at > 0 && wd->edits[at - 1].time > edit->time)
+        at--;
+    memmove(wd->edits + at + 1, wd->edits + at, (size_t)(wd->edit_count - at) * sizeof *edit);
+    wd->edits[at] = *edit;
+    wd->edits[at].reserved = 0;
+    wd->edit_count++;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, int32_t capacity, int32_t *count)
+{
+    world *wd = world_lookup(w, "pp_world_get_scheduled_edits");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    pp_status st = pp_check_out_buffer("pp_world_get_scheduled_edits", out, capacity, count);
+    if (st)
+        return st;
+    const int32_t n = wd->edit_count < capacity ? wd->edit_count : capacity;
+    if (n > 0)
+        memcpy(out, wd->edits, (size_t)n * sizeof *out);
+    *count = wd->edit_count;
     return PP_OK;
 }

@@ -17,6 +17,7 @@ typedef struct body {
     pp_body handle;
     pp_body_type type;
     pp_raster raster;
+    uint8_t *sprite;         /* the def's rgba plane, width × height × 4; NULL without one */
     pp_mass_sums sums;
     pp_mass mass;            /* zero for static bodies */
     double density, friction, restitution, linear_damping, angular_damping;
@@ -29,6 +30,8 @@ typedef struct body {
     solver_body sb;          /* the ODE body; empty for static bodies */
     pp_aabb aabb;            /* world bounds of the solid pixels */
     uint64_t user_data;
+    uint64_t serial;         /* creation order; a snapshot recreates ODE bodies in it */
+    double slow_time;        /* s the body has stayed under the sleep speeds; ≥ sleep_time: asleep */
 } body;
 
 typedef struct world {
@@ -55,6 +58,11 @@ typedef struct world {
     pp_event *events;        /* since the host last read them, oldest first */
     int32_t event_count, event_capacity;
     pp_step_stats stats;
+    double time;             /* simulated s, the sum of every step's dt */
+    pp_camera camera;
+    pp_timed_edit *edits;    /* pending timed edits, in the order they apply */
+    int32_t edit_count, edit_capacity;
+    uint64_t next_serial;    /* the next body's creation serial */
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
