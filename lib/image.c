@@ -14,6 +14,7 @@ typedef struct png_session {
     png_infop info;
     FILE *file;
     char error[160];
+    char warning[160]; /* libpng's last warning, often the detail behind its error */
 } png_session;
 
 static void session_error(png_structp png, png_const_charp msg)
@@ -23,7 +24,11 @@ static void session_error(png_structp png, png_const_charp msg)
     png_longjmp(png, 1);
 }
 
-static void session_warning(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+static void session_warning(png_structp png, png_const_charp msg)
+{
+    png_session *r = png_get_error_ptr(png);
+    snprintf(r->warning, sizeof r->warning, "%s", msg);
+}
 
 static void reader_close(png_session *r)
 {
@@ -71,6 +76,8 @@ static pp_status reader_header(png_session *r, const char *fn, const char *path,
 /* A libpng failure: the file is malformed (truncated, bad CRC, bad header). */
 static pp_status reader_failure(const png_session *r, const char *fn, const char *path)
 {
+    if (r->warning[0])
+        return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s (%s)", fn, path, r->error, r->warning);
     return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s", fn, path, r->error);
 }
 

@@ -232,3 +232,30 @@ pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *
     strips_summary(scratch->strips, out);
     return PP_OK;
 }
+
+pp_status narrow_cpu_debug(const np_pair *p, np_scratch *scratch, uint8_t *flags, int32_t *kernel_xy)
+{
+    const int64_t cells = np_pair_cells(p);
+    pp_status st = grow_scratch(scratch, 4 * cells, 0);
+    if (st)
+        return st;
+    uint8_t *sa = scratch->cells, *sb = scratch->cells + cells;
+    sample_planes(p, sa, sb, (uint16_t *)(scratch->cells + 2 * cells));
+    const int32_t ex = p->nx + 2 * RING;
+    for (int32_t j = 0; j < p->ny; j++)
+        for (int32_t i = 0; i < p->nx; i++) {
+            const int64_t k = (int64_t)(j + RING) * ex + i + RING, o = (int64_t)j * p->nx + i;
+            int32_t kx = 0, ky = 0;
+            bool critical = false;
+            for (int d = 0; d < 8 && sa[k] && sb[k]; d++) {
+                const int64_t n = k + NB[d][0] + (int64_t)NB[d][1] * ex;
+                critical |= !(sa[n] && sb[n]);
+                kx += ((int)sb[n] - (int)sa[n]) * NB[d][0];
+                ky += ((int)sb[n] - (int)sa[n]) * NB[d][1];
+            }
+            flags[o] = (uint8_t)(sa[k] | sb[k] << 1 | (critical ? 4 : 0));
+            kernel_xy[2 * o] = critical ? kx : 0;
+            kernel_xy[2 * o + 1] = critical ? ky : 0;
+        }
+    return PP_OK;
+}

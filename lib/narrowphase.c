@@ -8,11 +8,6 @@
 
 static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
 
-/* Reference-local pixel coordinates of a (fractional) inner-cell position. */
-static dvec2 grid_to_local(const np_pair *p, double ci, double cj)
-{
-    return dv((p->i0 + ci) * p->s + p->off + 0.5, (p->j0 + cj) * p->s + p->off + 0.5);
-}
 
 /* The rectangle of the reference grid where the two bodies can overlap; false when empty.
  * M, t map reference-local to other-local: q = M·l + t. */
@@ -48,7 +43,7 @@ static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, do
 static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
 {
     const double one = (double)(1 << NP_FIX_BITS);
-    const dvec2 l0 = grid_to_local(p, -NP_RING, -NP_RING);
+    const dvec2 l0 = np_grid_to_local(p, -NP_RING, -NP_RING);
     const dvec2 q0 = dv_add(dv_rot(l0, mc, ms), t);
     p->qx0 = llround(q0.x * one), p->qy0 = llround(q0.y * one);
     p->dix = llround(mc * p->s * one), p->diy = llround(ms * p->s * one);
@@ -166,7 +161,7 @@ void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, 
     const dvec2 nw = dv_rot(n, A->c, A->s);
     const double sign = p->swap ? -1.0 : 1.0;
     for (int32_t k = 0; k < out->count; k++) {
-        const dvec2 l = grid_to_local(p, pts[k].x, pts[k].y);
+        const dvec2 l = np_grid_to_local(p, pts[k].x, pts[k].y);
         const dvec2 w = dv_add(A->pos, dv_rot(dv_sub(l, A->pivot), A->c, A->s));
         pp_contact *c = &out->contacts[k];
         c->point = (pp_vec2){(float)w.x, (float)w.y};

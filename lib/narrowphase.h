@@ -83,6 +83,12 @@ static inline int64_t floor_div(int64_t a, int64_t b)
 
 static inline int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 
+/* Reference-body bitmap coordinates (px) of inner cell (ci, cj)'s sample point. */
+static inline dvec2 np_grid_to_local(const np_pair *p, double ci, double cj)
+{
+    return dv((p->i0 + ci) * p->s + p->off + 0.5, (p->j0 + cj) * p->s + p->off + 0.5);
+}
+
 /* Set a pair up; false when the bodies' boxes cannot overlap (no contact, nothing to run). */
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p);
 
@@ -108,5 +114,10 @@ void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, 
 pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_body *b, np_scratch *scratch,
                              np_result *out);
 void np_scratch_free(np_scratch *s);
+
+/* A pair's inner grid for debug views: per cell the reference's (bit 0) and the other's (bit 1)
+ * solidity, bit 2 on critical intersection cells, and there the 3×3-kernel vector (x, y) in reference
+ * axes, pointing from the reference into the other body. */
+pp_status narrow_cpu_debug(const np_pair *p, np_scratch *scratch, uint8_t *flags, int32_t *kernel_xy);
 
 #endif

@@ -141,3 +141,132 @@ Test(image, broken_files_give_their_status_and_name_the_file)
     cr_assert_eq(pp_image_info(NULL, &w, &h), PP_ERR_INVALID_ARGUMENT);
     cr_assert_eq(pp_image_load(path, NULL, 16, &w, &h), PP_ERR_INVALID_ARGUMENT);
 }
+
+/* A temporary file path; the caller unlinks it. */
+static void temp_path(char *path)
+{
+    strcpy(path, "/tmp/pp_image_XXXXXX");
+    const int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    close(fd);
+}
+
+Test(image, every_input_kind_round_trips_through_save_and_load)
+{
+    const struct { int type, depth; } kinds[] = {
+        {PNG_COLOR_TYPE_GRAY, 8}, {PNG_COLOR_TYPE_GRAY_ALPHA, 8}, {PNG_COLOR_TYPE_RGB, 8}, {PNG_COLOR_TYPE_RGBA, 8},
+        {PNG_COLOR_TYPE_PALETTE, 8}, {PNG_COLOR_TYPE_RGBA, 16}, {PNG_COLOR_TYPE_GRAY, 16},
+    };
+    char src[32], dst[32];
+    temp_path(src);
+    temp_path(dst);
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+        write_png(src, kinds[i].type, kinds[i].depth);
+        uint8_t first[W * H * 4], second[W * H * 4];
+        int32_t w, h;
+        PP_OK_OR_FAIL(pp_image_load(src, first, sizeof first, &w, &h));
+        PP_OK_OR_FAIL(pp_image_save(dst, first, w, h));
+        memset(second, 0x5A, sizeof second);
+        PP_OK_OR_FAIL(pp_image_load(dst, second, sizeof second, &w, &h));
+        cr_assert(w == W && h == H);
+        cr_assert_arr_eq(first, second, sizeof first, "kind %zu changed in a save/load round trip", i);
+    }
+    /* Every byte value in every channel survives, alpha included. */
+    enum { N = 64 };
+    uint8_t pix[N * N * 4], back[N * N * 4];
+    for (int k = 0; k < N * N * 4; k++)
+        pix[k] = (uint8_t)(k * 37 + k / 256);
+    PP_OK_OR_FAIL(pp_image_save(dst, pix, N, N));
+    int32_t w, h;
+    PP_OK_OR_FAIL(pp_image_load(dst, back, sizeof back, &w, &h));
+    cr_assert_arr_eq(pix, back, sizeof pix);
+    unlink(src);
+    unlink(dst);
+}
+
+/* CRC-32 of PNG chunks (ISO 3309), so a test can forge a header that passes the CRC check. */
+static uint32_t crc32_png(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1)));
+    }
+    return c ^ 0xffffffffu;
+}
+
+static void put_be32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24), p[1] = (uint8_t)(v >> 16), p[2] = (uint8_t)(v >> 8), p[3] = (uint8_t)v;
+}
+
+/* Rewrite the IHDR of a PNG written by write_png to declare width × height, with a valid CRC. */
+static void forge_ihdr(const char *path, uint32_t width, uint32_t height)
+{
+    uint8_t buf[4096];
+    FILE *f = fopen(path, "rb");
+    const size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    /* Signature (8), then IHDR: length (4), "IHDR" (4), data (13), CRC (4). */
+    cr_assert(memcmp(buf + 12, "IHDR", 4) == 0);
+    put_be32(buf + 16, width);
+    put_be32(buf + 20, height);
+    put_be32(buf + 29, crc32_png(buf + 12, 17));
+    f = fopen(path, "wb");
+    fwrite(buf, 1, n, f);
+    fclose(f);
+}
+
+Test(image, corrupt_headers_and_chunks_give_format_or_limit)
+{
+    char path[32];
+    temp_path(path);
+    uint8_t rgba[W * H * 4];
+    int32_t w, h;
+
+    /* A flipped bit in the image data's CRC: the data decodes, the CRC check fails. */
+    write_png(path, PNG_COLOR_TYPE_RGBA, 8);
+    uint8_t buf[4096];
+    FILE *f = fopen(path, "rb");
+    const size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    uint8_t *idat = NULL;
+    for (size_t k = 8; k + 4 <= n && !idat; k++)
+        idat = memcmp(buf + k, "IDAT", 4) == 0 ? buf + k : NULL;
+    cr_assert(idat);
+    const uint32_t len = (uint32_t)idat[-4] << 24 | (uint32_t)idat[-3] << 16 | (uint32_t)idat[-2] << 8 | idat[-1];
+    idat[4 + len] ^= 0x10;
+    f = fopen(path, "wb");
+    fwrite(buf, 1, n, f);
+    fclose(f);
+    EXPECT_ERR(pp_image_load(path, rgba, sizeof rgba, &w, &h), PP_ERR_FORMAT, "CRC");
+
+    /* A zero-sized image is malformed. */
+    write_png(path, PNG_COLOR_TYPE_RGBA, 8);
+    forge_ihdr(path, 0, H);
+    EXPECT_ERR(pp_image_info(path, &w, &h), PP_ERR_FORMAT, "width");
+
+    /* Each side within PP_MAX_BITMAP_SIDE but the area over PP_MAX_BITMAP_AREA: LIMIT from the header,
+     * before anything the size of the image is allocated. */
+    write_png(path, PNG_COLOR_TYPE_RGBA, 8);
+    forge_ihdr(path, PP_MAX_BITMAP_SIDE, PP_MAX_BITMAP_SIDE);
+    EXPECT_ERR(pp_image_load(path, rgba, sizeof rgba, &w, &h), PP_ERR_LIMIT, "PP_MAX_BITMAP_AREA");
+
+    /* A declared size at PNG's own limit (2^31 − 1). */
+    write_png(path, PNG_COLOR_TYPE_RGBA, 8);
+    forge_ihdr(path, 0x7fffffffu, 0x7fffffffu);
+    EXPECT_ERR(pp_image_info(path, &w, &h), PP_ERR_LIMIT, "PP_MAX_BITMAP_SIDE");
+    unlink(path);
+}
+
+Test(image, save_refuses_bad_arguments_and_unwritable_paths)
+{
+    uint8_t px[4] = {1, 2, 3, 4};
+    EXPECT_ERR(pp_image_save(NULL, px, 1, 1), PP_ERR_INVALID_ARGUMENT, "NULL");
+    EXPECT_ERR(pp_image_save("/tmp/x.png", NULL, 1, 1), PP_ERR_INVALID_ARGUMENT, "NULL");
+    EXPECT_ERR(pp_image_save("/tmp/x.png", px, 0, 1), PP_ERR_INVALID_ARGUMENT, "at least");
+    EXPECT_ERR(pp_image_save("/tmp/x.png", px, -3, 1), PP_ERR_INVALID_ARGUMENT, "at least");
+    EXPECT_ERR(pp_image_save("/tmp/x.png", px, PP_MAX_BITMAP_SIDE + 1, 1), PP_ERR_LIMIT, "PP_MAX_BITMAP_SIDE");
+    EXPECT_ERR(pp_image_save("/nonexistent-dir/x.png", px, 1, 1), PP_ERR_IO, "cannot create");
+}
