@@ -200,7 +200,7 @@ typedef enum pp_edit_type {
     PP_EDIT_TYPE_FORCE_U32 = 0x7fffffff
 } pp_edit_type;
 
-/// An edit the world applies by itself at the start of the first step that begins at or after `time`.
+/// An edit the world applies by itself at the start of the step nearest `time` (the first starting after time − dt/2).
 typedef struct pp_timed_edit {
     double time;       ///< world time at which it applies, s
     pp_edit_type type; ///< erase or paint
