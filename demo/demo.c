@@ -1,231 +1,713 @@
-/* PhysPix console demo: eight 32 px boxes and a disc fall onto an 800 × 40 ground bitmap with
- * a bump, a pit and a hole; the scene runs 5 simulated seconds at 1/60 s, printing every body's
- * pose once per simulated second and what the steps cost. Public API only. */
-#include "physpix.h"
+/* The PhysPix demo: loads the plugin through its manifest, runs demo/scene.json (caves, crates, a weighted
+ * hammer, timed explosions) only through the plugin's generic call, and renders it in software: frames,
+ * a contact sheet and a debug view of one collision (the poster's Figure 1c), as PNG in build/demo/.
+ * It exits 0 only if the physics it shows holds: a split, a crate fallen into a crater, nothing NaN. */
+#include "plugin_host.h"
+#include "render.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
 
-#define DT (1.0f / 60.0f)
-#define STEPS_PER_SECOND 60
-#define SECONDS 5
-#define PI_F 3.14159265f
+#define DT (1.0 / 60.0)
+#define CRATE_TAG 100       /* user_data of the scene's crates: 100, 101, ... (a crate's pieces keep it) */
+#define CRATER_FALL_PX 20.0 /* how far a crate must fall into a crater, and a split-off piece fall, px */
 
-enum { GROUND_W = 800, GROUND_H = 40, GROUND_SURFACE = 16, BOX = 32, DISC = 40, MAX_BODIES = 16 };
+enum { SHEET_COLS = 4, SHEET_ROWS = 3, MAX_EDITS = 64, MAX_WATCH = 512 };
 
-/// A body of the scene with the name the demo prints.
-typedef struct demo_body {
-    const char *name;
-    pp_body handle;
-} demo_body;
+typedef struct options {
+    double seconds;
+    int every, overlay, quiet;
+    const char *out, *scene, *manifest;
+} options;
 
-typedef struct demo_scene {
-    pp_world world;
-    demo_body bodies[MAX_BODIES];
-    int count;
-} demo_scene;
+/* A scheduled explosion, and the crates that stood over it when it went off. */
+typedef struct explosion {
+    double time;
+    pp_vec2 center;
+    float radius;
+    int armed; /* its crates are recorded */
+} explosion;
 
-/* Prints the failure and returns nonzero, so call sites read `if (failed(st, "...")) ...`. */
-static int failed(pp_status st, const char *what)
+/* A crate over an explosion (explosion ≥ 0), or a piece an edit split off (explosion −1), and its height then. */
+typedef struct watch {
+    uint64_t body;
+    int64_t tag;
+    int explosion;
+    float y0;
+} watch;
+
+/* The most telling pair seen so far, for the Figure 1c view. */
+typedef struct debug_capture {
+    uint8_t *cells;
+    pp_vec2 *normals;
+    int32_t width, height;
+    pp_vec2 step_x, step_y, normal;
+    double time, score;
+    char what[96];
+} debug_capture;
+
+typedef struct demo {
+    options opt;
+    uint64_t world;
+    pp_camera cam;
+    explosion explosions[MAX_EDITS];
+    int explosion_count;
+    watch watches[MAX_WATCH];
+    int watch_count;
+    int64_t splits, destroyed, bodies_start;
+    double step_ms, render_s;
+    int steps, nan;
+    render_image frame, sheet;
+    debug_capture dbg;
+} demo;
+
+static host_plugin plugin;
+
+static void host_log(int level, const char *message, void *user)
 {
-    if (st == PP_OK)
+    if (level >= 2)
+        fprintf(stderr, "[plugin] %s\n", message);
+}
+
+/* ---- calls through the plugin ---- */
+
+static pp_variant try_call(uint64_t object, const char *method, const pp_variant *args, int argc)
+{
+    pp_variant ret;
+    plugin.api.call(object, method, args, argc, &ret);
+    return ret;
+}
+
+/* An ERROR result ends the demo: every call here is one the scene must answer. */
+static pp_variant must_call(uint64_t object, const char *method, const pp_variant *args, int argc)
+{
+    pp_variant ret = try_call(object, method, args, argc);
+    if (ret.type == PP_VARIANT_ERROR) {
+        fprintf(stderr, "demo: %s failed (%s): %s\n", method, pp_status_name(ret.as.error.status), ret.as.error.message);
+        plugin.api.variant_clear(&ret);
+        host_plugin_unload(&plugin);
+        exit(1);
+    }
+    return ret;
+}
+
+#define ARGV(...) ((const pp_variant[]){{.type = PP_VARIANT_NIL}, __VA_ARGS__} + 1)
+#define ARGC(...) ((int)(sizeof((const pp_variant[]){{.type = PP_VARIANT_NIL}, __VA_ARGS__}) / sizeof(pp_variant)) - 1)
+/* CALL(obj, "method", args...) and CALL0(obj, "method"). */
+#define CALL(obj, method, ...) must_call(obj, method, ARGV(__VA_ARGS__), ARGC(__VA_ARGS__))
+#define CALL0(obj, method) must_call(obj, method, NULL, 0)
+
+static int is_static(uint64_t body)
+{
+    pp_variant t = CALL0(body, "get_type");
+    const int s = strcmp(t.as.string.data, "static") == 0;
+    plugin.api.variant_clear(&t);
+    return s;
+}
+
+static const char *body_name(int64_t tag, char *buf, size_t size)
+{
+    static const char *names[] = {"body", "terrain", "bridge", "hammer"};
+    if (tag >= CRATE_TAG)
+        snprintf(buf, size, "crate %lld", (long long)(tag - CRATE_TAG + 1));
+    else
+        snprintf(buf, size, "%s", names[tag >= 0 && tag < 4 ? tag : 0]);
+    return buf;
+}
+
+/* ---- options and files ---- */
+
+static void usage(const char *argv0)
+{
+    fprintf(stderr,
+            "usage: %s [--seconds S] [--every N] [--out DIR] [--scene PATH] [--manifest PATH] [--overlay] [--quiet]\n"
+            "  --seconds S   simulated time to run (default 7.5)\n"
+            "  --every N     render every Nth step of 1/60 s (default 3)\n"
+            "  --out DIR     where frames, the contact sheet and the debug view go (default build/demo)\n"
+            "  --scene PATH  the scene file (default demo/scene.json)\n"
+            "  --overlay     draw contact points and normals\n"
+            "  --quiet       no progress bar\n",
+            argv0);
+    exit(2);
+}
+
+static options parse_options(int argc, char **argv)
+{
+    options o = {7.5, 3, 0, 0, "build/demo", "demo/scene.json", "plugin/physpix.plugin"};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--overlay") == 0)
+            o.overlay = 1;
+        else if (strcmp(a, "--quiet") == 0)
+            o.quiet = 1;
+        else if (!v)
+            usage(argv[0]);
+        else if (strcmp(a, "--seconds") == 0)
+            o.seconds = atof(v), i++;
+        else if (strcmp(a, "--every") == 0)
+            o.every = atoi(v), i++;
+        else if (strcmp(a, "--out") == 0)
+            o.out = v, i++;
+        else if (strcmp(a, "--scene") == 0)
+            o.scene = v, i++;
+        else if (strcmp(a, "--manifest") == 0)
+            o.manifest = v, i++;
+        else
+            usage(argv[0]);
+    }
+    if (!(o.seconds > 0 && o.seconds <= 600) || o.every < 1)
+        usage(argv[0]);
+    return o;
+}
+
+static int mkdir_p(const char *path)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", path);
+    for (char *p = buf + 1;; p++) {
+        const char c = *p;
+        if (c != '/' && c != 0)
+            continue;
+        *p = 0;
+        if (mkdir(buf, 0755) != 0 && errno != EEXIST)
+            return 0;
+        if (!(*p = c))
+            return 1;
+    }
+}
+
+static void save_png(const render_image *im, const char *dir, const char *name)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (render_image_save(im, path) != PP_OK) {
+        fprintf(stderr, "demo: cannot write %s: %s\n", path, pp_last_error());
+        exit(1);
+    }
+}
+
+/* ---- the scene ---- */
+
+static void load_scene(demo *d)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    if (made.type != PP_VARIANT_OBJECT) {
+        fprintf(stderr, "demo: object_create failed: %s\n", made.as.error.message);
+        exit(1);
+    }
+    d->world = made.as.object;
+    CALL(d->world, "load_scene", V_STR(d->opt.scene));
+    const pp_vec2 size = CALL0(d->world, "get_camera_size").as.vec2;
+    d->cam = (pp_camera){CALL0(d->world, "get_camera_center").as.vec2, (float)CALL0(d->world, "get_camera_zoom").as.real,
+                         (int32_t)size.x, (int32_t)size.y};
+    const int64_t n = CALL0(d->world, "get_scheduled_edit_count").as.integer;
+    for (int64_t i = 0; i < n && d->explosion_count < MAX_EDITS; i++) {
+        pp_variant type = CALL(d->world, "get_scheduled_edit_type", V_INT(i));
+        if (strcmp(type.as.string.data, "erase") == 0)
+            d->explosions[d->explosion_count++] = (explosion){
+                CALL(d->world, "get_scheduled_edit_time", V_INT(i)).as.real,
+                CALL(d->world, "get_scheduled_edit_center", V_INT(i)).as.vec2,
+                (float)CALL(d->world, "get_scheduled_edit_radius", V_INT(i)).as.real, 0};
+        plugin.api.variant_clear(&type);
+    }
+    d->bodies_start = CALL0(d->world, "get_body_count").as.integer;
+}
+
+/* Before an explosion goes off, note every crate standing over it. */
+static void arm_explosions(demo *d, double t)
+{
+    for (int e = 0; e < d->explosion_count; e++) {
+        explosion *x = &d->explosions[e];
+        if (x->armed || x->time >= t + 0.5 * DT) /* the library applies it at the step nearest its time */
+            continue;
+        x->armed = 1;
+        const int64_t n = CALL0(d->world, "get_body_count").as.integer;
+        for (int64_t i = 0; i < n && d->watch_count < MAX_WATCH; i++) {
+            const uint64_t b = CALL(d->world, "get_body", V_INT(i)).as.object;
+            const int64_t tag = CALL0(b, "get_user_data").as.integer;
+            const pp_vec2 p = CALL0(b, "get_position").as.vec2;
+            if (tag >= CRATE_TAG && fabsf(p.x - x->center.x) <= x->radius + 16 && p.y < x->center.y)
+                d->watches[d->watch_count++] = (watch){b, tag, e, p.y};
+        }
+    }
+}
+
+static void read_events(demo *d)
+{
+    const int64_t n = CALL0(d->world, "get_event_count").as.integer;
+    for (int64_t i = 0; i < n; i++) {
+        pp_variant type = CALL(d->world, "get_event_type", V_INT(i));
+        if (strcmp(type.as.string.data, "split") != 0) {
+            d->destroyed++;
+        } else if (d->splits++, d->watch_count < MAX_WATCH) {
+            const uint64_t piece = CALL(d->world, "get_event_other", V_INT(i)).as.object;
+            d->watches[d->watch_count++] = (watch){piece, CALL0(piece, "get_user_data").as.integer, -1,
+                                                   CALL0(piece, "get_position").as.vec2.y};
+        }
+        plugin.api.variant_clear(&type);
+    }
+}
+
+/* ---- drawing a frame ---- */
+
+static void draw_body(demo *d, render_image *im, uint64_t b)
+{
+    const pp_vec2 p = CALL0(b, "get_position").as.vec2, size = CALL0(b, "get_size").as.vec2;
+    const float angle = (float)CALL0(b, "get_angle").as.real;
+    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(angle))
+        d->nan++;
+    pp_variant rgba = CALL0(b, "get_rgba");
+    const render_sprite s = {rgba.as.bytes.data, (int32_t)size.x, (int32_t)size.y, p, CALL0(b, "get_pivot").as.vec2,
+                             angle};
+    render_sprite_draw(im, &d->cam, &s);
+    plugin.api.variant_clear(&rgba);
+}
+
+/* An explosion shows for a quarter second as a flash and a widening ring. */
+static void draw_explosions(demo *d, render_image *im, double t)
+{
+    for (int e = 0; e < d->explosion_count; e++) {
+        const explosion *x = &d->explosions[e];
+        const double k = (t - x->time) / 0.25;
+        if (k < 0 || k > 1)
+            continue;
+        const pp_vec2 c = render_to_image(&d->cam, x->center);
+        const float r = x->radius * d->cam.zoom * (float)(1.0 + 0.8 * k);
+        render_disc(im, c, r, 0, (render_color){255, 236, 150, (uint8_t)(170 * (1 - k))});
+        render_disc(im, c, r, 5, (render_color){255, 120, 30, (uint8_t)(255 * (1 - k))});
+    }
+}
+
+static void draw_contacts(demo *d, render_image *im)
+{
+    const int64_t n = CALL0(d->world, "get_contact_count").as.integer;
+    for (int64_t i = 0; i < n; i++) {
+        const pp_vec2 p = render_to_image(&d->cam, CALL(d->world, "get_contact_point", V_INT(i)).as.vec2);
+        const pp_vec2 nrm = CALL(d->world, "get_contact_normal", V_INT(i)).as.vec2;
+        render_line(im, p, (pp_vec2){p.x + 16 * nrm.x, p.y + 16 * nrm.y}, 1.5f, (render_color){255, 230, 40, 255});
+        render_disc(im, p, 3, 0, (render_color){230, 30, 30, 255});
+    }
+}
+
+static void draw_frame(demo *d, render_image *im, double t)
+{
+    render_sky(im);
+    const int64_t n = CALL0(d->world, "get_body_count").as.integer;
+    for (int pass = 0; pass < 2; pass++) /* the static scenery first, what moves over it */
+        for (int64_t i = 0; i < n; i++) {
+            const uint64_t b = CALL(d->world, "get_body", V_INT(i)).as.object;
+            if (is_static(b) == (pass == 0))
+                draw_body(d, im, b);
+        }
+    draw_explosions(d, im, t);
+    if (d->opt.overlay)
+        draw_contacts(d, im);
+    char label[64];
+    snprintf(label, sizeof label, "T = %.2f S", t);
+    render_text(im, 13, 13, 3, label, (render_color){0, 0, 0, 120});
+    render_text(im, 12, 12, 3, label, (render_color){255, 255, 255, 255});
+}
+
+/* ---- the contact sheet: SHEET_COLS × SHEET_ROWS thumbnails, each a SHEET_COLS-th of a frame's side ---- */
+
+/* Frame f goes into the sheet's cells whose evenly spaced frame index it is. */
+static void sheet_add(demo *d, int f, int frames, double t)
+{
+    const int cells = SHEET_COLS * SHEET_ROWS, cw = d->frame.width / SHEET_COLS, ch = d->frame.height / SHEET_COLS;
+    for (int k = 0; k < cells; k++) {
+        if ((int)lround((double)k * (frames - 1) / (cells - 1)) != f)
+            continue;
+        const int x = k % SHEET_COLS * cw, y = k / SHEET_COLS * ch;
+        render_thumbnail(&d->sheet, x, y, cw, ch, &d->frame);
+        render_rect(&d->sheet, x, y, cw, 1, (render_color){20, 20, 24, 255});
+        render_rect(&d->sheet, x, y, 1, ch, (render_color){20, 20, 24, 255});
+        char label[32];
+        snprintf(label, sizeof label, "%.2f S", t);
+        render_text(&d->sheet, x + 5, y + 5, 2, label, (render_color){255, 255, 255, 255});
+    }
+}
+
+/* ---- the collision debug view (the poster's Figure 1c) ---- */
+
+/* Rate a pair's grid: a large intersection beside cells of each body alone, with a slanted normal, makes
+ * the clearest picture; a thin band along a flat contact the dullest. */
+static double debug_score(const pp_variant *cells, int32_t w, int32_t h, pp_vec2 n)
+{
+    int64_t only[4] = {0}, critical = 0;
+    for (int64_t i = 0; i < cells->as.bytes.length; i++) {
+        only[cells->as.bytes.data[i] & 3]++;
+        critical += (cells->as.bytes.data[i] & PP_CELL_CRITICAL) != 0;
+    }
+    if (w > 120 || h > 120 || critical == 0 || !only[PP_CELL_A] || !only[PP_CELL_B])
         return 0;
-    fprintf(stderr, "demo: %s failed: %s: %s\n", what, pp_status_name(st), pp_last_error());
-    return 1;
+    const double interior = (double)(only[PP_CELL_A | PP_CELL_B] - critical);
+    return pow((double)critical + 4.0 * interior, 0.75) * (0.25 + 4.0 * fabs(n.x * n.y));
 }
 
-/* The ground: solid below local row 16, a half-disc bump rising to the top of the bitmap,
- * a 60 px pit 14 px deep, and a closed hole of radius 6 inside the slab. */
-static void paint_ground(uint8_t *mask)
+static void consider_pair(demo *d, uint64_t a, uint64_t b, double t)
 {
-    for (int y = 0; y < GROUND_H; y++) {
-        for (int x = 0; x < GROUND_W; x++) {
-            float px = (float)x + 0.5f, py = (float)y + 0.5f;
-            int solid = y >= GROUND_SURFACE;
-            float bx = px - 220.0f, by = py - (float)GROUND_SURFACE;
-            if (bx * bx + by * by <= 14.0f * 14.0f)
-                solid = 1;                                   /* bump */
-            if (x >= 440 && x < 500 && y < GROUND_SURFACE + 14)
-                solid = 0;                                   /* pit */
-            float hx = px - 650.0f, hy = py - 30.0f;
-            if (hx * hx + hy * hy <= 6.0f * 6.0f)
-                solid = 0;                                   /* hole */
-            mask[y * GROUND_W + x] = (uint8_t)solid;
+    pp_variant cells = CALL(d->world, "debug_collision", V_OBJ(a), V_OBJ(b));
+    const pp_vec2 size = CALL0(d->world, "get_debug_size").as.vec2, n = CALL0(d->world, "get_debug_normal").as.vec2;
+    const int32_t w = (int32_t)size.x, h = (int32_t)size.y;
+    const int64_t ta = CALL0(a, "get_user_data").as.integer, tb = CALL0(b, "get_user_data").as.integer;
+    /* The poster's case, a loose body on the terrain, is preferred to any other pair. */
+    const int on_terrain = (ta == 1 && tb >= 3) || (tb == 1 && ta >= 3);
+    const double score = debug_score(&cells, w, h, n) * (on_terrain ? 10.0 : 1.0);
+    if (score <= d->dbg.score) {
+        plugin.api.variant_clear(&cells);
+        return;
+    }
+    pp_variant normals = CALL0(d->world, "get_debug_local_normals");
+    debug_capture *c = &d->dbg;
+    free(c->cells);
+    free(c->normals);
+    c->cells = malloc((size_t)w * h), c->normals = malloc((size_t)w * h * sizeof(pp_vec2));
+    if (!c->cells || !c->normals) {
+        fprintf(stderr, "demo: out of memory\n");
+        exit(1);
+    }
+    memcpy(c->cells, cells.as.bytes.data, (size_t)w * h);
+    memcpy(c->normals, normals.as.bytes.data, (size_t)w * h * sizeof(pp_vec2));
+    c->width = w, c->height = h, c->normal = n, c->time = t, c->score = score;
+    c->step_x = CALL0(d->world, "get_debug_step_x").as.vec2, c->step_y = CALL0(d->world, "get_debug_step_y").as.vec2;
+    char na[32], nb[32];
+    snprintf(c->what, sizeof c->what, "%s / %s", body_name(ta, na, sizeof na), body_name(tb, nb, sizeof nb));
+    plugin.api.variant_clear(&cells);
+    plugin.api.variant_clear(&normals);
+}
+
+/* Look at the pairs in contact now (each pair once; at most a few a frame). */
+static void capture_debug(demo *d, double t)
+{
+    const int64_t n = CALL0(d->world, "get_contact_count").as.integer;
+    uint64_t last_a = 0, last_b = 0;
+    int tried = 0;
+    for (int64_t i = 0; i < n && tried < 6; i++) {
+        const uint64_t a = CALL(d->world, "get_contact_body_a", V_INT(i)).as.object;
+        const uint64_t b = CALL(d->world, "get_contact_body_b", V_INT(i)).as.object;
+        if ((a == last_a && b == last_b) || !a || !b)
+            continue;
+        last_a = a, last_b = b, tried++;
+        consider_pair(d, a, b, t);
+    }
+}
+
+/* A grid direction of a world vector: the grid's axes are the reference body's, one cell a step. */
+static pp_vec2 to_grid(const debug_capture *c, pp_vec2 v)
+{
+    const float lx = hypotf(c->step_x.x, c->step_x.y), ly = hypotf(c->step_y.x, c->step_y.y);
+    return (pp_vec2){(v.x * c->step_x.x + v.y * c->step_x.y) / (lx * lx),
+                     (v.x * c->step_y.x + v.y * c->step_y.y) / (ly * ly)};
+}
+
+static render_color cell_color(uint8_t f)
+{
+    if (f & PP_CELL_CRITICAL)
+        return (render_color){236, 64, 52, 255};
+    if ((f & (PP_CELL_A | PP_CELL_B)) == (PP_CELL_A | PP_CELL_B))
+        return (render_color){246, 196, 60, 255};
+    if (f & PP_CELL_A)
+        return (render_color){84, 132, 220, 255};
+    if (f & PP_CELL_B)
+        return (render_color){110, 170, 90, 255};
+    return (render_color){44, 48, 58, 255};
+}
+
+static void draw_legend(render_image *im, int32_t y)
+{
+    static const struct {
+        uint8_t flags;
+        const char *text;
+    } items[] = {{PP_CELL_A, "FIRST BODY"},  {PP_CELL_B, "SECOND BODY"}, {PP_CELL_A | PP_CELL_B, "INTERSECTION"},
+                 {PP_CELL_CRITICAL, "CRITICAL"}};
+    int32_t x = 20;
+    for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+        render_rect(im, x, y, 16, 16, cell_color(items[i].flags));
+        render_text(im, x + 24, y + 3, 2, items[i].text, (render_color){230, 230, 230, 255});
+        x += 40 + 8 * (int32_t)strlen(items[i].text);
+    }
+    render_line(im, (pp_vec2){(float)x, y + 8.0f}, (pp_vec2){x + 20.0f, y + 8.0f}, 2, (render_color){255, 255, 255, 255});
+    render_text(im, x + 28, y + 3, 2, "LOCAL NORMAL", (render_color){230, 230, 230, 255});
+    x += 28 + 8 * 12 + 16;
+    render_arrow(im, (pp_vec2){(float)x, y + 8.0f}, (pp_vec2){x + 26.0f, y + 8.0f}, 3, 8, (render_color){240, 80, 240, 255});
+    render_text(im, x + 34, y + 3, 2, "GLOBAL NORMAL", (render_color){230, 230, 230, 255});
+}
+
+/* The part of the grid drawn: the intersection with a margin of cells around it, as large as fits. */
+typedef struct grid_window {
+    int32_t i0, j0, w, h; /* cells */
+    int32_t cs, x0, y0;   /* cell side and the window's top-left corner, image px */
+} grid_window;
+
+static grid_window debug_window(const debug_capture *c, int32_t left, int32_t top, int32_t avail_w, int32_t avail_h)
+{
+    int32_t i0 = c->width, j0 = c->height, i1 = 0, j1 = 0;
+    for (int32_t j = 0; j < c->height; j++)
+        for (int32_t i = 0; i < c->width; i++)
+            if ((c->cells[(size_t)j * c->width + i] & 3) == 3)
+                i0 = i < i0 ? i : i0, j0 = j < j0 ? j : j0, i1 = i + 1 > i1 ? i + 1 : i1, j1 = j + 1 > j1 ? j + 1 : j1;
+    const int32_t m = 8 + ((i1 - i0) > (j1 - j0) ? (i1 - i0) : (j1 - j0)) / 2;
+    grid_window g;
+    g.i0 = i0 - m < 0 ? 0 : i0 - m, g.j0 = j0 - m < 0 ? 0 : j0 - m;
+    g.w = (i1 + m > c->width ? c->width : i1 + m) - g.i0, g.h = (j1 + m > c->height ? c->height : j1 + m) - g.j0;
+    g.cs = avail_w / g.w < avail_h / g.h ? avail_w / g.w : avail_h / g.h;
+    g.cs = g.cs < 1 ? 1 : g.cs > 48 ? 48 : g.cs;
+    g.x0 = left + (avail_w - g.cs * g.w) / 2, g.y0 = top + (avail_h - g.cs * g.h) / 2;
+    return g;
+}
+
+static pp_vec2 cell_center(const grid_window *g, int32_t i, int32_t j)
+{
+    return (pp_vec2){g->x0 + (i - g->i0 + 0.5f) * g->cs, g->y0 + (j - g->j0 + 0.5f) * g->cs};
+}
+
+/* Cells in their colours, each critical cell's kernel normal as a short line. */
+static void draw_cells(render_image *im, const debug_capture *c, const grid_window *g)
+{
+    const int32_t gap = g->cs >= 6;
+    for (int32_t j = g->j0; j < g->j0 + g->h; j++)
+        for (int32_t i = g->i0; i < g->i0 + g->w; i++)
+            render_rect(im, g->x0 + (i - g->i0) * g->cs, g->y0 + (j - g->j0) * g->cs, g->cs - gap, g->cs - gap,
+                        cell_color(c->cells[(size_t)j * c->width + i]));
+    for (int32_t j = g->j0; j < g->j0 + g->h; j++)
+        for (int32_t i = g->i0; i < g->i0 + g->w; i++) {
+            const pp_vec2 n = to_grid(c, c->normals[(size_t)j * c->width + i]), a = cell_center(g, i, j);
+            const float len = hypotf(n.x, n.y), reach = 0.9f * (float)(g->cs > 5 ? g->cs : 5);
+            if ((c->cells[(size_t)j * c->width + i] & PP_CELL_CRITICAL) && len > 0)
+                render_line(im, a, (pp_vec2){a.x + reach * n.x / len, a.y + reach * n.y / len}, g->cs >= 8 ? 2 : 1,
+                            (render_color){255, 255, 255, 230});
         }
+}
+
+/* The global normal as a long arrow from the intersection's centroid. */
+static void draw_global_normal(render_image *im, const debug_capture *c, const grid_window *g, float length)
+{
+    double sx = 0, sy = 0, count = 0;
+    for (int32_t j = 0; j < c->height; j++)
+        for (int32_t i = 0; i < c->width; i++)
+            if ((c->cells[(size_t)j * c->width + i] & 3) == 3) {
+                const pp_vec2 p = cell_center(g, i, j);
+                sx += p.x, sy += p.y, count++;
+            }
+    const pp_vec2 n = to_grid(c, c->normal);
+    const float len = hypotf(n.x, n.y);
+    if (count == 0 || len <= 0)
+        return;
+    const pp_vec2 a = {(float)(sx / count), (float)(sy / count)};
+    render_arrow(im, a, (pp_vec2){a.x + length * n.x / len, a.y + length * n.y / len}, 5, 22,
+                 (render_color){240, 80, 240, 255});
+}
+
+static void write_debug_view(demo *d)
+{
+    const debug_capture *c = &d->dbg;
+    render_image im;
+    if (!render_image_init(&im, d->cam.width, d->cam.height))
+        exit(1);
+    render_fill(&im, (render_color){24, 26, 32, 255});
+    char title[160];
+    snprintf(title, sizeof title, "COLLISION AT T = %.2f S: %s, %d X %d CELLS", c->time, c->what, (int)c->width,
+             (int)c->height);
+    render_text(&im, 20, 14, 2, c->cells ? title : "NO PAIR WAS IN CONTACT", (render_color){240, 240, 240, 255});
+    draw_legend(&im, im.height - 30);
+    if (c->cells) {
+        const grid_window g = debug_window(c, 20, 40, im.width - 40, im.height - 90);
+        draw_cells(&im, c, &g);
+        draw_global_normal(&im, c, &g, 0.3f * (float)(im.height - 90));
+    }
+    save_png(&im, d->opt.out, "collision_debug.png");
+    render_image_free(&im);
+}
+
+/* ---- the run ---- */
+
+/* A bar redrawn in place on a terminal; a line every tenth of the run otherwise. */
+static void progress(const demo *d, int step, int steps, double t)
+{
+    const int tty = isatty(STDOUT_FILENO), pct = (int)(100L * step / steps);
+    if (d->opt.quiet || (tty ? step % 6 != 0 && step != steps : step * 10 / steps == (step - 1) * 10 / steps))
+        return;
+    const int64_t bodies = CALL0(d->world, "get_body_count").as.integer;
+    if (tty) {
+        char bar[41];
+        for (int i = 0; i < 40; i++)
+            bar[i] = i < pct * 40 / 100 ? '#' : '.';
+        bar[40] = 0;
+        printf("\r  [%s] %3d%%  t %5.2f s  %3lld bodies  %2lld splits", bar, pct, t, (long long)bodies,
+               (long long)d->splits);
+        if (step == steps)
+            printf("\n");
+        fflush(stdout);
+    } else {
+        printf("  %3d%%  t %5.2f s  %lld bodies  %lld splits\n", pct, t, (long long)bodies, (long long)d->splits);
     }
 }
 
-/* A disc sprite: opaque inside the circle, transparent outside, so the alpha threshold
- * decides the collision shape. */
-static void paint_disc(uint8_t *rgba)
+static void render_step(demo *d, int frame, int frames, double t)
 {
-    const float r = DISC * 0.5f;
-    for (int y = 0; y < DISC; y++) {
-        for (int x = 0; x < DISC; x++) {
-            float dx = (float)x + 0.5f - r, dy = (float)y + 0.5f - r;
-            uint8_t *p = &rgba[(y * DISC + x) * 4];
-            int inside = dx * dx + dy * dy <= r * r;
-            p[0] = 230, p[1] = 120, p[2] = 40;
-            p[3] = inside ? 255 : 0;
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    draw_frame(d, &d->frame, t);
+    char name[64];
+    snprintf(name, sizeof name, "frame_%04d.png", frame);
+    save_png(&d->frame, d->opt.out, name);
+    sheet_add(d, frame, frames, t);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    d->render_s += (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
+}
+
+static void run(demo *d)
+{
+    const int steps = (int)lround(d->opt.seconds / DT), frames = steps / d->opt.every + 1;
+    if (!render_image_init(&d->frame, d->cam.width, d->cam.height) ||
+        !render_image_init(&d->sheet, d->cam.width / SHEET_COLS * SHEET_COLS, d->cam.height / SHEET_COLS * SHEET_ROWS)) {
+        fprintf(stderr, "demo: out of memory for %d x %d frames\n", (int)d->cam.width, (int)d->cam.height);
+        exit(1);
+    }
+    render_step(d, 0, frames, 0.0);
+    for (int step = 1; step <= steps; step++) {
+        arm_explosions(d, CALL0(d->world, "get_time").as.real);
+        CALL(d->world, "step", V_FLOAT(DT));
+        d->step_ms += CALL0(d->world, "get_step_ms").as.real;
+        d->steps++;
+        read_events(d);
+        const double t = CALL0(d->world, "get_time").as.real;
+        if (t > 0.2) /* the pairs of every step compete for the debug view; settling contacts first */
+            capture_debug(d, t);
+        if (step % d->opt.every == 0)
+            render_step(d, step / d->opt.every, frames, t);
+        progress(d, step, steps, t);
+    }
+    save_png(&d->sheet, d->opt.out, "contact_sheet.png");
+    write_debug_view(d);
+    printf("  %d frames of %d x %d in %s/ (frame_0000.png .. frame_%04d.png), contact_sheet.png (%d x %d), "
+           "collision_debug.png\n",
+           frames, (int)d->cam.width, (int)d->cam.height, d->opt.out, frames - 1, (int)d->sheet.width,
+           (int)d->sheet.height);
+}
+
+/* ---- figures and checks ---- */
+
+/* The largest fall of a crate that stood over each explosion; the best over all of them. */
+static double report_craters(demo *d)
+{
+    double best = 0;
+    for (int e = 0; e < d->explosion_count; e++) {
+        const explosion *x = &d->explosions[e];
+        if (!x->armed)
+            continue;
+        double fall = 0;
+        int64_t who = -1;
+        for (int w = 0; w < d->watch_count; w++) {
+            if (d->watches[w].explosion != e)
+                continue;
+            pp_variant p = try_call(d->watches[w].body, "get_position", NULL, 0);
+            if (p.type == PP_VARIANT_VEC2 && p.as.vec2.y - d->watches[w].y0 > fall)
+                fall = p.as.vec2.y - d->watches[w].y0, who = d->watches[w].tag;
+            plugin.api.variant_clear(&p); /* an error: the crate was blown away */
         }
+        char name[32];
+        printf("  explosion %d at t %.2f s, (%.0f, %.0f) r %.0f px: ", e + 1, x->time, x->center.x, x->center.y,
+               x->radius);
+        if (who >= 0)
+            printf("%s fell %.1f px into the crater\n", body_name(who, name, sizeof name), fall);
+        else
+            printf("no crate stood over it\n");
+        best = fall > best ? fall : best;
     }
+    return best;
 }
 
-static int add_body(demo_scene *s, const char *name, const pp_body_def *def)
+/* How far each piece an edit split off has fallen since; the largest fall. */
+static double report_pieces(demo *d)
 {
-    if (s->count == MAX_BODIES) {
-        fprintf(stderr, "demo: too many bodies\n");
+    double best = 0;
+    int shown = 0;
+    for (int w = 0; w < d->watch_count; w++) {
+        const watch *x = &d->watches[w];
+        if (x->explosion >= 0)
+            continue;
+        pp_variant p = try_call(x->body, "get_position", NULL, 0);
+        const double fall = p.type == PP_VARIANT_VEC2 ? p.as.vec2.y - x->y0 : 0.0;
+        plugin.api.variant_clear(&p);
+        char name[32];
+        if (shown++ < 8)
+            printf("  a piece of the %s split off and fell %.1f px\n", body_name(x->tag, name, sizeof name), fall);
+        best = fall > best ? fall : best;
+    }
+    return best;
+}
+
+static int all_finite(demo *d)
+{
+    const int64_t n = CALL0(d->world, "get_body_count").as.integer;
+    int ok = d->nan == 0;
+    for (int64_t i = 0; i < n; i++) {
+        const uint64_t b = CALL(d->world, "get_body", V_INT(i)).as.object;
+        const pp_vec2 p = CALL0(b, "get_position").as.vec2, v = CALL0(b, "get_velocity").as.vec2;
+        ok &= isfinite(p.x) && isfinite(p.y) && isfinite(v.x) && isfinite(v.y);
+    }
+    return ok;
+}
+
+static int report(demo *d, double wall_s)
+{
+    const double fall = report_craters(d), piece = report_pieces(d);
+    const double last = d->explosion_count ? d->explosions[d->explosion_count - 1].time : 0;
+    const int finite = all_finite(d), reached = d->opt.seconds >= last + 0.5;
+    printf("  bodies: %lld at the start, %lld at the end; %lld splits, %lld bodies destroyed\n",
+           (long long)d->bodies_start, (long long)CALL0(d->world, "get_body_count").as.integer, (long long)d->splits,
+           (long long)d->destroyed);
+    printf("  steps: %d of 1/60 s, %.3f ms a step on average; rendering and PNG %.2f s; run %.2f s\n", d->steps,
+           d->steps ? d->step_ms / d->steps : 0.0, d->render_s, wall_s);
+    int ok = finite;
+    printf("  check: no NaN in any pose or velocity: %s\n", finite ? "ok" : "FAILED");
+    if (reached) {
+        printf("  check: at least one split, and a piece fell >= %.0f px (%.1f px): %s\n", CRATER_FALL_PX, piece,
+               d->splits >= 1 && piece >= CRATER_FALL_PX ? "ok" : "FAILED");
+        printf("  check: a crate fell >= %.0f px into a crater (%.1f px): %s\n", CRATER_FALL_PX, fall,
+               fall >= CRATER_FALL_PX ? "ok" : "FAILED");
+        ok &= d->splits >= 1 && piece >= CRATER_FALL_PX && fall >= CRATER_FALL_PX;
+    } else {
+        printf("  checks of splits and craters skipped: the run ends before the last explosion (t %.2f s)\n", last);
+    }
+    printf("demo: %s\n", ok ? "PASS" : "FAILED");
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    static demo d;
+    d.opt = parse_options(argc, argv);
+    const pp_host_interface host = {sizeof host, PP_PLUGIN_INTERFACE_VERSION, "physpix demo", host_log, NULL};
+    char err[1024];
+    if (host_plugin_load(d.opt.manifest, &host, &plugin, err, sizeof err) != PP_OK) {
+        fprintf(stderr, "demo: %s\n", err);
         return 1;
     }
-    demo_body *b = &s->bodies[s->count];
-    b->name = name;
-    if (failed(pp_body_create(s->world, def, &b->handle), "pp_body_create"))
+    if (!mkdir_p(d.opt.out)) {
+        fprintf(stderr, "demo: cannot make %s: %s\n", d.opt.out, strerror(errno));
         return 1;
-    s->count++;
-    return 0;
-}
-
-static int build_scene(demo_scene *s)
-{
-    static uint8_t ground[GROUND_W * GROUND_H], box[BOX * BOX], disc[DISC * DISC * 4];
-    paint_ground(ground);
-    memset(box, 1, sizeof box);
-    paint_disc(disc);
-
-    pp_body_def def = pp_body_def_default();
-    def.type = PP_BODY_STATIC;
-    def.width = GROUND_W;
-    def.height = GROUND_H;
-    def.mask = ground;
-    def.position = (pp_vec2){GROUND_W * 0.5f, 400.0f + GROUND_H * 0.5f}; /* top edge at y = 400 */
-    if (add_body(s, "ground", &def))
-        return 1;
-
-    /* x, drop height above the surface (y = 416) and angle of each box; the third lands on
-     * the bump, the sixth over the pit. */
-    static const struct { const char *name; float x, height, angle_deg; } boxes[] = {
-        {"box0", 80, 60, 0},   {"box1", 150, 120, 20}, {"box2", 222, 200, -35}, {"box3", 300, 90, 45},
-        {"box4", 380, 250, 0}, {"box5", 470, 150, 10}, {"box6", 560, 300, -60}, {"box7", 720, 40, 5},
-    };
-    for (size_t i = 0; i < sizeof boxes / sizeof boxes[0]; i++) {
-        def = pp_body_def_default();
-        def.width = BOX;
-        def.height = BOX;
-        def.mask = box;
-        def.position = (pp_vec2){boxes[i].x, 416.0f - boxes[i].height};
-        def.angle = boxes[i].angle_deg * PI_F / 180.0f;
-        def.user_data = i;
-        if (add_body(s, boxes[i].name, &def))
-            return 1;
     }
-
-    def = pp_body_def_default();
-    def.width = DISC;
-    def.height = DISC;
-    def.rgba = disc;
-    def.position = (pp_vec2){640.0f, 100.0f};
-    def.linear_velocity = (pp_vec2){-60.0f, 0.0f};
-    def.restitution = 0.3f;
-    return add_body(s, "disc", &def);
-}
-
-static int print_masses(const demo_scene *s)
-{
-    printf("%-7s %9s %16s %12s\n", "body", "mass", "centre (bitmap)", "inertia");
-    for (int i = 1; i < s->count; i++) {
-        float mass, inertia;
-        pp_vec2 c;
-        if (failed(pp_body_get_mass(s->world, s->bodies[i].handle, &mass, &c, &inertia), "pp_body_get_mass"))
-            return 1;
-        printf("%-7s %9.1f   (%5.2f, %5.2f) %12.0f\n", s->bodies[i].name, mass, c.x, c.y, inertia);
-    }
-    return 0;
-}
-
-/* Degrees for printing, with values that round to zero shown as 0.00 rather than -0.00. */
-static float degrees(float radians)
-{
-    float d = radians * 180.0f / PI_F;
-    return d > -0.005f && d < 0.005f ? 0.0f : d;
-}
-
-static int print_poses(const demo_scene *s, float t)
-{
-    printf("\nt = %.2f s\n%-7s %9s %9s %9s %6s\n", t, "body", "x px", "y px", "angle°", "awake");
-    for (int i = 1; i < s->count; i++) {
-        pp_vec2 p;
-        float angle;
-        int32_t awake;
-        pp_body b = s->bodies[i].handle;
-        if (failed(pp_body_get_position(s->world, b, &p), "pp_body_get_position") ||
-            failed(pp_body_get_angle(s->world, b, &angle), "pp_body_get_angle") ||
-            failed(pp_body_is_awake(s->world, b, &awake), "pp_body_is_awake"))
-            return 1;
-        printf("%-7s %9.2f %9.2f %9.2f %6s\n", s->bodies[i].name, p.x, p.y, degrees(angle), awake ? "yes" : "no");
-    }
-    return 0;
-}
-
-/* Running sums of one second's step stats, printed as means. */
-typedef struct stats_sum {
-    double broadphase, narrowphase, solver, total;
-    long contacts;
-    int steps;
-} stats_sum;
-
-static void stats_add(stats_sum *sum, const pp_step_stats *st)
-{
-    sum->broadphase += st->broadphase_ms;
-    sum->narrowphase += st->narrowphase_ms;
-    sum->solver += st->solver_ms;
-    sum->total += st->total_ms;
-    sum->contacts += st->contacts;
-    sum->steps++;
-}
-
-static void print_stats(const stats_sum *sum, const pp_step_stats *last)
-{
-    double n = sum->steps;
-    printf("steps: %.4f ms broadphase + %.4f ms narrowphase + %.4f ms solver = %.4f ms total (mean of %d)\n",
-           sum->broadphase / n, sum->narrowphase / n, sum->solver / n, sum->total / n, sum->steps);
-    printf("       %.1f contacts a step on average; last step: %d pairs, %d contacts, %d of %d bodies awake, "
-           "%lld pixels tested, %s backend\n",
-           (double)sum->contacts / n, last->pairs, last->contacts, last->awake_bodies, last->bodies,
-           (long long)last->pixels_tested, last->backend == PP_BACKEND_GPU ? "GPU" : "CPU");
-}
-
-static int run(demo_scene *s)
-{
-    if (build_scene(s) || print_masses(s) || print_poses(s, 0.0f))
-        return 1;
-    for (int second = 1; second <= SECONDS; second++) {
-        stats_sum sum = {0};
-        pp_step_stats st;
-        for (int i = 0; i < STEPS_PER_SECOND; i++) {
-            if (failed(pp_world_step(s->world, DT), "pp_world_step") ||
-                failed(pp_world_get_stats(s->world, &st), "pp_world_get_stats"))
-                return 1;
-            stats_add(&sum, &st);
-        }
-        if (print_poses(s, (float)second))
-            return 1;
-        print_stats(&sum, &st);
-    }
-    return 0;
-}
-
-int main(void)
-{
-    uint32_t v = pp_version();
-    printf("PhysPix %u.%u.%u demo: 8 boxes and a disc on an %d x %d ground, dt 1/60 s, %d s\n\n", v / 10000,
-           v / 100 % 100, v % 100, GROUND_W, GROUND_H, SECONDS);
-
-    pp_world_def wdef = pp_world_def_default();
-    demo_scene scene = {0};
-    if (failed(pp_world_create(&wdef, &scene.world), "pp_world_create"))
-        return 1;
-    int rc = run(&scene);
-    if (failed(pp_world_destroy(scene.world), "pp_world_destroy"))
-        rc = 1;
-    return rc;
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    load_scene(&d);
+    printf("demo: %s, %.2f s at 1/60 s, every %d steps rendered at %d x %d, %d explosions\n", d.opt.scene,
+           d.opt.seconds, d.opt.every, (int)d.cam.width, (int)d.cam.height, d.explosion_count);
+    run(&d);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    const int ok = report(&d, (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec));
+    free(d.dbg.cells);
+    free(d.dbg.normals);
+    render_image_free(&d.frame);
+    render_image_free(&d.sheet);
+    host_plugin_unload(&plugin);
+    return ok ? 0 : 1;
 }

@@ -259,24 +259,35 @@ static void world_get_event_other(plugin_object *self, const pp_variant *a, pp_v
         ret_body(self, e->other, ret);
 }
 
-static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *ret)
+/* Both object arguments must be bodies of this world; 0 and ret set to ERROR otherwise. */
+static int pair_of_world(plugin_object *self, const pp_variant *a, const char *m, pp_body *ba, pp_body *bb,
+                         pp_variant *ret)
 {
-    const char *m = "PhysPixWorld.collide";
     const plugin_object *pa = object_get(a[0].as.object), *pb = object_get(a[1].as.object);
     if (pa->world_object != self->world_object || pb->world_object != self->world_object) {
         ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: both bodies must belong to this world", m);
-        return;
+        return 0;
     }
+    *ba = pa->body, *bb = pb->body;
+    return 1;
+}
+
+static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.collide";
+    pp_body ba, bb;
+    if (!pair_of_world(self, a, m, &ba, &bb, ret))
+        return;
     /* Two contacts per pair in MANIFOLD mode: a first capacity that the second call rarely needs to grow. */
     world_cache *c = self->cache;
     int32_t n = 0;
     c->contact_count = 0;
     if (!reserve((void **)&c->contacts, &c->contact_capacity, 4, sizeof *c->contacts, ret) ||
-        !ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, c->contact_capacity, &n), m))
+        !ret_ok(ret, pp_world_collide(self->world, ba, bb, c->contacts, c->contact_capacity, &n), m))
         return;
     if (n > c->contact_capacity &&
         (!reserve((void **)&c->contacts, &c->contact_capacity, n, sizeof *c->contacts, ret) ||
-         !ret_ok(ret, pp_world_collide(self->world, pa->body, pb->body, c->contacts, n, &n), m)))
+         !ret_ok(ret, pp_world_collide(self->world, ba, bb, c->contacts, n, &n), m)))
         return;
     c->contact_count = n;
     ret_int(ret, n);
@@ -287,6 +298,176 @@ static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_varia
     pp_step_stats s;
     if (ret_ok(ret, pp_world_get_stats(self->world, &s), "PhysPixWorld.get_step_ms"))
         ret_float(ret, s.total_ms);
+}
+
+/* Replace this object's world by the scene's; its old bodies' objects become stale. */
+static void world_load_scene(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_world loaded;
+    if (!ret_ok(ret, pp_world_load_scene(a[0].as.string.data, &loaded), "PhysPixWorld.load_scene"))
+        return; /* the old world stays as it was */
+    world_cache *c = self->cache;
+    for (int32_t i = 0; i < c->body_object_capacity; i++)
+        object_free(c->body_objects[i]);
+    pp_world_destroy(self->world);
+    self->world = loaded;
+    c->contact_count = c->event_count = c->body_count = c->edit_count = 0;
+    c->debug_view = (pp_collision_view){0};
+}
+
+static void world_get_time(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    double t;
+    if (ret_ok(ret, pp_world_get_time(self->world, &t), "PhysPixWorld.get_time"))
+        ret_float(ret, t);
+}
+
+static int camera_of(plugin_object *self, const char *m, pp_camera *cam, pp_variant *ret)
+{
+    return ret_ok(ret, pp_world_get_camera(self->world, cam), m);
+}
+
+static void world_get_camera_center(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_camera cam;
+    if (camera_of(self, "PhysPixWorld.get_camera_center", &cam, ret))
+        ret_vec2(ret, cam.center);
+}
+
+static void world_get_camera_zoom(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_camera cam;
+    if (camera_of(self, "PhysPixWorld.get_camera_zoom", &cam, ret))
+        ret_float(ret, cam.zoom);
+}
+
+static void world_get_camera_size(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_camera cam;
+    if (camera_of(self, "PhysPixWorld.get_camera_size", &cam, ret))
+        ret_vec2(ret, (pp_vec2){(float)cam.width, (float)cam.height});
+}
+
+static void world_schedule_erase(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_timed_edit e = {.time = a[0].as.real, .type = PP_EDIT_ERASE_CIRCLE, .center = a[1].as.vec2,
+                             .radius = (float)a[2].as.real};
+    ret_ok(ret, pp_world_schedule_edit(self->world, &e), "PhysPixWorld.schedule_erase");
+}
+
+static void world_get_scheduled_edit_count(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.get_scheduled_edit_count";
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    if (ret_ok(ret, pp_world_get_scheduled_edits(self->world, NULL, 0, &n), m) &&
+        reserve((void **)&c->edits, &c->edit_capacity, n, sizeof *c->edits, ret) &&
+        ret_ok(ret, pp_world_get_scheduled_edits(self->world, c->edits, n, &c->edit_count), m))
+        ret_int(ret, c->edit_count);
+}
+
+static const pp_timed_edit *edit_at(plugin_object *self, const pp_variant *a, const char *m, pp_variant *ret)
+{
+    return index_in(a, self->cache->edit_count, m, "scheduled edits", ret) ? &self->cache->edits[a->as.integer]
+                                                                            : NULL;
+}
+
+static void world_get_scheduled_edit_time(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_timed_edit *e = edit_at(self, &a[0], "PhysPixWorld.get_scheduled_edit_time", ret);
+    if (e)
+        ret_float(ret, e->time);
+}
+
+static void world_get_scheduled_edit_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_timed_edit *e = edit_at(self, &a[0], "PhysPixWorld.get_scheduled_edit_type", ret);
+    if (e)
+        ret_string(ret, e->type == PP_EDIT_PAINT_CIRCLE ? "paint" : "erase");
+}
+
+static void world_get_scheduled_edit_center(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_timed_edit *e = edit_at(self, &a[0], "PhysPixWorld.get_scheduled_edit_center", ret);
+    if (e)
+        ret_vec2(ret, e->center);
+}
+
+static void world_get_scheduled_edit_radius(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_timed_edit *e = edit_at(self, &a[0], "PhysPixWorld.get_scheduled_edit_radius", ret);
+    if (e)
+        ret_float(ret, e->radius);
+}
+
+/* The pair's sampled grid as cell flags (PP_CELL_*); the view and local normals stay for the get_debug_* calls. */
+static void world_debug_collision(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.debug_collision";
+    world_cache *c = self->cache;
+    pp_body ba, bb;
+    c->debug_view = (pp_collision_view){0};
+    if (!pair_of_world(self, a, m, &ba, &bb, ret))
+        return;
+    /* A first call with no room fills the view, which sizes the second. */
+    pp_collision_view v = {0};
+    pp_status st = pp_world_debug_collision(self->world, ba, bb, NULL, NULL, 0, &v);
+    const int64_t cells = (int64_t)v.width * v.height;
+    if (st != PP_OK && !(st == PP_ERR_INVALID_ARGUMENT && cells > 0)) {
+        ret_ok(ret, st, m);
+        return;
+    }
+    if (cells > c->debug_capacity) {
+        pp_vec2 *grown = realloc(c->debug_normals, (size_t)cells * sizeof *grown);
+        if (!grown) {
+            ret_error(ret, PP_ERR_OUT_OF_MEMORY, "%s: out of memory for %lld cells", m, (long long)cells);
+            return;
+        }
+        c->debug_normals = grown, c->debug_capacity = cells;
+    }
+    uint8_t *flags = ret_bytes(ret, cells);
+    if (!flags)
+        return;
+    if (!ret_ok(ret, pp_world_debug_collision(self->world, ba, bb, flags, c->debug_normals, cells, &v), m)) {
+        free(flags); /* ret now holds the error, not the bytes */
+        return;
+    }
+    c->debug_view = v;
+}
+
+static void world_get_debug_size(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_collision_view *v = &self->cache->debug_view;
+    ret_vec2(ret, (pp_vec2){(float)v->width, (float)v->height});
+}
+
+static void world_get_debug_origin(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->debug_view.origin);
+}
+
+static void world_get_debug_step_x(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->debug_view.step_x);
+}
+
+static void world_get_debug_step_y(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->debug_view.step_y);
+}
+
+static void world_get_debug_normal(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->debug_view.normal);
+}
+
+static void world_get_debug_local_normals(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_collision_view *v = &self->cache->debug_view;
+    const int64_t size = (int64_t)v->width * v->height * (int64_t)sizeof(pp_vec2);
+    uint8_t *out = ret_bytes(ret, size);
+    if (out && size > 0)
+        memcpy(out, self->cache->debug_normals, (size_t)size);
 }
 
 static const method_def world_methods[] = {
@@ -332,6 +513,45 @@ static const method_def world_methods[] = {
            "the list get_contact_* read",
            ARGS(BODY_ARG("a"), BODY_ARG("b"))),
     METHOD(world_get_step_ms, "get_step_ms", FLOAT, "wall time of the last step, milliseconds", .arg_count = 0),
+    METHOD(world_load_scene, "load_scene", NIL,
+           "replace this object's world by a JSON scene file's (PNG paths relative to it); the old bodies' "
+           "objects become stale",
+           ARGS(ARG("path", STRING))),
+    METHOD(world_get_time, "get_time", FLOAT, "simulated time since the world was made, s", .arg_count = 0),
+    METHOD(world_get_camera_center, "get_camera_center", VEC2, "world point at the image centre, px",
+           .arg_count = 0),
+    METHOD(world_get_camera_zoom, "get_camera_zoom", FLOAT, "image px per world px", .arg_count = 0),
+    METHOD(world_get_camera_size, "get_camera_size", VEC2, "image width and height, image px", .arg_count = 0),
+    METHOD(world_schedule_erase, "schedule_erase", NIL,
+           "erase every body's pixels within radius (px) of a world point (px) at a world time (s)",
+           ARGS(ARG("time", FLOAT), ARG("center", VEC2), ARG("radius", FLOAT))),
+    METHOD(world_get_scheduled_edit_count, "get_scheduled_edit_count", INT,
+           "read the edits still pending, in the order they apply; returns how many", .arg_count = 0),
+    METHOD(world_get_scheduled_edit_time, "get_scheduled_edit_time", FLOAT, "when an edit applies, world time, s",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_scheduled_edit_type, "get_scheduled_edit_type", STRING, "\"erase\" or \"paint\"",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_scheduled_edit_center, "get_scheduled_edit_center", VEC2, "an edit's circle centre, world px",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_scheduled_edit_radius, "get_scheduled_edit_radius", FLOAT, "an edit's circle radius, px",
+           ARGS(ARG("index", INT))),
+    METHOD(world_debug_collision, "debug_collision", BYTES,
+           "a pair's sampled grid, width*height bytes of flags (1 first body, 2 second, 4 critical), rows "
+           "along the grid's y; the get_debug_* calls describe it",
+           ARGS(BODY_ARG("a"), BODY_ARG("b"))),
+    METHOD(world_get_debug_size, "get_debug_size", VEC2, "the last debug grid's width and height, cells",
+           .arg_count = 0),
+    METHOD(world_get_debug_origin, "get_debug_origin", VEC2, "world position of the centre of cell (0, 0), px",
+           .arg_count = 0),
+    METHOD(world_get_debug_step_x, "get_debug_step_x", VEC2, "world offset from a cell to the next along x, px",
+           .arg_count = 0),
+    METHOD(world_get_debug_step_y, "get_debug_step_y", VEC2, "world offset from a cell to the next along y, px",
+           .arg_count = 0),
+    METHOD(world_get_debug_normal, "get_debug_normal", VEC2, "the pair's global normal from a to b; zero apart",
+           .arg_count = 0),
+    METHOD(world_get_debug_local_normals, "get_debug_local_normals", BYTES,
+           "each cell's local kernel normal as two native floats (x, y), world axes; zero off the critical cells",
+           .arg_count = 0),
 };
 
 /* ---- PhysPixBody ---- */
@@ -453,6 +673,40 @@ static void body_get_world(plugin_object *self, const pp_variant *a, pp_variant 
     ret_object(ret, self->world_object);
 }
 
+static void body_get_pivot(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 p;
+    if (ret_ok(ret, pp_body_get_pivot(self->world, self->body, &p), "PhysPixBody.get_pivot"))
+        ret_vec2(ret, p);
+}
+
+static void body_get_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    static const char *names[] = {"dynamic", "static", "kinematic"}; /* in pp_body_type order */
+    pp_body_type t;
+    if (ret_ok(ret, pp_body_get_type(self->world, self->body, &t), "PhysPixBody.get_type"))
+        ret_string(ret, (uint32_t)t < 3 ? names[t] : "unknown");
+}
+
+static void body_get_rgba(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixBody.get_rgba";
+    int32_t w, h;
+    if (!ret_ok(ret, pp_body_get_size(self->world, self->body, &w, &h), m))
+        return;
+    const int64_t size = (int64_t)w * h * 4;
+    uint8_t *rgba = ret_bytes(ret, size);
+    if (rgba && !ret_ok(ret, pp_body_read_rgba(self->world, self->body, rgba, size), m))
+        free(rgba); /* ret now holds the error, not the bytes */
+}
+
+static void body_get_user_data(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    uint64_t u;
+    if (ret_ok(ret, pp_body_get_user_data(self->world, self->body, &u), "PhysPixBody.get_user_data"))
+        ret_int(ret, (int64_t)u);
+}
+
 static const method_def body_methods[] = {
     METHOD(body_get_position, "get_position", VEC2, "world position of the pivot, px", .arg_count = 0),
     METHOD(body_get_angle, "get_angle", FLOAT, "rotation, radians", .arg_count = 0),
@@ -481,10 +735,17 @@ static const method_def body_methods[] = {
     METHOD(body_get_size, "get_size", VEC2, "bitmap width and height, px", .arg_count = 0),
     METHOD(body_get_world, "get_world", OBJECT, "the PhysPixWorld the body lives in", .arg_count = 0,
            .return_class = "PhysPixWorld"),
+    METHOD(body_get_pivot, "get_pivot", VEC2, "the pivot in bitmap coordinates, px", .arg_count = 0),
+    METHOD(body_get_type, "get_type", STRING, "\"dynamic\", \"static\" or \"kinematic\"", .arg_count = 0),
+    METHOD(body_get_rgba, "get_rgba", BYTES,
+           "the body's look, width*height*4 bytes RGBA8: its sprite where solid, transparent elsewhere",
+           .arg_count = 0),
+    METHOD(body_get_user_data, "get_user_data", INT, "the host's value from the body's def (a scene's user_data)",
+           .arg_count = 0),
 };
 
 const class_def plugin_classes[CLASS_COUNT] = {
-    [CLASS_WORLD] = {{.name = "PhysPixWorld", .base = "RefCounted", .doc = "a PhysPix world with default settings",
+    [CLASS_WORLD] = {{.name = "PhysPixWorld", .base = "RefCounted", .doc = "a PhysPix world: default settings, or a scene file's (load_scene)",
                       .instantiable = 1, .method_count = (int32_t)(sizeof world_methods / sizeof world_methods[0])},
                      OBJECT_WORLD, world_methods},
     [CLASS_BODY] = {{.name = "PhysPixBody", .base = "RefCounted",

@@ -137,6 +137,8 @@ static void world_cache_free(world_cache *c)
     free(c->events);
     free(c->bodies);
     free(c->body_objects);
+    free(c->edits);
+    free(c->debug_normals);
     free(c);
 }
 

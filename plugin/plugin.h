@@ -17,6 +17,11 @@ typedef struct world_cache {
     int32_t body_count, body_capacity;
     uint64_t *body_objects; /* body slot → the object wrapping it, so a body keeps one object id */
     int32_t body_object_capacity;
+    pp_timed_edit *edits; /* read by the last get_scheduled_edit_count */
+    int32_t edit_count, edit_capacity;
+    pp_collision_view debug_view; /* of the last debug_collision */
+    pp_vec2 *debug_normals;       /* its local normals, one per cell */
+    int64_t debug_capacity;
 } world_cache;
 
 /* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */

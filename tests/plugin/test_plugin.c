@@ -266,8 +266,11 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
 {
     uint64_t box, ground;
     const uint64_t world = make_scene(&box, &ground);
-    char png[PATH_MAX];
+    char png[PATH_MAX], scene[PATH_MAX];
     cr_assert(realpath("tests/plugin/crate16.png", png));
+    cr_assert(realpath("tests/plugin/scene.json", scene));
+    uint64_t scratch_box, scratch_ground;
+    const uint64_t scratch = make_scene(&scratch_box, &scratch_ground);
     const recipe world_recipes[] = {
         {"step", {V_FLOAT(1.0 / 60)}},
         {"add_body", {V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(20, 20), V_STR("static")}},
@@ -288,6 +291,24 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_event_other", {V_INT(0)}},
         {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
+        {"load_scene", {V_STR(scene)}}, /* on a scratch world: it replaces the world's bodies */
+        {"get_time", {{0}}},
+        {"get_camera_center", {{0}}},
+        {"get_camera_zoom", {{0}}},
+        {"get_camera_size", {{0}}},
+        {"schedule_erase", {V_FLOAT(10), V_VEC2(1000, 1000), V_FLOAT(3)}},
+        {"get_scheduled_edit_count", {{0}}},
+        {"get_scheduled_edit_time", {V_INT(0)}},
+        {"get_scheduled_edit_type", {V_INT(0)}},
+        {"get_scheduled_edit_center", {V_INT(0)}},
+        {"get_scheduled_edit_radius", {V_INT(0)}},
+        {"debug_collision", {V_OBJ(box), V_OBJ(ground)}},
+        {"get_debug_size", {{0}}},
+        {"get_debug_origin", {{0}}},
+        {"get_debug_step_x", {{0}}},
+        {"get_debug_step_y", {{0}}},
+        {"get_debug_normal", {{0}}},
+        {"get_debug_local_normals", {{0}}},
     };
     const recipe body_recipes[] = {
         {"get_position", {{0}}},
@@ -306,6 +327,10 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"read_mask", {{0}}},
         {"get_size", {{0}}},
         {"get_world", {{0}}},
+        {"get_pivot", {{0}}},
+        {"get_type", {{0}}},
+        {"get_rgba", {{0}}},
+        {"get_user_data", {{0}}},
     };
     const struct {
         const char *cls;
@@ -326,6 +351,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
             const int r = find_recipe(targets[t].recipes, targets[t].count, m->name);
             cr_assert(r >= 0, "%s.%s has no recipe", c->name, m->name);
             const pp_variant *right = targets[t].recipes[r].args;
+            const uint64_t object = strcmp(m->name, "load_scene") == 0 ? scratch : targets[t].object;
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
             for (int32_t i = 0; i < m->arg_count; i++) {
@@ -335,7 +361,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
                 char says[256];
                 snprintf(says, sizeof says, "%s.%s: argument %d (%s) must be %s", c->name, m->name, (int)i + 1,
                          m->args[i].name, host_type_name(m->args[i].type));
-                pp_variant ret = call(targets[t].object, m->name, args, m->arg_count);
+                pp_variant ret = call(object, m->name, args, m->arg_count);
                 expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
                 calls++;
             }
@@ -343,11 +369,11 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
             pp_variant extra[6];
             memcpy(extra, right, sizeof(pp_variant) * 5);
             extra[m->arg_count] = V_INT(1);
-            pp_variant ret = call(targets[t].object, m->name, extra, m->arg_count + 1);
+            pp_variant ret = call(object, m->name, extra, m->arg_count + 1);
             expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "takes");
 
             /* The right arguments: the declared result type (an OBJECT result may be nil: no such body). */
-            ret = call(targets[t].object, m->name, right, m->arg_count);
+            ret = call(object, m->name, right, m->arg_count);
             cr_assert(ret.type == m->return_type || (m->return_type == PP_VARIANT_OBJECT && ret.type == PP_VARIANT_NIL),
                       "%s.%s returned type %d (%s), declared %d", c->name, m->name, ret.type,
                       ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "", m->return_type);
@@ -466,4 +492,80 @@ Test(methods, misuse_of_objects_and_levels_gets_a_status_and_a_message)
     cr_assert_eq(plugin.api.initialize(PP_PLUGIN_LEVEL_SCENE), PP_OK);
     ret = call(box, "get_mass", NULL, 0);
     expect_error(&ret, PP_ERR_INVALID_HANDLE, "stale");
+}
+
+/* The body of a loaded scene whose user_data is `tag`. */
+static uint64_t body_tagged(uint64_t world, int64_t tag)
+{
+    const int64_t n = call(world, "get_body_count", NULL, 0).as.integer;
+    for (int64_t i = 0; i < n; i++) {
+        const uint64_t b = ok_object(call(world, "get_body", (pp_variant[]){V_INT(i)}, 1));
+        if (call(b, "get_user_data", NULL, 0).as.integer == tag)
+            return b;
+    }
+    cr_assert_fail("no body with user_data %lld", (long long)tag);
+    return 0;
+}
+
+Test(methods, a_scene_loads_through_the_plugin_with_its_camera_edits_sprites_and_debug_view)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    char scene[PATH_MAX];
+    cr_assert(realpath("tests/plugin/scene.json", scene));
+    pp_variant ret = call(world, "load_scene", (pp_variant[]){V_STR("/nonexistent/scene.json")}, 1);
+    expect_error(&ret, PP_ERR_IO, "PhysPixWorld.load_scene");
+    cr_assert_eq(call(box, "get_mass", NULL, 0).type, PP_VARIANT_FLOAT, "a failed load leaves the world as it was");
+    ret = call(world, "load_scene", (pp_variant[]){V_STR(scene)}, 1);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    ret = call(box, "get_mass", NULL, 0);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "stale");
+
+    cr_assert_eq(call(world, "get_body_count", NULL, 0).as.integer, 2);
+    const uint64_t floor_ = body_tagged(world, 7), crate = body_tagged(world, 8);
+    pp_variant type = call(floor_, "get_type", NULL, 0);
+    cr_assert_str_eq(type.as.string.data, "static");
+    plugin.api.variant_clear(&type);
+    const pp_vec2 pivot = call(crate, "get_pivot", NULL, 0).as.vec2, centre = call(world, "get_camera_center", NULL, 0).as.vec2;
+    const pp_vec2 size = call(world, "get_camera_size", NULL, 0).as.vec2;
+    cr_assert(pivot.x == 8 && pivot.y == 8, "pivot (%g, %g): the bitmap centre", pivot.x, pivot.y);
+    cr_assert(centre.x == 100 && centre.y == 60 && size.x == 400 && size.y == 240);
+    cr_assert_eq(call(world, "get_camera_zoom", NULL, 0).as.real, 2);
+
+    pp_variant rgba = call(crate, "get_rgba", NULL, 0);
+    cr_assert_eq(rgba.as.bytes.length, 16 * 16 * 4);
+    cr_assert_eq(rgba.as.bytes.data[3], 255, "the opaque crate's sprite");
+    plugin.api.variant_clear(&rgba);
+
+    /* The crate overlaps the ground by 1 px: the debug grid holds both bodies, an intersection of critical
+     * cells, and the global normal is collide's. */
+    pp_variant cells = call(world, "debug_collision", (pp_variant[]){V_OBJ(crate), V_OBJ(floor_)}, 2);
+    cr_assert_eq(cells.type, PP_VARIANT_BYTES, "%s", cells.type == PP_VARIANT_ERROR ? cells.as.error.message : "");
+    const pp_vec2 grid = call(world, "get_debug_size", NULL, 0).as.vec2;
+    cr_assert_eq(cells.as.bytes.length, (int64_t)grid.x * (int64_t)grid.y);
+    int64_t both = 0, critical = 0;
+    for (int64_t i = 0; i < cells.as.bytes.length; i++) {
+        both += (cells.as.bytes.data[i] & (PP_CELL_A | PP_CELL_B)) == (PP_CELL_A | PP_CELL_B);
+        critical += (cells.as.bytes.data[i] & PP_CELL_CRITICAL) != 0;
+    }
+    plugin.api.variant_clear(&cells);
+    cr_assert(both >= 16 && critical > 0 && critical <= both, "%lld intersection cells, %lld critical", (long long)both,
+              (long long)critical);
+    const pp_vec2 n = call(world, "get_debug_normal", NULL, 0).as.vec2;
+    cr_assert(fabs(n.x) < 1e-3 && fabs(n.y - 1) < 1e-3, "normal (%g, %g)", n.x, n.y);
+    pp_variant normals = call(world, "get_debug_local_normals", NULL, 0);
+    cr_assert_eq(normals.as.bytes.length, (int64_t)grid.x * (int64_t)grid.y * 8, "two floats a cell");
+    plugin.api.variant_clear(&normals);
+
+    /* The scene's erase is pending until its time; then the crate falls into the crater. */
+    cr_assert_eq(call(world, "get_scheduled_edit_count", NULL, 0).as.integer, 1);
+    cr_assert_eq(call(world, "get_scheduled_edit_time", (pp_variant[]){V_INT(0)}, 1).as.real, 0.5);
+    cr_assert_eq(call(world, "get_scheduled_edit_radius", (pp_variant[]){V_INT(0)}, 1).as.real, 20);
+    const double y0 = call(crate, "get_position", NULL, 0).as.vec2.y;
+    for (int i = 0; i < 60; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    cr_assert(fabs(call(world, "get_time", NULL, 0).as.real - 60 * (double)(float)(1.0 / 60)) < 1e-9,
+              "the sum of the steps' dt, s");
+    cr_assert_eq(call(world, "get_scheduled_edit_count", NULL, 0).as.integer, 0, "the edit applied");
+    cr_assert(call(crate, "get_position", NULL, 0).as.vec2.y - y0 > 5, "the crate fell into the crater");
 }
