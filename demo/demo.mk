@@ -3,8 +3,8 @@
 # `make demo-sprites` redraws the sprites in demo/ (they are committed, so `make demo` never needs it).
 DEMO_BIN     := $(BUILD)/demo/demo
 DEMO_SPRITES := $(BUILD)/demo/make_sprites
-DEMO_SRC     := demo/demo.c demo/render.c demo/plugin_host.c
-DEMO_HDR     := demo/render.h demo/plugin_host.h include/physpix.h include/physpix_plugin.h
+DEMO_SRC     := demo/demo.c demo/render.c demo/debug_view.c demo/plugin_host.c
+DEMO_HDR     := demo/render.h demo/debug_view.h demo/plugin_host.h include/physpix.h include/physpix_plugin.h
 # The short run test-demo makes; tests/demo/test_demo.c reads the same figures from the environment.
 TEST_DEMO_SECONDS := 1
 TEST_DEMO_EVERY   := 10
@@ -30,9 +30,11 @@ demo: deps
 	cp $(BUILD)/demo/contact_sheet.png demo/contact_sheet.png
 	$(BUILD)/demo/host plugin/physpix.plugin
 
-# Criterion, with ASan+UBSan; render.c gives the test the sky colour a frame is drawn on.
-$(BUILD)/tests/test_demo: tests/demo/test_demo.c demo/render.c demo/render.h $(SHARED) | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/demo/test_demo.c demo/render.c -L$(BUILD) -lphyspix \
+# Criterion, with ASan+UBSan; the renderer gives the test the sky and the debug view's cell colours.
+$(BUILD)/tests/test_demo: tests/demo/test_demo.c demo/render.c demo/render.h demo/debug_view.c demo/debug_view.h \
+  $(SHARED) | $(BUILD)/tests
+	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/demo/test_demo.c demo/render.c demo/debug_view.c \
+	  -L$(BUILD) -lphyspix \
 	  -Wl,-rpath,'$$ORIGIN/..' -lcriterion -lm
 
 test-demo: export PP_DEMO_OUT := $(TEST_DEMO_OUT)
