@@ -98,19 +98,6 @@ static pp_status parse_edit(const json_ctx *c, const cJSON *obj, const char *whe
     return PP_OK;
 }
 
-/* The inverse of parse_edit, given the name of the edit's body (NULL: every body); an erase has no weight. */
-__attribute__((unused)) static cJSON *edit_to_json(const pp_timed_edit *e, const char *body_name)
-{
-    cJSON *obj = fields_to_json(edit_fields, e);
-    if (obj && e->type != PP_EDIT_PAINT_CIRCLE)
-        cJSON_DeleteItemFromObjectCaseSensitive(obj, "weight");
-    if (obj && body_name && !cJSON_AddStringToObject(obj, "body", body_name)) {
-        cJSON_Delete(obj);
-        return NULL;
-    }
-    return obj;
-}
-
 static pp_status parse_edits(const json_ctx *c, const cJSON *arr, pp_world w, const body_names *bn)
 {
     int32_t i = 0;

@@ -443,6 +443,15 @@ cJSON *body_settings_to_json(const pp_body_def *d)
     return obj;
 }
 
+/* A timed edit's fields, without a weight when it erases; the caller adds its body. */
+cJSON *edit_to_json(const pp_timed_edit *e)
+{
+    cJSON *obj = fields_to_json(edit_fields, e);
+    if (obj && e->type != PP_EDIT_PAINT_CIRCLE)
+        cJSON_DeleteItemFromObjectCaseSensitive(obj, "weight");
+    return obj;
+}
+
 
 void bitmap_free(bitmap *b)
 {

@@ -1,0 +1,593 @@
+/* Snapshots: a world's whole state in a folder, world.json plus PNG planes, written under a temporary
+ * name and swapped in by rename, so a crash never leaves half a snapshot. Everything is saved exactly
+ * (doubles printed to read back bit for bit, ODE's state as it was set, the slot tables and the bodies'
+ * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
+#define _GNU_SOURCE /* renameat2 */
+#include "scene_json.h"
+#include "status.h"
+#include "world.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define SNAPSHOT_FORMAT "physpix-snapshot"
+#define SNAPSHOT_VERSION 1
+
+static const char *const event_names[] = {"", "split", "destroyed", NULL};
+
+/* ---- writing ------------------------------------------------------------------------------------ */
+
+static bool add(cJSON *obj, const char *key, cJSON *item)
+{
+    if (!item || !cJSON_AddItemToObject(obj, key, item)) {
+        cJSON_Delete(item);
+        return false;
+    }
+    return true;
+}
+
+static cJSON *json_doubles(const double *v, int n)
+{
+    cJSON *arr = cJSON_CreateArray();
+    for (int i = 0; arr && i < n; i++) {
+        cJSON *x = json_number(v[i], false);
+        if (!x || !cJSON_AddItemToArray(arr, x)) {
+            cJSON_Delete(x);
+            cJSON_Delete(arr);
+            return NULL;
+        }
+    }
+    return arr;
+}
+
+/* Handles as hex text: 64-bit ids do not fit a JSON number exactly. */
+static cJSON *json_handle(uint64_t id)
+{
+    char text[24];
+    snprintf(text, sizeof text, "0x%016" PRIx64, id);
+    return cJSON_CreateString(text);
+}
+
+/* One body's planes as PNG files: mask (opaque white where solid), weights (gray), sprite. */
+static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
+{
+    const pp_raster *r = &bd->raster;
+    const size_t n = (size_t)r->width * (size_t)r->height;
+    uint8_t *rgba = malloc(n * 4);
+    if (!rgba)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory for a %d × %d body", (int)r->width,
+                       (int)r->height);
+    pp_status st = PP_OK;
+    char path[PATH_MAX + 64], name[48];
+    for (int plane = 0; plane < 3 && st == PP_OK; plane++) {
+        static const char *const kinds[] = {"mask", "weights", "sprite"};
+        if ((plane == 1 && !r->weights) || (plane == 2 && !bd->sprite))
+            continue;
+        for (int32_t y = 0; y < r->height; y++)
+            for (int32_t x = 0; x < r->width; x++) {
+                uint8_t *p = rgba + 4 * ((size_t)y * r->width + x);
+                const uint8_t v = plane == 0 ? (raster_solid(r, x, y) ? 255 : 0) : (uint8_t)raster_weight(r, x, y);
+                p[0] = p[1] = p[2] = v;
+                p[3] = plane == 0 ? v : 255;
+            }
+        snprintf(name, sizeof name, "body%u_%s.png", (unsigned)bd->index, kinds[plane]);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        st = pp_image_save(path, plane == 2 ? bd->sprite : rgba, r->width, r->height);
+        if (st == PP_OK && !add(obj, kinds[plane], cJSON_CreateString(name)))
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
+    }
+    free(rgba);
+    return st;
+}
+
+/* A body: its settings as a scene writes them, its planes, and its exact state. */
+static pp_status write_body(const char *dir, const body *bd, cJSON *arr)
+{
+    pp_body_def d = pp_body_def_default();
+    d.type = bd->type;
+    d.position = (pp_vec2){(float)bd->pos.x, (float)bd->pos.y};
+    d.angle = (float)bd->angle;
+    d.custom_pivot = 1;
+    d.pivot = (pp_vec2){(float)bd->pivot.x, (float)bd->pivot.y};
+    d.density = (float)bd->density, d.friction = (float)bd->friction, d.restitution = (float)bd->restitution;
+    d.linear_damping = (float)bd->linear_damping, d.angular_damping = (float)bd->angular_damping;
+    d.category_bits = bd->category_bits, d.mask_bits = bd->mask_bits;
+    d.fixed_rotation = bd->fixed_rotation, d.detach_islands = bd->detach_islands;
+    cJSON *obj = body_settings_to_json(&d);
+    if (!obj || !cJSON_AddItemToArray(arr, obj)) {
+        cJSON_Delete(obj);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
+    }
+    cJSON *state = cJSON_CreateObject();
+    const double pose[5] = {bd->pos.x, bd->pos.y, bd->angle, bd->pivot.x, bd->pivot.y};
+    bool ok = add(obj, "handle", json_handle(bd->handle.id)) && add(obj, "serial", json_number((double)bd->serial, false)) &&
+              add(obj, "state", state) && add(state, "pose", json_doubles(pose, 5)) &&
+              add(state, "user_data", json_handle(bd->user_data)) && add(state, "slow_time", json_number(bd->slow_time, false));
+    if (ok && bd->sb.body) {
+        solver_exact_state s;
+        solver_body_save(&bd->sb, &s);
+        const double ode[6] = {s.px, s.py, s.rotation_angle, s.vx, s.vy, s.wz};
+        ok = add(state, "ode", json_doubles(ode, 6)) && add(state, "awake", cJSON_CreateBool(s.enabled));
+    }
+    if (!ok)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
+    return write_planes(dir, bd, obj);
+}
+
+static int by_serial(const void *a, const void *b)
+{
+    const uint64_t x = (*(const body *const *)a)->serial, y = (*(const body *const *)b)->serial;
+    return (x > y) - (x < y);
+}
+
+/* The slot tables, so handles and future slots come out as they would have. */
+static bool write_slots(const world *wd, cJSON *root)
+{
+    cJSON *gens = cJSON_CreateArray(), *free_slots = cJSON_CreateArray();
+    bool ok = gens && free_slots;
+    for (int32_t i = 0; ok && i < wd->body_capacity; i++)
+        ok = cJSON_AddItemToArray(gens, json_number(wd->generations[i], false));
+    for (int32_t i = 0; ok && i < wd->free_count; i++)
+        ok = cJSON_AddItemToArray(free_slots, json_number(wd->free_slots[i], false));
+    if (!ok) {
+        cJSON_Delete(gens);
+        cJSON_Delete(free_slots);
+        return false;
+    }
+    return add(root, "generations", gens) && add(root, "free_slots", free_slots);
+}
+
+static bool write_edits_and_events(const world *wd, cJSON *root)
+{
+    cJSON *edits = cJSON_CreateArray(), *events = cJSON_CreateArray();
+    bool ok = edits && events;
+    for (int32_t i = 0; ok && i < wd->edit_count; i++) {
+        cJSON *e = edit_to_json(&wd->edits[i]);
+        ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
+    }
+    for (int32_t i = 0; ok && i < wd->event_count; i++) {
+        const pp_event *ev = &wd->events[i];
+        cJSON *e = cJSON_CreateObject();
+        ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
+             add(e, "body", json_handle(ev->body.id)) && add(e, "other", json_handle(ev->other.id));
+    }
+    if (!ok || !add(root, "edits", edits)) {
+        cJSON_Delete(events);
+        return false;
+    }
+    return add(root, "events", events);
+}
+
+/* world.json's top level, then every body in creation order. */
+static pp_status write_world(const char *dir, const world *wd, cJSON *root)
+{
+    static const char *fn = "pp_world_save_snapshot";
+    bool ok = add(root, "format", cJSON_CreateString(SNAPSHOT_FORMAT)) &&
+              add(root, "version", json_number(SNAPSHOT_VERSION, false)) &&
+              add(root, "world", world_def_to_json(&wd->def)) && add(root, "camera", camera_to_json(&wd->camera)) &&
+              add(root, "time", json_number(wd->time, false)) &&
+              add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
+              add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
+              write_edits_and_events(wd, root);
+    cJSON *arr = cJSON_CreateArray();
+    body **live = malloc(((size_t)wd->live_count + 1) * sizeof *live);
+    if (!ok || !live || !add(root, "bodies", arr)) {
+        free(live);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    }
+    int32_t n = 0;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i])
+            live[n++] = wd->bodies[i];
+    qsort(live, (size_t)n, sizeof *live, by_serial);
+    pp_status st = PP_OK;
+    for (int32_t i = 0; i < n && st == PP_OK; i++)
+        st = write_body(dir, live[i], arr);
+    free(live);
+    return st;
+}
+
+static pp_status write_text(const char *fn, const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return pp_fail(PP_ERR_IO, "%s: cannot create '%s': %s", fn, path, strerror(errno));
+    const bool ok = fputs(text, f) >= 0;
+    if (fclose(f) != 0 || !ok)
+        return pp_fail(PP_ERR_IO, "%s: cannot write '%s' (disk full?)", fn, path);
+    return PP_OK;
+}
+
+/* Apply fn to every plain entry of dir (not . and ..); false as soon as one fails. */
+static bool each_file(const char *dir, bool (*fn)(const char *path))
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return false;
+    bool ok = true;
+    char path[PATH_MAX];
+    for (struct dirent *e; ok && (e = readdir(d));) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        ok = fn(path);
+    }
+    closedir(d);
+    return ok;
+}
+
+static bool sync_path(const char *path)
+{
+    const int fd = open(path, O_RDONLY);
+    const bool ok = fd >= 0 && fsync(fd) == 0;
+    if (fd >= 0)
+        close(fd);
+    return ok;
+}
+
+static bool unlink_path(const char *path) { return unlink(path) == 0; }
+
+/* Remove a snapshot folder: its files, then itself. */
+static void remove_folder(const char *dir)
+{
+    each_file(dir, unlink_path);
+    rmdir(dir);
+}
+
+/* Put the finished folder in place: rename, or swap with an older snapshot and remove that. */
+static pp_status publish(const char *fn, const char *tmp, const char *folder)
+{
+    if (!each_file(tmp, sync_path) || !sync_path(tmp))
+        return pp_fail(PP_ERR_IO, "%s: cannot flush '%s' to disk: %s", fn, tmp, strerror(errno));
+    if (rename(tmp, folder) == 0)
+        return PP_OK;
+    if (errno != EEXIST && errno != ENOTEMPTY)
+        return pp_fail(PP_ERR_IO, "%s: cannot rename '%s' to '%s': %s", fn, tmp, folder, strerror(errno));
+    char old_json[PATH_MAX + 16];
+    snprintf(old_json, sizeof old_json, "%s/world.json", folder);
+    if (access(old_json, F_OK) != 0)
+        return pp_fail(PP_ERR_IO, "%s: '%s' exists and is not a snapshot; refusing to replace it", fn, folder);
+    if (renameat2(AT_FDCWD, tmp, AT_FDCWD, folder, RENAME_EXCHANGE) != 0)
+        return pp_fail(PP_ERR_IO, "%s: cannot replace '%s': %s", fn, folder, strerror(errno));
+    remove_folder(tmp); /* now the old snapshot */
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
+{
+    static const char *fn = "pp_world_save_snapshot";
+    world *wd = world_lookup(w, fn);
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!folder || !folder[0])
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder is NULL or empty", fn);
+    char dest[PATH_MAX], tmp[PATH_MAX + 16], path[PATH_MAX + 32];
+    if (snprintf(dest, sizeof dest, "%s", folder) >= (int)sizeof dest)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder path is too long", fn);
+    for (size_t n = strlen(dest); n > 1 && dest[n - 1] == '/'; n--)
+        dest[n - 1] = '\0';
+    snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", dest);
+    if (!mkdtemp(tmp))
+        return pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
+    cJSON *root = cJSON_CreateObject();
+    pp_status st = root ? write_world(tmp, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    char *text = st == PP_OK ? cJSON_Print(root) : NULL;
+    if (st == PP_OK && !text)
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to print world.json", fn);
+    snprintf(path, sizeof path, "%s/world.json", tmp);
+    if (st == PP_OK)
+        st = write_text(fn, path, text);
+    if (st == PP_OK)
+        st = publish(fn, tmp, dest);
+    if (st)
+        remove_folder(tmp);
+    free(text);
+    cJSON_Delete(root);
+    return st;
+}
+
+/* ---- reading ------------------------------------------------------------------------------------ */
+
+/* Exactly n finite doubles. */
+static pp_status read_doubles(const json_ctx *c, const cJSON *obj, const char *where, const char *key, double *out,
+                              int n)
+{
+    const cJSON *it = cJSON_GetObjectItemCaseSensitive(obj, key);
+    bool ok = cJSON_IsArray(it) && cJSON_GetArraySize(it) == n;
+    for (int i = 0; ok && i < n; i++) {
+        const cJSON *x = cJSON_GetArrayItem(it, i);
+        ok = cJSON_IsNumber(x) && isfinite(x->valuedouble);
+        out[i] = ok ? x->valuedouble : 0;
+    }
+    return ok ? PP_OK : json_fail(c, PP_ERR_FORMAT, where, key, "expected %d finite numbers", n);
+}
+
+/* A "0x…" handle; required unless optional, where absent gives 0. */
+static pp_status read_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key, bool optional,
+                             uint64_t *out)
+{
+    const cJSON *it = cJSON_GetObjectItemCaseSensitive(obj, key);
+    *out = 0;
+    if (!it && optional)
+        return PP_OK;
+    char *end = NULL;
+    if (cJSON_IsString(it) && strncmp(it->valuestring, "0x", 2) == 0) {
+        errno = 0;
+        *out = strtoull(it->valuestring + 2, &end, 16);
+    }
+    if (!end || *end || end == it->valuestring + 2 || errno)
+        return json_fail(c, PP_ERR_FORMAT, where, key, "expected a handle, \"0x\" and hex digits");
+    return PP_OK;
+}
+
+static pp_status read_required_int(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                   int64_t lo, int64_t hi, int64_t *out)
+{
+    if (!cJSON_GetObjectItemCaseSensitive(obj, key))
+        return json_fail(c, PP_ERR_FORMAT, where, key, "missing");
+    return read_int(c, obj, where, key, lo, hi, out);
+}
+
+/* An array of integers in lo..hi, allocated; *n receives the count. */
+static pp_status read_int_array(const json_ctx *c, const cJSON *obj, const char *key, int64_t lo, int64_t hi,
+                                uint32_t **out, int32_t *n)
+{
+    const cJSON *arr = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) > PP_MAX_BODIES)
+        return json_fail(c, PP_ERR_FORMAT, "", key, "expected an array of at most %d integers", PP_MAX_BODIES);
+    *n = cJSON_GetArraySize(arr);
+    *out = calloc((size_t)*n + 1, sizeof **out);
+    if (!*out)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", c->fn);
+    int32_t i = 0;
+    for (const cJSON *x = arr->child; x; x = x->next, i++) {
+        const double v = cJSON_IsNumber(x) ? x->valuedouble : -1;
+        if (!(v >= (double)lo && v <= (double)hi) || v != (double)(int64_t)v)
+            return json_fail(c, PP_ERR_FORMAT, key, "", "[%d]: expected an integer in %lld..%lld", (int)i,
+                             (long long)lo, (long long)hi);
+        (*out)[i] = (uint32_t)v;
+    }
+    return PP_OK;
+}
+
+/* The slot tables as saved, with no body in them yet. */
+static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
+{
+    uint32_t *gens = NULL;
+    int32_t n = 0;
+    pp_status st = read_int_array(c, root, "generations", 1, UINT32_MAX, &gens, &n);
+    if (st) {
+        free(gens);
+        return st;
+    }
+    body **bodies = calloc((size_t)n + 1, sizeof *bodies);
+    uint32_t *free_slots = calloc((size_t)n + 1, sizeof *free_slots);
+    if (!bodies || !free_slots) {
+        free(gens), free(bodies), free(free_slots);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)n);
+    }
+    wd->bodies = bodies, wd->generations = gens, wd->free_slots = free_slots;
+    wd->body_capacity = n, wd->free_count = 0;
+    return PP_OK;
+}
+
+/* The free list as saved: slots that exist, hold no body, once each. */
+static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *wd)
+{
+    uint32_t *list = NULL;
+    int32_t n = 0;
+    pp_status st = read_int_array(c, root, "free_slots", 0, wd->body_capacity - 1, &list, &n);
+    for (int32_t i = 0; st == PP_OK && i < n; i++) {
+        bool twice = false;
+        for (int32_t k = 0; k < i && !twice; k++)
+            twice = list[k] == list[i];
+        if (twice || wd->bodies[list[i]])
+            st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "[%d]: slot %u is %s", (int)i, (unsigned)list[i],
+                           twice ? "listed twice" : "in use");
+    }
+    if (st == PP_OK && n > 0)
+        memcpy(wd->free_slots, list, (size_t)n * sizeof *list);
+    if (st == PP_OK)
+        wd->free_count = n;
+    free(list);
+    return st;
+}
+
+static const char *const body_snapshot_keys[] = {"handle", "serial", "sprite", "mask", "weights", "state", NULL};
+static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode", "awake", NULL};
+
+/* The exact state over a body made from its settings and planes. */
+static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, body *bd)
+{
+    const cJSON *state;
+    char at[48];
+    snprintf(at, sizeof at, "%s.state", where);
+    pp_status st = read_section(c, obj, where, "state", false, &state);
+    if (!st && !state)
+        st = json_fail(c, PP_ERR_FORMAT, where, "state", "missing");
+    if (st || (st = check_keys(c, state, at, NULL, state_keys)))
+        return st;
+    double pose[5], ode[6];
+    uint64_t user = 0;
+    uint32_t awake = 1;
+    if ((st = read_doubles(c, state, at, "pose", pose, 5)) || (st = read_handle(c, state, at, "user_data", false, &user)) ||
+        (st = read_double(c, state, at, "slow_time", NUM_NONNEG, &bd->slow_time)) ||
+        (bd->sb.body && ((st = read_doubles(c, state, at, "ode", ode, 6)) || (st = read_bool(c, state, at, "awake", &awake)))))
+        return st;
+    bd->pos = dv(pose[0], pose[1]);
+    bd->angle = pose[2], bd->cos_a = cos(pose[2]), bd->sin_a = sin(pose[2]);
+    bd->pivot = dv(pose[3], pose[4]);
+    bd->user_data = user;
+    body_update_pose_cache(bd);
+    if (bd->sb.body) {
+        const solver_exact_state s = {ode[0], ode[1], ode[2], ode[3], ode[4], ode[5], awake != 0};
+        solver_body_restore(&bd->sb, &s);
+    }
+    return PP_OK;
+}
+
+/* One body into the slot its handle names; bodies come in creation order, so ODE's list is rebuilt. */
+static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *where, world *wd, uint64_t *serial)
+{
+    if (!cJSON_IsObject(obj))
+        return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
+    pp_body_def d = pp_body_def_default();
+    uint64_t id = 0;
+    int64_t ser = 0;
+    bitmap bm = {0};
+    pp_status st = check_keys(c, obj, where, body_fields, body_snapshot_keys);
+    if (st || (st = parse_body_settings(c, obj, where, &d)) || (st = read_handle(c, obj, where, "handle", false, &id)) ||
+        (st = read_required_int(c, obj, where, "serial", (int64_t)*serial, JSON_MAX_EXACT_INT, &ser)))
+        return st;
+    const uint32_t slot = (uint32_t)(id & 0xffffffffu) - 1, gen = (uint32_t)(id >> 32);
+    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || wd->bodies[slot])
+        return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free slot of that generation");
+    if ((st = parse_bitmap(c, obj, where, &bm)))
+        return st;
+    d.width = bm.width, d.height = bm.height, d.rgba = bm.rgba, d.mask = bm.mask, d.weights = bm.weights;
+    wd->free_slots[wd->free_count++] = slot; /* pp_body_create takes the slot on top of the free list */
+    pp_body h;
+    st = pp_body_create(wd->handle, &d, &h);
+    bitmap_free(&bm);
+    if (st) {
+        wd->free_count--;
+        return json_fail_from_last(c, st, where, NULL);
+    }
+    body *bd = wd->bodies[slot];
+    bd->serial = (uint64_t)ser;
+    *serial = (uint64_t)ser + 1;
+    return restore_state(c, obj, where, bd);
+}
+
+static pp_status restore_bodies(const json_ctx *c, const cJSON *root, world *wd)
+{
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "bodies", true, &arr);
+    uint64_t serial = 0;
+    int32_t i = 0;
+    char where[32];
+    for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "bodies[%d]", (int)i);
+        st = restore_body(c, it, where, wd, &serial);
+    }
+    return st;
+}
+
+static pp_status restore_edits(const json_ctx *c, const cJSON *root, world *wd)
+{
+    static const char *const extra[] = {"body", NULL};
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "edits", true, &arr);
+    int32_t i = 0;
+    char where[32];
+    for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "edits[%d]", (int)i);
+        pp_timed_edit e = {0};
+        if (!(st = check_keys(c, it, where, edit_fields, extra)) && !(st = read_fields(c, it, where, edit_fields, &e)) &&
+            !(st = read_handle(c, it, where, "body", true, &e.body.id)) &&
+            (st = pp_world_schedule_edit(wd->handle, &e)))
+            st = json_fail_from_last(c, st, where, NULL);
+    }
+    return st;
+}
+
+static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
+{
+    static const char *const keys[] = {"type", "body", "other", NULL};
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "events", true, &arr);
+    int32_t i = 0;
+    char where[32];
+    for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "events[%d]", (int)i);
+        int32_t type = 0;
+        pp_body b = {0}, o = {0};
+        if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
+            !(st = read_handle(c, it, where, "body", false, &b.id)) && !(st = read_handle(c, it, where, "other", false, &o.id)))
+            st = type ? world_push_event(wd, (pp_event_type)type, b, o)
+                      : json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
+    }
+    return st;
+}
+
+/* The world's own state: settings, camera, clock, solver steps, slots, bodies, edits, events. */
+static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
+{
+    world *wd = world_lookup(w, c->fn);
+    pp_camera cam = wd->camera;
+    int64_t steps = 0, serial = 0;
+    const cJSON *cobj;
+    pp_status st = read_section(c, root, "", "camera", false, &cobj);
+    if (st || (cobj && (st = parse_camera(c, cobj, "camera", &cam))))
+        return st;
+    if ((st = pp_world_set_camera(w, &cam)))
+        return json_fail_from_last(c, st, "camera", NULL);
+    if ((st = read_double(c, root, "", "time", NUM_NONNEG, &wd->time)) ||
+        (st = read_required_int(c, root, "", "solver_steps", 0, JSON_MAX_EXACT_INT, &steps)) ||
+        (st = read_required_int(c, root, "", "next_serial", 0, JSON_MAX_EXACT_INT, &serial)) ||
+        (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = restore_free_list(c, root, wd)) ||
+        (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)))
+        return st;
+    solver_set_steps(wd->solver, (uint64_t)steps);
+    wd->next_serial = (uint64_t)serial;
+    return PP_OK;
+}
+
+static pp_status build_snapshot(const json_ctx *c, const cJSON *root, pp_world *out)
+{
+    static const char *const top_keys[] = {"format", "version", "world", "camera", "time", "solver_steps", "next_serial",
+                                           "generations", "free_slots", "edits", "events", "bodies", NULL};
+    if (!cJSON_IsObject(root))
+        return json_fail(c, PP_ERR_FORMAT, "(root)", NULL, "expected an object");
+    const char *format = NULL;
+    int64_t version = 0;
+    const cJSON *wobj;
+    pp_status st = check_keys(c, root, "", NULL, top_keys);
+    if (st || (st = read_string(c, root, "", "format", &format)) ||
+        (st = read_required_int(c, root, "", "version", 0, INT32_MAX, &version)) ||
+        (st = read_section(c, root, "", "world", false, &wobj)))
+        return st;
+    if (!format || strcmp(format, SNAPSHOT_FORMAT) != 0)
+        return json_fail(c, PP_ERR_FORMAT, "", "format", "expected \"%s\"", SNAPSHOT_FORMAT);
+    if (version != SNAPSHOT_VERSION)
+        return json_fail(c, PP_ERR_UNSUPPORTED, "", "version", "%lld; this library reads version %d",
+                         (long long)version, SNAPSHOT_VERSION);
+    pp_world_def d = pp_world_def_default();
+    if (wobj && (st = parse_world_def(c, wobj, "world", &d)))
+        return st;
+    pp_world w;
+    if ((st = pp_world_create(&d, &w)))
+        return json_fail_from_last(c, st, "world", NULL);
+    if ((st = restore_world(c, root, w))) {
+        pp_world_destroy(w);
+        return st;
+    }
+    *out = w;
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out)
+{
+    if (!folder || !out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_load_snapshot: %s is NULL", folder ? "out" : "folder");
+    char file[PATH_MAX];
+    if (snprintf(file, sizeof file, "%s/world.json", folder) >= (int)sizeof file)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_load_snapshot: folder path is too long");
+    const json_ctx c = {"pp_world_load_snapshot", file, strlen(folder) + 1};
+    cJSON *root = NULL;
+    pp_status st = parse_json(&c, &root);
+    if (st)
+        return st;
+    st = build_snapshot(&c, root, out);
+    cJSON_Delete(root);
+    return st;
+}
