@@ -65,6 +65,19 @@ int main(void)
     F(pp_step_stats, reserved);
     end();
 
+    S(pp_camera); F(pp_camera, center); F(pp_camera, zoom); F(pp_camera, width); F(pp_camera, height); end();
+
+    S(pp_timed_edit);
+    F(pp_timed_edit, time); F(pp_timed_edit, type); F(pp_timed_edit, weight); F(pp_timed_edit, body);
+    F(pp_timed_edit, center); F(pp_timed_edit, radius); F(pp_timed_edit, reserved);
+    end();
+
+    S(pp_collision_view);
+    F(pp_collision_view, width); F(pp_collision_view, height); F(pp_collision_view, origin);
+    F(pp_collision_view, step_x); F(pp_collision_view, step_y); F(pp_collision_view, normal);
+    F(pp_collision_view, intersection); F(pp_collision_view, critical);
+    end();
+
     /* The enums, whose size ctypes takes on trust. */
     S(pp_status); end();
     S(pp_backend); end();
@@ -72,6 +85,7 @@ int main(void)
     S(pp_contact_mode); end();
     S(pp_body_type); end();
     S(pp_event_type); end();
+    S(pp_edit_type); end();
     printf("\n}\n");
     return 0;
 }

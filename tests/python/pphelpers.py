@@ -1,14 +1,30 @@
-"""Small helpers of the Python tests: solid rectangles, angles, PNG files written by hand (zlib + struct)."""
+"""Small helpers of the Python tests: solid rectangles, angles, PNG files written by hand (zlib + struct),
+and the check that an exception carries the library's own message."""
 import math
 import struct
 import zlib
 
 import numpy as np
+import pytest
+
+from physpix import _native
 
 
 def rect(world, width, height, **fields):
     """A solid width×height body; keywords are pp_body_def fields."""
     return world.create_body(mask=np.ones((height, width), dtype=np.uint8), **fields)
+
+
+def raises_from_library(exc_class, words, fn, *args, **kwargs):
+    """Call fn, expect exc_class with pp_last_error()'s exact text naming one of words."""
+    with pytest.raises(exc_class) as info:
+        fn(*args, **kwargs)
+    e = info.value
+    assert type(e) is exc_class
+    assert e.status == exc_class.status
+    assert e.message == str(e) == _native.last_error(), "the exception must carry pp_last_error()'s text"
+    assert any(w.lower() in e.message.lower() for w in words), e.message
+    return e
 
 
 def angle_between_deg(a, b):

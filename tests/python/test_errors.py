@@ -6,19 +6,7 @@ import pytest
 
 import physpix
 from physpix import Status, _native
-from pphelpers import png_bytes, rect
-
-
-def raises_from_library(exc_class, words, fn, *args, **kwargs):
-    """Call fn, expect exc_class with pp_last_error()'s exact text naming one of words."""
-    with pytest.raises(exc_class) as info:
-        fn(*args, **kwargs)
-    e = info.value
-    assert type(e) is exc_class
-    assert e.status == exc_class.status
-    assert e.message == str(e) == _native.last_error(), "the exception must carry pp_last_error()'s text"
-    assert any(w.lower() in e.message.lower() for w in words), e.message
-    return e
+from pphelpers import png_bytes, raises_from_library, rect
 
 
 @pytest.mark.parametrize("dt", [math.nan, math.inf, -1 / 60, 0.0, 1.5])

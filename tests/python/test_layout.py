@@ -45,7 +45,8 @@ def test_every_public_struct_is_mirrored(c_layout):
 
 
 def test_enums_are_32_bit(c_layout):
-    for name in ("pp_status", "pp_backend", "pp_normal_method", "pp_contact_mode", "pp_body_type", "pp_event_type"):
+    for name in ("pp_status", "pp_backend", "pp_normal_method", "pp_contact_mode", "pp_body_type", "pp_event_type",
+                 "pp_edit_type"):
         assert c_layout[name]["size"] == ctypes.sizeof(_native.c_enum), name
 
 

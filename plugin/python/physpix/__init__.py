@@ -6,11 +6,12 @@ a source checkout's build/ folder, or the system's library path.
 """
 
 from . import _native
-from .enums import Backend, BodyType, ContactMode, EventType, NormalMethod, Status
+from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, NormalMethod,
+                    Status)
 from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleError, LimitError, OutOfMemoryError,
                      PhysPixError, PhysPixIOError, UnsupportedError)
-from .image import image_info, load_png
-from .world import Body, Contact, Event, StepStats, World
+from .image import image_info, load_png, save_png
+from .world import Body, Camera, CollisionView, Contact, Event, ScheduledEdit, StepStats, World
 
 __version__ = "0.1.0"
 
@@ -34,8 +35,10 @@ def set_log_hook(fn):
 
 
 __all__ = [
-    "World", "Body", "Contact", "Event", "StepStats", "load_png", "image_info", "set_log_hook",
-    "Backend", "BodyType", "ContactMode", "EventType", "NormalMethod", "Status",
+    "World", "Body", "Contact", "Event", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
+    "load_png", "save_png", "image_info", "set_log_hook",
+    "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Status",
+    "CELL_A", "CELL_B", "CELL_CRITICAL",
     "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
     "FormatError", "UnsupportedError", "LimitError", "AbiError", "library_version", "library_path",
 ]

@@ -4,7 +4,7 @@ Everything here follows the header one to one; the friendly classes live in worl
 """
 import ctypes
 import os
-from ctypes import POINTER, c_char_p, c_float, c_int, c_int32, c_int64, c_uint8, c_uint32, c_uint64, c_void_p
+from ctypes import POINTER, c_char_p, c_double, c_float, c_int, c_int32, c_int64, c_uint8, c_uint32, c_uint64, c_void_p
 from ctypes.util import find_library
 from pathlib import Path
 
@@ -110,9 +110,39 @@ class pp_step_stats(ctypes.Structure):
     ]
 
 
+class pp_camera(ctypes.Structure):
+    _fields_ = [("center", pp_vec2), ("zoom", c_float), ("width", c_int32), ("height", c_int32)]
+
+
+class pp_timed_edit(ctypes.Structure):
+    _fields_ = [
+        ("time", c_double),
+        ("type", c_enum),
+        ("weight", c_uint32),
+        ("body", pp_body),
+        ("center", pp_vec2),
+        ("radius", c_float),
+        ("reserved", c_uint32),
+    ]
+
+
+class pp_collision_view(ctypes.Structure):
+    _fields_ = [
+        ("width", c_int32),
+        ("height", c_int32),
+        ("origin", pp_vec2),
+        ("step_x", pp_vec2),
+        ("step_y", pp_vec2),
+        ("normal", pp_vec2),
+        ("intersection", c_int32),
+        ("critical", c_int32),
+    ]
+
+
 # Every public struct, by its C name (the layout test walks this).
 STRUCTS = {cls.__name__: cls for cls in
-           (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_step_stats)}
+           (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_step_stats,
+            pp_camera, pp_timed_edit, pp_collision_view)}
 
 pp_log_fn = ctypes.CFUNCTYPE(None, c_int, c_char_p, c_void_p)
 
@@ -155,6 +185,20 @@ SIGNATURES = {
     "pp_body_get_user_data": (STATUS, [pp_world, pp_body, P(c_uint64)]),
     "pp_image_info": (STATUS, [c_char_p, P(c_int32), P(c_int32)]),
     "pp_image_load": (STATUS, [c_char_p, u8p, c_int64, P(c_int32), P(c_int32)]),
+    "pp_image_save": (STATUS, [c_char_p, u8p, c_int32, c_int32]),
+    "pp_body_get_pivot": (STATUS, [pp_world, pp_body, P(pp_vec2)]),
+    "pp_body_get_type": (STATUS, [pp_world, pp_body, P(c_enum)]),
+    "pp_body_read_rgba": (STATUS, [pp_world, pp_body, u8p, c_int64]),
+    "pp_world_get_time": (STATUS, [pp_world, P(c_double)]),
+    "pp_world_get_camera": (STATUS, [pp_world, P(pp_camera)]),
+    "pp_world_set_camera": (STATUS, [pp_world, P(pp_camera)]),
+    "pp_world_schedule_edit": (STATUS, [pp_world, P(pp_timed_edit)]),
+    "pp_world_get_scheduled_edits": (STATUS, [pp_world, P(pp_timed_edit), c_int32, P(c_int32)]),
+    "pp_world_debug_collision": (STATUS, [pp_world, pp_body, pp_body, u8p, P(pp_vec2), c_int64,
+                                          P(pp_collision_view)]),
+    "pp_world_load_scene": (STATUS, [c_char_p, P(pp_world)]),
+    "pp_world_save_snapshot": (STATUS, [pp_world, c_char_p]),
+    "pp_world_load_snapshot": (STATUS, [c_char_p, P(pp_world)]),
 }
 
 

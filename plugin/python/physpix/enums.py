@@ -1,4 +1,4 @@
-"""The public enums of physpix.h as IntEnums; members are also accepted as lower-case strings."""
+"""The public enums of physpix.h as IntEnums (members are also accepted as lower-case strings), and its flags."""
 from enum import IntEnum
 
 
@@ -45,3 +45,17 @@ class EventType(IntEnum):
     """pp_event_type: what an event reports."""
     BODY_SPLIT = 1
     BODY_DESTROYED = 2
+
+
+class EditType(IntEnum):
+    """pp_edit_type: what a timed edit does."""
+    ERASE_CIRCLE = 1
+    PAINT_CIRCLE = 2
+
+
+#: PP_CELL_A: the first body is solid in a debug_collision cell.
+CELL_A = 1
+#: PP_CELL_B: the second body is solid in the cell.
+CELL_B = 2
+#: PP_CELL_CRITICAL: an intersection cell with a neighbour outside the intersection.
+CELL_CRITICAL = 4

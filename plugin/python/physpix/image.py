@@ -1,10 +1,11 @@
-"""PNG loading through the library's libpng reader (pp_image_info, pp_image_load)."""
+"""PNG files through the library's libpng reader and writer (pp_image_info, pp_image_load, pp_image_save)."""
 import os
 from ctypes import byref, c_int32
 
 import numpy as np
 
 from . import _native as N
+from .world import _as_u8
 
 
 def image_info(path):
@@ -22,3 +23,9 @@ def load_png(path):
     # If the file changed since the header was read, the library refuses the short buffer (InvalidArgumentError).
     N.lib.pp_image_load(os.fsencode(path), out.ctypes.data_as(N.u8p), out.nbytes, byref(got_w), byref(got_h))
     return out
+
+
+def save_png(path, rgba):
+    """Encode a (height, width, 4) RGBA array (uint8, or integers 0..255) as an 8-bit RGBA PNG file."""
+    a = _as_u8(rgba, "rgba", 3, channels=4)
+    N.lib.pp_image_save(os.fsencode(path), a.ctypes.data_as(N.u8p), a.shape[1], a.shape[0])

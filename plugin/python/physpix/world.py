@@ -3,15 +3,16 @@
 Units everywhere: pixels, seconds, radians; world y points down. Every failing call raises
 the PhysPixError subclass of its status with the library's message.
 """
+import os
 import weakref
-from ctypes import byref, c_float, c_int32, c_uint64
-from dataclasses import dataclass, fields as dataclass_fields
+from ctypes import POINTER, byref, c_double, c_float, c_int32, c_uint64
+from dataclasses import astuple, dataclass, fields as dataclass_fields
 
 import numpy as np
 
 from . import _native as N
-from .enums import Backend, BodyType, ContactMode, EventType, NormalMethod
-from .errors import PhysPixError
+from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod
+from .errors import InvalidArgumentError, PhysPixError
 
 lib = N.lib
 
@@ -96,6 +97,16 @@ def _mask_u8(mask):
     return np.ascontiguousarray(m != 0, dtype=np.uint8)
 
 
+_INT32 = (-2**31, 2**31 - 1)
+
+
+def _check_range(value, low, high, what):
+    """value as an int within low..high: the range a C integer argument holds, where ctypes would wrap it."""
+    if not low <= int(value) <= high:
+        raise ValueError(f"{what}: {value!r} is outside {low}..{high}")
+    return int(value)
+
+
 def _u8_ptr(array):
     return None if array is None else array.ctypes.data_as(N.u8p)
 
@@ -153,6 +164,40 @@ class StepStats:
     backend: Backend
 
 
+@dataclass(frozen=True)
+class Camera:
+    """A renderer's view: world point at the image centre (px), image px per world px, image size (px)."""
+    center: tuple
+    zoom: float
+    width: int
+    height: int
+
+
+@dataclass(frozen=True)
+class ScheduledEdit:
+    """A pending timed edit: world time (s), circle centre (px) and radius (px); body None erases every body."""
+    time: float
+    type: EditType
+    body: "Body | None"
+    center: tuple
+    radius: float
+    weight: int
+
+
+@dataclass(frozen=True)
+class CollisionView:
+    """A pair's sampled grid: size (cells), world centre of cell (0, 0) and the steps along x and y (px),
+    the global normal from a to b (zero when apart), and the intersection and critical cell counts."""
+    width: int
+    height: int
+    origin: tuple
+    step_x: tuple
+    step_y: tuple
+    normal: tuple
+    intersection: int
+    critical: int
+
+
 def _destroy_world(world_id):
     """Finalizer of a World never closed: destroy it, quietly (at exit nobody can handle an error)."""
     try:
@@ -167,9 +212,35 @@ class World:
     def __init__(self, **fields):
         d = lib.pp_world_def_default()
         _fill_def(d, fields, "World")
-        self._handle = N.pp_world()
-        lib.pp_world_create(byref(d), byref(self._handle))
-        self._finalizer = weakref.finalize(self, _destroy_world, self._handle.id)
+        handle = N.pp_world()
+        lib.pp_world_create(byref(d), byref(handle))
+        self._adopt(handle)
+
+    def _adopt(self, handle):
+        self._handle = handle
+        self._finalizer = weakref.finalize(self, _destroy_world, handle.id)
+
+    @classmethod
+    def _created_by(cls, fn, path):
+        world = cls.__new__(cls)
+        handle = N.pp_world()
+        fn(os.fsencode(path), byref(handle))
+        world._adopt(handle)
+        return world
+
+    @classmethod
+    def load_scene(cls, path):
+        """A world from a JSON scene file (settings, camera, bodies, timed edits); PNG paths are relative to it."""
+        return cls._created_by(lib.pp_world_load_scene, path)
+
+    @classmethod
+    def load_snapshot(cls, folder):
+        """A world from a snapshot folder; stepping it continues exactly as the saved world would have."""
+        return cls._created_by(lib.pp_world_load_snapshot, folder)
+
+    def save_snapshot(self, folder):
+        """Write the world's whole state into a new folder (world.json and PNG planes)."""
+        lib.pp_world_save_snapshot(self._handle, os.fsencode(folder))
 
     def close(self):
         """Destroy the world and its bodies; later calls with it raise InvalidHandleError. Idempotent."""
@@ -257,6 +328,66 @@ class World:
         changed = c_int32(0)
         lib.pp_world_erase_circle(self._handle, vec2(center, "center"), radius, byref(changed))
         return changed.value
+
+    @property
+    def time(self):
+        """Simulated time since the world was created, s (the sum of every step's dt)."""
+        t = c_double()
+        lib.pp_world_get_time(self._handle, byref(t))
+        return t.value
+
+    @property
+    def camera(self):
+        """The world's Camera (a scene's, or the default); set a Camera or (center px, zoom, width px, height px)."""
+        c = N.pp_camera()
+        lib.pp_world_get_camera(self._handle, byref(c))
+        return Camera((c.center.x, c.center.y), c.zoom, c.width, c.height)
+
+    @camera.setter
+    def camera(self, value):
+        center, zoom, width, height = astuple(value) if isinstance(value, Camera) else value
+        c = N.pp_camera(vec2(center, "center"), zoom, _check_range(width, *_INT32, "width"),
+                        _check_range(height, *_INT32, "height"))
+        lib.pp_world_set_camera(self._handle, byref(c))
+
+    def _schedule(self, time, edit_type, body, center, radius, weight):
+        e = N.pp_timed_edit(time=time, type=edit_type, weight=weight, center=vec2(center, "center"), radius=radius)
+        e.body = body._handle if body is not None else N.pp_body()
+        lib.pp_world_schedule_edit(self._handle, byref(e))
+
+    def schedule_erase(self, time, center, radius, body=None):
+        """Erase at world time (s) the pixels within radius px of a world point (px): of body, or of every body."""
+        self._schedule(time, EditType.ERASE_CIRCLE, body, center, radius, 0)
+
+    def schedule_paint(self, time, body, center, radius, weight=255):
+        """Make solid at world time (s), with weight 1..255, body's pixels within radius px of a world point (px)."""
+        # As in paint_circle: ctypes would wrap -1 or 2**32 in the 32-bit field; the library refuses 0 itself.
+        self._schedule(time, EditType.PAINT_CIRCLE, body, center, radius, _check_range(weight, 0, 255, "weight"))
+
+    def scheduled_edits(self):
+        """The edits still pending, in the order they will apply."""
+        return [ScheduledEdit(e.time, EditType(e.type), self._body(e.body), (e.center.x, e.center.y), e.radius,
+                              e.weight)
+                for e in _read_list(lib.pp_world_get_scheduled_edits, N.pp_timed_edit, self._handle)]
+
+    def debug_collision(self, a, b):
+        """A pair's sampled grid at the current poses: (cells (h, w) uint8 of CELL_* flags, local normals
+        (h, w, 2) float32 in world axes on critical cells, zero elsewhere, CollisionView)."""
+        v = N.pp_collision_view()
+        args = (self._handle, a._handle, b._handle)
+        try:  # capacity 0 asks for the grid's size; a non-empty grid refuses it but fills the view
+            lib.pp_world_debug_collision(*args, None, None, 0, byref(v))
+        except InvalidArgumentError:
+            if v.width * v.height == 0:
+                raise
+        cells = np.zeros((v.height, v.width), dtype=np.uint8)
+        normals = np.zeros((v.height, v.width, 2), dtype=np.float32)
+        if cells.size:
+            lib.pp_world_debug_collision(*args, _u8_ptr(cells), normals.ctypes.data_as(POINTER(N.pp_vec2)),
+                                         cells.size, byref(v))
+        view = CollisionView(v.width, v.height, (v.origin.x, v.origin.y), (v.step_x.x, v.step_x.y),
+                             (v.step_y.x, v.step_y.y), (v.normal.x, v.normal.y), v.intersection, v.critical)
+        return cells, normals, view
 
 
 class Body:
@@ -389,6 +520,20 @@ class Body:
         return w.value, h.value
 
     @property
+    def pivot(self):
+        """Pivot in bitmap coordinates, (x, y) px from the bitmap's top-left corner."""
+        p = N.pp_vec2()
+        self._call(lib.pp_body_get_pivot, byref(p))
+        return p.x, p.y
+
+    @property
+    def type(self):
+        """How the body moves: a BodyType."""
+        t = N.c_enum()
+        self._call(lib.pp_body_get_type, byref(t))
+        return BodyType(t.value)
+
+    @property
     def user_data(self):
         """The host's integer given as user_data at creation."""
         u = c_uint64()
@@ -424,4 +569,12 @@ class Body:
         w, h = self.size
         out = np.empty((h, w), dtype=np.uint8)
         self._call(lib.pp_body_read_mask, _u8_ptr(out), out.nbytes)
+        return out
+
+    def read_rgba(self):
+        """The body's look as a (height, width, 4) uint8 RGBA array: its sprite where solid, clear elsewhere;
+        without a sprite, solid pixels are opaque gray of their weight."""
+        w, h = self.size
+        out = np.empty((h, w, 4), dtype=np.uint8)
+        self._call(lib.pp_body_read_rgba, _u8_ptr(out), out.nbytes)
         return out
