@@ -301,11 +301,9 @@ static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_varia
 }
 
 /* Replace this object's world by the scene's; its old bodies' objects become stale. */
-static void world_load_scene(plugin_object *self, const pp_variant *a, pp_variant *ret)
+/* Put a newly loaded world in place of the object's; the old bodies' objects go stale. */
+static void world_replace(plugin_object *self, pp_world loaded)
 {
-    pp_world loaded;
-    if (!ret_ok(ret, pp_world_load_scene(a[0].as.string.data, &loaded), "PhysPixWorld.load_scene"))
-        return; /* the old world stays as it was */
     world_cache *c = self->cache;
     for (int32_t i = 0; i < c->body_object_capacity; i++)
         object_free(c->body_objects[i]);
@@ -313,6 +311,25 @@ static void world_load_scene(plugin_object *self, const pp_variant *a, pp_varian
     self->world = loaded;
     c->contact_count = c->event_count = c->body_count = c->edit_count = 0;
     c->debug_view = (pp_collision_view){0};
+}
+
+static void world_load_scene(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_world loaded;
+    if (ret_ok(ret, pp_world_load_scene(a[0].as.string.data, &loaded), "PhysPixWorld.load_scene"))
+        world_replace(self, loaded); /* on failure the old world stays as it was */
+}
+
+static void world_save_snapshot(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_world_save_snapshot(self->world, a[0].as.string.data), "PhysPixWorld.save_snapshot");
+}
+
+static void world_load_snapshot(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_world loaded;
+    if (ret_ok(ret, pp_world_load_snapshot(a[0].as.string.data, &loaded), "PhysPixWorld.load_snapshot"))
+        world_replace(self, loaded);
 }
 
 static void world_get_time(plugin_object *self, const pp_variant *a, pp_variant *ret)
@@ -517,6 +534,12 @@ static const method_def world_methods[] = {
            "replace this object's world by a JSON scene file's (PNG paths relative to it); the old bodies' "
            "objects become stale",
            ARGS(ARG("path", STRING))),
+    METHOD(world_save_snapshot, "save_snapshot", NIL,
+           "write the whole world into a new folder (world.json and PNG planes), atomically", ARGS(ARG("folder", STRING))),
+    METHOD(world_load_snapshot, "load_snapshot", NIL,
+           "replace this object's world by a snapshot's, which steps on exactly as the saved one; the old bodies' "
+           "objects become stale",
+           ARGS(ARG("folder", STRING))),
     METHOD(world_get_time, "get_time", FLOAT, "simulated time since the world was made, s", .arg_count = 0),
     METHOD(world_get_camera_center, "get_camera_center", VEC2, "world point at the image centre, px",
            .arg_count = 0),

@@ -6,6 +6,7 @@
 #include "plugin_host.h"
 
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <dlfcn.h>
 #include <limits.h>
 #include <math.h>
@@ -260,6 +261,22 @@ static pp_variant wrong_for(pp_variant_type t, uint64_t other_class_object)
     }
 }
 
+/* Remove a snapshot folder the tests wrote: its files, then itself. */
+static void remove_snapshot(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    char path[PATH_MAX];
+    for (struct dirent *e; (e = readdir(d));)
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            unlink(path);
+        }
+    closedir(d);
+    rmdir(dir);
+}
+
 TestSuite(methods, .init = load_plugin, .fini = unload_plugin);
 
 Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_with_the_argument_named)
@@ -269,6 +286,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     char png[PATH_MAX], scene[PATH_MAX];
     cr_assert(realpath("tests/plugin/crate16.png", png));
     cr_assert(realpath("tests/plugin/scene.json", scene));
+    char snap[64];
+    snprintf(snap, sizeof snap, "/tmp/pp_plugin_snapshot_%d", (int)getpid());
     uint64_t scratch_box, scratch_ground;
     const uint64_t scratch = make_scene(&scratch_box, &scratch_ground);
     const recipe world_recipes[] = {
@@ -292,6 +311,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
         {"load_scene", {V_STR(scene)}}, /* on a scratch world: it replaces the world's bodies */
+        {"save_snapshot", {V_STR(snap)}},
+        {"load_snapshot", {V_STR(snap)}}, /* on the scratch world too, after save_snapshot wrote it */
         {"get_time", {{0}}},
         {"get_camera_center", {{0}}},
         {"get_camera_zoom", {{0}}},
@@ -351,7 +372,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
             const int r = find_recipe(targets[t].recipes, targets[t].count, m->name);
             cr_assert(r >= 0, "%s.%s has no recipe", c->name, m->name);
             const pp_variant *right = targets[t].recipes[r].args;
-            const uint64_t object = strcmp(m->name, "load_scene") == 0 ? scratch : targets[t].object;
+            const bool replaces = strcmp(m->name, "load_scene") == 0 || strcmp(m->name, "load_snapshot") == 0;
+            const uint64_t object = replaces ? scratch : targets[t].object;
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
             for (int32_t i = 0; i < m->arg_count; i++) {
@@ -384,6 +406,46 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     pp_variant ret = call(world, "no_such_method", NULL, 0);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld has no method 'no_such_method'");
     cr_log_info("%d calls checked", calls + 1);
+    remove_snapshot(snap);
+}
+
+/* The positions of every body of a world object, in its body order. */
+static int positions_of(uint64_t world, pp_vec2 *out, int capacity)
+{
+    const int n = (int)call(world, "get_body_count", NULL, 0).as.integer;
+    cr_assert_leq(n, capacity);
+    for (int i = 0; i < n; i++)
+        out[i] = call(ok_object(call(world, "get_body", (pp_variant[]){V_INT(i)}, 1)), "get_position", NULL, 0).as.vec2;
+    return n;
+}
+
+Test(methods, a_snapshot_saved_and_loaded_through_the_plugin_continues_exactly)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    char snap[64];
+    snprintf(snap, sizeof snap, "/tmp/pp_plugin_snapshot_b%d", (int)getpid());
+    for (int i = 0; i < 30; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    pp_variant ret = call(world, "save_snapshot", (pp_variant[]){V_STR(snap)}, 1);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t back = ok_object(made);
+    ret = call(back, "load_snapshot", (pp_variant[]){V_STR(snap)}, 1);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    for (int i = 0; i < 90; i++) {
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+        call(back, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    }
+    pp_vec2 a[8], b[8];
+    const int na = positions_of(world, a, 8), nb = positions_of(back, b, 8);
+    cr_assert(na == 4 && nb == na, "%d and %d bodies (ground, box, the bar's two halves)", na, nb);
+    cr_assert(memcmp(a, b, sizeof(pp_vec2) * (size_t)na) == 0, "the loaded world drifted from the original");
+    ret = call(back, "load_snapshot", (pp_variant[]){V_STR("/nonexistent/snap")}, 1);
+    expect_error(&ret, PP_ERR_IO, "PhysPixWorld.load_snapshot");
+    cr_assert_eq(call(back, "get_body_count", NULL, 0).as.integer, 4, "a failed load leaves the world as it was");
+    remove_snapshot(snap);
 }
 
 Test(methods, bodies_made_through_the_plugin_have_the_mass_of_their_pixels_and_fall)
