@@ -7,11 +7,14 @@
 #include <criterion/criterion.h>
 #include <criterion/logging.h>
 #include <ctype.h>
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "physpix.h"
 
@@ -209,6 +212,22 @@ static inline double quantile(double *v, int n, double q) {
     if (k < 0) k = 0;
     if (k >= n) k = n - 1;
     return v[k];
+}
+
+/* Remove a folder a test wrote, with everything in it. */
+static inline void remove_tree(const char *dir) {
+    DIR *d = opendir(dir);
+    if (!d) return;
+    char path[1024];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
+        struct stat st;
+        if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) remove_tree(path);
+        else unlink(path);
+    }
+    closedir(d);
+    rmdir(dir);
 }
 
 #endif /* PHYSPIX_TEST_HELPERS_H */

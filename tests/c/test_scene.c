@@ -17,20 +17,8 @@ static void dir_open(void)
     cr_assert(mkdtemp(dir), "mkdtemp failed");
 }
 
-/* Remove the directory and the files the test wrote into it (it holds no subdirectories). */
-static void dir_close(void)
-{
-    DIR *d = opendir(dir);
-    cr_assert(d);
-    char path[512];
-    for (struct dirent *e; (e = readdir(d));)
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-            unlink(path);
-        }
-    closedir(d);
-    rmdir(dir);
-}
+/* Remove the directory and the files the test wrote into it. */
+static void dir_close(void) { remove_tree(dir); }
 
 /* The fixture path of a file name (in a static buffer of four, so a call may use a few). */
 static const char *at(const char *name)

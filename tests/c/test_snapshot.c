@@ -4,8 +4,6 @@
 #include "helpers.h"
 
 #include <dirent.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 PP_TEST_SUITE(snapshot);
 
@@ -105,26 +103,6 @@ static void temp_dir(char *path)
     cr_assert_not_null(mkdtemp(path));
 }
 
-static void remove_dir(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    char path[512];
-    for (struct dirent *e; (e = readdir(d));) {
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-            struct stat s;
-            if (stat(path, &s) == 0 && S_ISDIR(s.st_mode))
-                remove_dir(path);
-            else
-                unlink(path);
-        }
-    }
-    closedir(d);
-    rmdir(dir);
-}
-
 static int entries(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -179,7 +157,7 @@ Test(snapshot, a_loaded_world_continues_bit_for_bit, .timeout = 120)
     cr_assert_eq(user, 0xfeedface00000000ull);
     pp_world_destroy(w);
     pp_world_destroy(back);
-    remove_dir(dir);
+    remove_tree(dir);
 }
 
 Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
@@ -212,7 +190,7 @@ Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
     EXPECT_ERR(pp_world_save_snapshot(w, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
     pp_world_destroy(w);
     EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_INVALID_HANDLE, "stale");
-    remove_dir(dir);
+    remove_tree(dir);
 }
 
 /* Replace the first occurrence of `from` in the snapshot's world.json by `to`. */
@@ -254,19 +232,19 @@ Test(snapshot, broken_snapshots_are_refused_with_their_reason)
         {"{", "[", PP_ERR_FORMAT, "invalid JSON"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        remove_dir(snap);
+        remove_tree(snap);
         PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
         patch_json(snap, cases[i].from, cases[i].to);
         EXPECT_ERR(pp_world_load_snapshot(snap, &out), cases[i].st, cases[i].words);
         cr_assert_eq(out.id, untouched.id, "case %zu: a failed load wrote *out", i);
     }
     /* A plane PNG cut short keeps the PNG loader's status, under the body's JSON path. */
-    remove_dir(snap);
+    remove_tree(snap);
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
     snprintf(path, sizeof path, "%s/body1_mask.png", snap);
     cr_assert_eq(truncate(path, 40), 0);
     EXPECT_ERR(pp_world_load_snapshot(snap, &out), PP_ERR_FORMAT, "bodies[1].mask");
     cr_assert_eq(out.id, untouched.id);
     pp_world_destroy(w);
-    remove_dir(dir);
+    remove_tree(dir);
 }
