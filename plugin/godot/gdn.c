@@ -61,13 +61,14 @@ const char *gdn_type_name(const godot_variant *v)
     return t >= 0 && t < (int32_t)(sizeof names / sizeof names[0]) ? names[t] : "an unknown type";
 }
 
-void gdn_string_to_utf8(const godot_variant *v, char *buf, size_t buf_size)
+size_t gdn_string_to_utf8(const godot_variant *v, char *buf, size_t buf_size)
 {
     godot_string s = gdn->godot_variant_as_string(v);
     godot_char_string cs = gdn->godot_string_utf8(&s);
-    snprintf(buf, buf_size, "%s", gdn->godot_char_string_get_data(&cs));
+    const int n = snprintf(buf, buf_size, "%s", gdn->godot_char_string_get_data(&cs));
     gdn->godot_char_string_destroy(&cs);
     gdn->godot_string_destroy(&s);
+    return n < 0 ? 0 : (size_t)n;
 }
 
 void gdn_vector2_read(const godot_variant *v, float *x, float *y)
@@ -81,6 +82,13 @@ godot_variant gdn_nil(void)
 {
     godot_variant r;
     gdn->godot_variant_new_nil(&r);
+    return r;
+}
+
+godot_variant gdn_bool(bool b)
+{
+    godot_variant r;
+    gdn->godot_variant_new_bool(&r, b);
     return r;
 }
 

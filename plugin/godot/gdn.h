@@ -36,6 +36,7 @@ typedef struct godot_gdnative_terminate_options {
 /* Godot 3.2's godot_variant_type values the adapter checks. */
 enum {
     GDN_NIL = 0,
+    GDN_BOOL = 1,
     GDN_INT = 2,
     GDN_REAL = 3,
     GDN_STRING = 4,
@@ -61,14 +62,16 @@ void gdn_unbind(void);
 /* Name of a variant's type as GDScript spells it ("int", "Vector2", ...). */
 const char *gdn_type_name(const godot_variant *v);
 
-/* Copies a String variant into buf as UTF-8, truncated to buf_size - 1 bytes. */
-void gdn_string_to_utf8(const godot_variant *v, char *buf, size_t buf_size);
+/* Copies a String variant into buf as UTF-8, truncated to buf_size - 1 bytes; returns the whole
+ * string's length in bytes, so a result >= buf_size means it was truncated. */
+size_t gdn_string_to_utf8(const godot_variant *v, char *buf, size_t buf_size);
 
 /* Reads a Vector2 into two floats. */
 void gdn_vector2_read(const godot_variant *v, float *x, float *y);
 
 /* New variants; the caller owns the result (the engine takes it when it is returned). */
 godot_variant gdn_nil(void);
+godot_variant gdn_bool(bool b);
 godot_variant gdn_int(int64_t i);
 godot_variant gdn_real(double r);
 godot_variant gdn_vector2(float x, float y);

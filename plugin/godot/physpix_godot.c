@@ -1,6 +1,7 @@
 /* PhysPixWorld: a NativeScript class (base Reference) that gives GDScript one pp_world.
  * Owns the method table, the checking of every argument against it, the calls into PhysPix,
- * and the library's three entry points. Bodies are ints: the pp_body id's 64 bits. */
+ * and the library's three entry points. Bodies are ints: the pp_body id's 64 bits, tagged with
+ * how many times the object's world was replaced (see body_int). */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,11 +12,28 @@
 
 #define CLASS_NAME "PhysPixWorld"
 #define MAX_ARGS 5
+#define PATH_SIZE 4096 /* a path argument's UTF-8 bytes, with the terminating NUL */
 
 typedef struct world_inst {
     pp_world world;  /* id 0 if pp_world_create failed; every call then reports the stale handle */
+    uint32_t epoch;  /* how many times load_scene or load_snapshot replaced the world */
     char error[512]; /* why the last call failed, "" if it succeeded */
 } world_inst;
+
+/* A body's int is its pp_body id with the object's epoch (mod 4096) in bits 20..31, where no id
+ * has a bit set: an id is (generation << 32) | (slot + 1), and slot + 1 <= PP_MAX_BODIES. A new
+ * world's ids start over, so without the tag an int from before a load_scene or load_snapshot
+ * would reach whichever new body has the same id; with it, such a call fails cleanly (until the
+ * same object has been replaced 4096 more times). Epoch 0 has tag 0: a fresh object's ints are
+ * the ids themselves. */
+#define EPOCH_SHIFT 20
+#define EPOCH_MASK ((uint64_t)0xfff << EPOCH_SHIFT)
+_Static_assert(PP_MAX_BODIES <= 1 << EPOCH_SHIFT, "body ids must leave bits 20..31 free for the epoch tag");
+
+static uint64_t epoch_tag(const world_inst *self)
+{
+    return ((uint64_t)self->epoch << EPOCH_SHIFT) & EPOCH_MASK;
+}
 
 /* One argument after its type was checked, read as its spec letter says. */
 typedef struct arg {
@@ -26,6 +44,7 @@ typedef struct arg {
     pp_body body;
     pp_body_type type;
     godot_object *object;
+    const char *path; /* 'p': the call's path buffer, res:// and user:// made absolute */
 } arg;
 
 struct method_def;
@@ -36,13 +55,15 @@ typedef struct call {
     const struct method_def *def;
     int argc;
     arg a[MAX_ARGS];
+    char *path; /* PATH_SIZE bytes for the one path argument a method may have (not zeroed per call) */
 } call;
 
 typedef godot_variant (*method_fn)(call *c);
 
 /* A GDScript-facing method. spec has one letter an argument, those after '|' optional:
  * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
- * "static" or "kinematic"), M PoolByteArray, I Image. */
+ * "static" or "kinematic"), M PoolByteArray, I Image, p path (String; res:// and user://
+ * become filesystem paths through ProjectSettings.globalize_path, others are used as given). */
 typedef struct method_def {
     const char *name;
     const char *spec;
@@ -61,6 +82,9 @@ static struct {
     void *tag;
     godot_method_bind *get_width, *get_height, *get_format, *get_data, *convert, *duplicate;
 } image_api;
+
+/* ProjectSettings.globalize_path, looked up once at load; the singleton is asked for at each call. */
+static godot_method_bind *globalize_path_mb;
 
 /* ---- errors ---------------------------------------------------------------------------- */
 
@@ -103,6 +127,53 @@ static bool wrong_type(call *c, int i, const char *expected)
                 c->def->usage);
 }
 
+/* "/x", "\\server\x" or "C:/x". */
+static bool is_absolute(const char *p)
+{
+    const bool drive = ((p[0] >= 'A' && p[0] <= 'Z') || (p[0] >= 'a' && p[0] <= 'z')) && p[1] == ':';
+    return p[0] == '/' || p[0] == '\\' || (drive && (p[2] == '/' || p[2] == '\\'));
+}
+
+/* A path argument into c->path: as given, or, for res:// and user://, through
+ * ProjectSettings.globalize_path. That gives an absolute path where the project is a folder (the
+ * editor, godot --path); in an exported game res:// is inside the .pck, which PhysPix cannot read,
+ * and becomes a relative path, so a result that is not absolute is refused. */
+static bool read_path(call *c, int i)
+{
+    const size_t n = gdn_string_to_utf8(c->a[i].var, c->path, PATH_SIZE);
+    if (n == 0)
+        return fail(c, "argument %d is an empty path (usage: %s)", i + 1, c->def->usage);
+    if (n >= PATH_SIZE)
+        return fail(c, "argument %d is a path of %zu bytes, at most %d", i + 1, n, PATH_SIZE - 1);
+    c->a[i].path = c->path;
+    if (strncmp(c->path, "res://", 6) != 0 && strncmp(c->path, "user://", 7) != 0)
+        return true;
+    char singleton[] = "ProjectSettings";
+    godot_object *settings = gdn->godot_global_get_singleton(singleton);
+    if (!settings)
+        return fail(c, "cannot globalize '%s': no ProjectSettings singleton (pass a filesystem path)", c->path);
+    char given[PATH_SIZE];
+    memcpy(given, c->path, n + 1);
+    godot_variant in = gdn_string(given), out;
+    const godot_variant *args[] = {&in};
+    const bool called = gdn_call(globalize_path_mb, settings, args, 1, &out);
+    const size_t m = called && gdn->godot_variant_get_type(&out) == GDN_STRING
+                         ? gdn_string_to_utf8(&out, c->path, PATH_SIZE)
+                         : 0;
+    gdn->godot_variant_destroy(&out);
+    gdn->godot_variant_destroy(&in);
+    if (m == 0)
+        return fail(c, "ProjectSettings.globalize_path(\"%s\") failed", given);
+    if (m >= PATH_SIZE)
+        return fail(c, "'%s' globalizes to a path of %zu bytes, at most %d", given, m, PATH_SIZE - 1);
+    if (!is_absolute(c->path))
+        return fail(c,
+                    "'%s' globalizes to '%s', not a folder on disk (an exported game's res:// is inside its .pck, "
+                    "which PhysPix cannot read: use user:// or a filesystem path)",
+                    given, c->path);
+    return true;
+}
+
 static bool read_arg(call *c, int i, char letter)
 {
     arg *a = &c->a[i];
@@ -113,7 +184,12 @@ static bool read_arg(call *c, int i, char letter)
         if (t != GDN_INT)
             return wrong_type(c, i, letter == 'b' ? "a body (int)" : "int");
         a->i = gdn->godot_variant_as_int(a->var);
-        a->body.id = (uint64_t)a->i;
+        if (letter == 'b' && ((uint64_t)a->i & EPOCH_MASK) != epoch_tag(c->self))
+            return fail(c,
+                        "PP_ERR_INVALID_HANDLE: argument %d, %lld, is no body of this world (one from before "
+                        "load_scene or load_snapshot replaced it, or never a body)",
+                        i + 1, (long long)a->i);
+        a->body.id = (uint64_t)a->i & ~EPOCH_MASK;
         return true;
     case 'f':
         if (t != GDN_REAL && t != GDN_INT)
@@ -139,6 +215,8 @@ static bool read_arg(call *c, int i, char letter)
     }
     case 'M':
         return t == GDN_POOL_BYTE_ARRAY || wrong_type(c, i, "PoolByteArray");
+    case 'p':
+        return t == GDN_STRING ? read_path(c, i) : wrong_type(c, i, "String (a path)");
     case 'I':
         if (t != GDN_OBJECT)
             return wrong_type(c, i, "Image");
@@ -186,10 +264,16 @@ static pp_body_def body_def(const call *c, int first)
     return def;
 }
 
+/* A body's int for GDScript (0 stays 0: "no body" in events). */
+static godot_variant body_int(const world_inst *self, pp_body b)
+{
+    return gdn_int(b.id ? (int64_t)(b.id | epoch_tag(self)) : 0);
+}
+
 static godot_variant create_body(call *c, const pp_body_def *def)
 {
     pp_body b;
-    return ok(c, pp_body_create(c->self->world, def, &b)) ? gdn_int((int64_t)b.id) : gdn_nil();
+    return ok(c, pp_body_create(c->self->world, def, &b)) ? body_int(c->self, b) : gdn_nil();
 }
 
 /* Creates a body whose width × height plane (mask if rgba is false, else RGBA) is a PoolByteArray. */
@@ -429,7 +513,7 @@ static godot_variant get_bodies(call *c)
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < n; i++)
-        gdn_array_put(&out, gdn_int((int64_t)bodies[i].id));
+        gdn_array_put(&out, body_int(c->self, bodies[i]));
     free(bodies);
     return gdn_array_variant(&out);
 }
@@ -445,8 +529,8 @@ static godot_variant get_contacts(call *c)
     for (int32_t i = 0; i < n; i++) {
         godot_dictionary d;
         gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "a", gdn_int((int64_t)cs[i].a.id));
-        gdn_dict_put(&d, "b", gdn_int((int64_t)cs[i].b.id));
+        gdn_dict_put(&d, "a", body_int(c->self, cs[i].a));
+        gdn_dict_put(&d, "b", body_int(c->self, cs[i].b));
         gdn_dict_put(&d, "point", gdn_vector2(cs[i].point.x, cs[i].point.y));
         gdn_dict_put(&d, "normal", gdn_vector2(cs[i].normal.x, cs[i].normal.y));
         gdn_dict_put(&d, "depth", gdn_real(cs[i].depth));
@@ -472,12 +556,61 @@ static godot_variant get_events(call *c)
         gdn_dict_put(&d, "type", gdn_string(t == PP_EVENT_BODY_SPLIT       ? "split"
                                             : t == PP_EVENT_BODY_DESTROYED ? "destroyed"
                                                                            : "unknown"));
-        gdn_dict_put(&d, "body", gdn_int((int64_t)es[i].body.id));
-        gdn_dict_put(&d, "other", gdn_int((int64_t)es[i].other.id));
+        gdn_dict_put(&d, "body", body_int(c->self, es[i].body));
+        gdn_dict_put(&d, "other", body_int(c->self, es[i].other));
         gdn_array_put(&out, gdn_dict_variant(&d));
     }
     free(es);
     return gdn_array_variant(&out);
+}
+
+/* ---- scenes, snapshots, clock and camera ---------------------------------------------- */
+
+/* Puts a newly loaded world in place of the object's; the old one's body ints go stale. */
+static godot_variant replace_world(call *c, pp_world loaded)
+{
+    if (c->self->world.id)
+        pp_world_destroy(c->self->world);
+    c->self->world = loaded;
+    c->self->epoch++;
+    return gdn_bool(true);
+}
+
+static godot_variant load_scene(call *c)
+{
+    pp_world loaded;
+    /* On failure the library creates nothing and the old world stays as it was. */
+    return ok(c, pp_world_load_scene(c->a[0].path, &loaded)) ? replace_world(c, loaded) : gdn_nil();
+}
+
+static godot_variant save_snapshot(call *c)
+{
+    return ok(c, pp_world_save_snapshot(c->self->world, c->a[0].path)) ? gdn_bool(true) : gdn_nil();
+}
+
+static godot_variant load_snapshot(call *c)
+{
+    pp_world loaded;
+    return ok(c, pp_world_load_snapshot(c->a[0].path, &loaded)) ? replace_world(c, loaded) : gdn_nil();
+}
+
+static godot_variant get_time(call *c)
+{
+    double t;
+    return ok(c, pp_world_get_time(c->self->world, &t)) ? gdn_real(t) : gdn_nil();
+}
+
+static godot_variant get_camera(call *c)
+{
+    pp_camera cam;
+    if (!ok(c, pp_world_get_camera(c->self->world, &cam)))
+        return gdn_nil();
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "center", gdn_vector2(cam.center.x, cam.center.y));
+    gdn_dict_put(&d, "zoom", gdn_real(cam.zoom));
+    gdn_dict_put(&d, "size", gdn_vector2((float)cam.width, (float)cam.height));
+    return gdn_dict_variant(&d);
 }
 
 static godot_variant get_last_error(call *c)
@@ -510,6 +643,11 @@ static const method_def METHODS[] = {
     {"get_bodies", "", get_bodies, "get_bodies() -> Array"},
     {"get_contacts", "", get_contacts, "get_contacts() -> Array"},
     {"get_events", "", get_events, "get_events() -> Array"},
+    {"load_scene", "p", load_scene, "load_scene(path: String) -> bool"},
+    {"save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"},
+    {"load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"},
+    {"get_time", "", get_time, "get_time() -> float"},
+    {"get_camera", "", get_camera, "get_camera() -> Dictionary"},
     {"get_last_error", "", get_last_error, "get_last_error() -> String"},
 };
 
@@ -517,7 +655,8 @@ static const method_def METHODS[] = {
 static godot_variant dispatch(godot_object *instance, void *method_data, void *user_data, int argc,
                               godot_variant **args)
 {
-    call c = {.self = user_data, .def = method_data, .argc = argc};
+    char path[PATH_SIZE];
+    call c = {.self = user_data, .def = method_data, .argc = argc, .path = path};
     if (!c.self) {
         record_error(NULL, c.def->name, "this PhysPixWorld has no instance data (out of memory when it was made)",
                      __FILE__, __LINE__);
@@ -553,7 +692,7 @@ static void world_free(godot_object *instance, void *method_data, void *user_dat
     free(self);
 }
 
-static bool bind_image_api(char *err, size_t err_size)
+static bool bind_engine_api(char *err, size_t err_size)
 {
     godot_string_name name;
     gdn->godot_string_name_new_data(&name, "Image");
@@ -565,10 +704,15 @@ static bool bind_image_api(char *err, size_t err_size)
     image_api.get_data = gdn->godot_method_bind_get_method("Image", "get_data");
     image_api.convert = gdn->godot_method_bind_get_method("Image", "convert");
     image_api.duplicate = gdn->godot_method_bind_get_method("Resource", "duplicate");
-    if (image_api.tag && image_api.get_width && image_api.get_height && image_api.get_format &&
-        image_api.get_data && image_api.convert && image_api.duplicate)
+    if (!image_api.tag || !image_api.get_width || !image_api.get_height || !image_api.get_format ||
+        !image_api.get_data || !image_api.convert || !image_api.duplicate) {
+        snprintf(err, err_size, "the engine has no Image class with get_width/get_height/get_format/get_data/convert");
+        return false;
+    }
+    globalize_path_mb = gdn->godot_method_bind_get_method("ProjectSettings", "globalize_path");
+    if (globalize_path_mb)
         return true;
-    snprintf(err, err_size, "the engine has no Image class with get_width/get_height/get_format/get_data/convert");
+    snprintf(err, err_size, "the engine has no ProjectSettings.globalize_path");
     return false;
 }
 
@@ -578,7 +722,7 @@ GDN_EXPORT void godot_gdnative_init(godot_gdnative_init_options *options)
     if (pp_version() / 10000 != PHYSPIX_VERSION_MAJOR)
         snprintf(err, sizeof err, "libphyspix.so is version %u, this adapter was built for major %d",
                  (unsigned)pp_version(), PHYSPIX_VERSION_MAJOR);
-    else if (gdn_bind(options->api_struct, err, sizeof err) && bind_image_api(err, sizeof err))
+    else if (gdn_bind(options->api_struct, err, sizeof err) && bind_engine_api(err, sizeof err))
         return;
     gdn_unbind();
     options->report_loading_error(options->gd_native_library, err);

@@ -1,6 +1,8 @@
 extends SceneTree
 # PhysPix inside a real Godot 3.2 through PhysPixWorld: a crate falls onto terrain and rests,
-# the terrain under it is erased and it falls again, a cut bar splits, bad calls are refused.
+# the terrain under it is erased and it falls again, a cut bar splits, bad calls are refused;
+# a scene file loads (user:// and plain paths), a malformed one is refused with its JSON path,
+# and a snapshot loaded into a second object continues exactly as the original.
 # Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
 
 const PhysPixWorld = preload("res://physpix_world.gdns")
@@ -30,6 +32,47 @@ func is_int(x):
 func steps(world, n):
 	for i in range(n):
 		world.step(DT)
+
+
+# The scene of the README's example: a static 400×40 ground (top at y = 380) and a 32×32 crate.
+const SCENE = """{"camera": {"center": [200, 300], "zoom": 2, "width": 400, "height": 300},
+ "bodies": [{"name": "ground", "type": "static", "box": [400, 40], "position": [200, 400]},
+            {"name": "crate", "box": [32, 32], "position": [200, 300]}]}"""
+const BAD_SCENE = '{"bodies": [{"name": "crate", "box": [8, 8], "density": -1}]}'
+
+
+func write_text(path, text):
+	var f = File.new()
+	var err = f.open(path, File.WRITE)
+	if err == OK:
+		f.store_string(text)
+		f.close()
+	return err
+
+
+# Removes a folder and everything in it; true if it is gone.
+func remove_tree(path):
+	var dir = Directory.new()
+	if dir.open(path) == OK:
+		dir.list_dir_begin(true, true)  # skip "." and ".." and hidden
+		var name = dir.get_next()
+		while name != "":
+			if dir.current_is_dir():
+				remove_tree(path + "/" + name)
+			else:
+				dir.remove(path + "/" + name)
+			name = dir.get_next()
+		dir.list_dir_end()
+		dir.remove(path)
+	return not dir.dir_exists(path)
+
+
+# The one body of the given mass (the scene's crate: 32·32 = 1024; the static ground has none).
+func body_of_mass(world, mass):
+	for b in world.get_bodies():
+		if world.get_mass(b) == mass:
+			return b
+	return null
 
 
 func _init():
@@ -165,6 +208,78 @@ func _init():
 	check(is_int(painted) and dug > 0 and painted == dug and mass_dug == 576.0 - dug and w.get_mass(crate) == 576.0,
 		"erase_circle then paint_circle in the crate: %s and %s pixels, mass 576 -> %s -> %s"
 			% [dug, painted, mass_dug, w.get_mass(crate)])
+
+	# Scene files and snapshots, in a folder of their own under user:// (run.sh puts it in build/godot).
+	var tmp_user = "user://physpix_test_%d" % OS.get_process_id()
+	var tmp = OS.get_user_data_dir() + "/physpix_test_%d" % OS.get_process_id()  # the same, as a plain path
+	var dir = Directory.new()
+	check(dir.make_dir_recursive(tmp) == OK and write_text(tmp + "/scene.json", SCENE) == OK
+		and write_text(tmp + "/bad.json", BAD_SCENE) == OK, "wrote scene.json and bad.json into %s" % tmp)
+
+	# load_scene replaces the object's world: an int from before it is stale.
+	var sw = PhysPixWorld.new()
+	var old = sw.add_body_mask(solid_mask(4, 4), 4, 4, Vector2())
+	var loaded = sw.load_scene(tmp_user + "/scene.json")
+	check(loaded == true and sw.get_last_error() == "", "load_scene(\"%s/scene.json\") -> %s %s"
+		% [tmp_user, loaded, sw.get_last_error()])
+	var scene_crate = body_of_mass(sw, 1024.0)
+	check(sw.get_bodies().size() == 2 and scene_crate != null, "the scene's 2 bodies, the crate of mass 1024: %s"
+		% [sw.get_bodies()])
+	check(sw.get_position(old) == null and sw.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"a body int from before load_scene is stale: %s" % sw.get_last_error())
+	var cam = sw.get_camera()
+	check(typeof(cam) == TYPE_DICTIONARY and cam["center"] == Vector2(200, 300) and cam["zoom"] == 2.0
+		and cam["size"] == Vector2(400, 300), "get_camera gives the scene's camera: %s" % [cam])
+	check(sw.get_time() == 0.0, "get_time of a new scene: %s" % sw.get_time())
+	steps(sw, 120)
+	var scene_rest = sw.get_position(scene_crate)
+	print("scene crate after 2 s: position %s, time %s" % [scene_rest, sw.get_time()])
+	check(abs(sw.get_time() - 2.0) < 1e-4, "get_time after 120 steps of 1/60 s: %s" % sw.get_time())
+	check(abs(scene_rest.y + 16.0 - 380.0) <= 1.5 and abs(scene_rest.x - 200.0) <= 1.0,
+		"the scene's crate rests on the ground: bottom %.2f within 1.5 px of 380" % (scene_rest.y + 16.0))
+
+	# A malformed scene (a plain path this time) is refused; the world stays as it was.
+	var bad = sw.load_scene(tmp + "/bad.json")
+	var bad_err = sw.get_last_error()
+	check(bad == null and bad_err.find("load_scene") >= 0 and bad_err.find("bodies[0].density: expected a number > 0") >= 0,
+		"malformed scene refused: %s" % bad_err)
+	check(sw.get_bodies().size() == 2 and sw.get_position(scene_crate) == scene_rest,
+		"after the failed load_scene the scene's world is still there")
+	var missing = "res://no_such_scene.json"
+	check(sw.load_scene(missing) == null and sw.get_last_error().find(ProjectSettings.globalize_path(missing)) >= 0
+		and sw.get_last_error().find("PP_ERR_IO") >= 0, "a res:// path is globalized: %s" % sw.get_last_error())
+	check(sw.load_scene(42) == null and sw.get_last_error().find("expected String") >= 0,
+		"load_scene(42) refused: %s" % sw.get_last_error())
+	check(sw.load_snapshot("") == null and sw.get_last_error().find("empty path") >= 0,
+		"load_snapshot(\"\") refused: %s" % sw.get_last_error())
+	check(sw.save_snapshot(tmp) == null and sw.get_last_error().find("save_snapshot") >= 0,
+		"save_snapshot into a folder that is no snapshot refused: %s" % sw.get_last_error())
+
+	# A snapshot after 30 steps, loaded into a second object, continues exactly as the original.
+	var orig = PhysPixWorld.new()
+	orig.load_scene(tmp + "/scene.json")
+	steps(orig, 30)
+	var snap = tmp + "/snap"
+	var saved_at = orig.get_time()
+	var at_save = orig.get_position(body_of_mass(orig, 1024.0))
+	var saved = orig.save_snapshot(snap)
+	check(saved == true and dir.file_exists(snap + "/world.json"), "save_snapshot(\"%s\") -> %s %s"
+		% [snap, saved, orig.get_last_error()])
+	steps(orig, 60)
+	var copy = PhysPixWorld.new()
+	check(copy.load_snapshot(snap) == true and copy.get_time() == saved_at,
+		"load_snapshot into a second PhysPixWorld: time %s == %s %s" % [copy.get_time(), saved_at, copy.get_last_error()])
+	steps(copy, 60)
+	var crate_a = body_of_mass(orig, 1024.0)
+	var crate_b = body_of_mass(copy, 1024.0)
+	var pa = orig.get_position(crate_a)
+	var pb = copy.get_position(crate_b)
+	print("crate at the snapshot %s, 60 steps on: original %s, loaded %s" % [at_save, pa, pb])
+	check(crate_b != null and pa == pb and orig.get_angle(crate_a) == copy.get_angle(crate_b)
+		and orig.get_linear_velocity(crate_a) == copy.get_linear_velocity(crate_b),
+		"the loaded crate's position, angle and velocity == the original's")
+	check(pa != at_save, "and it moved after the snapshot (%s -> %s), so the comparison means something" % [at_save, pa])
+	check(remove_tree(tmp), "removed %s" % tmp)
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.
