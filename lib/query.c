@@ -63,8 +63,10 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
     world *wd;
     body *ba, *bb;
     pp_status st = world_body_lookup(w, a, fn, &wd, &ba);
-    if (st || (st = world_body_lookup(w, b, fn, &wd, &bb)))
+    if (st)
         return st;
+    if (!(bb = body_lookup(wd, b, fn)))
+        return PP_ERR_INVALID_HANDLE;
     if (!view || capacity < 0 || (capacity > 0 && !cells))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: view or cells is NULL, or capacity is negative", fn);
     if (a.id == b.id)
@@ -73,11 +75,13 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
     const np_settings set = world_np_settings(wd);
     const np_body va = body_np_view(ba), vb = body_np_view(bb);
     np_pair p;
+    np_core core;
     np_result r = {0};
     if (!np_pair_setup(&set, &va, &vb, &p))
         return PP_OK; /* the boxes do not overlap: an empty grid */
-    if ((st = narrow_cpu_collide(&set, &va, &vb, &wd->scratch, &r)))
+    if ((st = narrow_cpu_core(&set, &p, &wd->scratch, &core)))
         return st;
+    np_pair_finish(&set, &va, &vb, &p, &core, &r);
     debug_view_of(&p, p.swap ? &vb : &va, &r, view);
     const int64_t n = (int64_t)p.nx * p.ny;
     if (capacity < n)
