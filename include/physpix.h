@@ -68,6 +68,14 @@ typedef enum pp_contact_mode {
     PP_CONTACT_FORCE_U32 = 0x7fffffff
 } pp_contact_mode;
 
+/// A named point on the measured speed/accuracy trade (README, "Presets").
+typedef enum pp_preset {
+    PP_PRESET_FAST = 1,     ///< fewest solver steps and samples that still keep stacks standing
+    PP_PRESET_BALANCED = 2, ///< the default: meets DESIGN.md's accuracy targets
+    PP_PRESET_ACCURATE = 3, ///< smallest errors measured, at several times the cost
+    PP_PRESET_FORCE_U32 = 0x7fffffff
+} pp_preset;
+
 /// How a body moves.
 typedef enum pp_body_type {
     PP_BODY_DYNAMIC = 0,   ///< moved by forces and contacts
@@ -112,6 +120,8 @@ typedef struct pp_world_def {
     float sleep_linear_speed;       ///< speed under which a body may sleep, px/s (default 5)
     float sleep_angular_speed;      ///< angular speed under which a body may sleep, rad/s (default 0.05)
     float sleep_time;               ///< time a body must stay slow before it sleeps, s (default 0.5)
+    uint32_t continuous;            ///< nonzero: a dynamic body moving over half its thickness in a substep is swept
+                                    ///< against static and kinematic bodies and stopped where it first hits (default 1)
 } pp_world_def;
 
 /// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
@@ -140,6 +150,8 @@ typedef struct pp_body_def {
     uint32_t alpha_threshold; ///< sprite alpha at or above which a pixel is solid, 1..255 (default 128)
     uint32_t detach_islands;  ///< static bodies: nonzero makes islands cut loose by an edit fall as dynamic bodies (default 0)
     uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
+    uint32_t bullet;          ///< nonzero: when fast, swept against every body it collides with, dynamic ones too,
+                              ///< even in a world without `continuous` (default 0)
 } pp_body_def;
 
 /// One contact point between two bodies.
@@ -239,6 +251,8 @@ PP_API void pp_set_log_hook(pp_log_fn fn, void *user);
 
 /// Default world settings (the balanced preset).
 PP_API pp_world_def pp_world_def_default(void);
+/// The settings of a preset; an unknown preset gives struct_size 0, which pp_world_create refuses (PP_ERR_ABI).
+PP_API pp_world_def pp_world_def_preset(pp_preset preset);
 /// Create a world from a def.
 PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
 /// Destroy a world and all its bodies; the handle becomes stale.

@@ -55,7 +55,31 @@ PP_API pp_world_def pp_world_def_default(void)
     d.sleep_linear_speed = 5.0f;
     d.sleep_angular_speed = 0.05f;
     d.sleep_time = 0.5f;
+    d.continuous = 1;
     return d;
+}
+
+/* The presets differ only in the knobs that trade speed for accuracy; the figures behind each
+ * choice are in the README ("Presets") and come from build/bench/bench_accuracy. */
+PP_API pp_world_def pp_world_def_preset(pp_preset preset)
+{
+    pp_world_def d = pp_world_def_default();
+    switch (preset) {
+    case PP_PRESET_FAST:
+        d.substeps = 1;
+        d.solver_iterations = 10;
+        d.raster_stride = 2;
+        return d;
+    case PP_PRESET_BALANCED:
+        return d;
+    case PP_PRESET_ACCURATE:
+        d.substeps = 4;
+        d.solver_iterations = 40;
+        return d;
+    default:
+        d.struct_size = 0;
+        return d;
+    }
 }
 
 /* Zero in a count field means its default (as the header says). */
@@ -106,8 +130,9 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     if (!def || !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: %s is NULL", def ? "out" : "def");
     if (def->struct_size != sizeof(pp_world_def))
-        return pp_fail(PP_ERR_ABI, "pp_world_create: def->struct_size is %u, this library expects %u",
-                       (unsigned)def->struct_size, (unsigned)sizeof(pp_world_def));
+        return pp_fail(PP_ERR_ABI, "pp_world_create: def->struct_size is %u, this library expects %u%s",
+                       (unsigned)def->struct_size, (unsigned)sizeof(pp_world_def),
+                       def->struct_size == 0 ? " (fill the def from pp_world_def_default or a known preset)" : "");
     pp_world_def d = *def;
     apply_count_defaults(&d);
     pp_status st = check_world_def(&d);

@@ -38,6 +38,7 @@ int main(void)
     F(pp_world_def, pixels_per_meter); F(pp_world_def, contact_slop); F(pp_world_def, contact_erp);
     F(pp_world_def, contact_cfm); F(pp_world_def, bounce_threshold); F(pp_world_def, allow_sleep);
     F(pp_world_def, sleep_linear_speed); F(pp_world_def, sleep_angular_speed); F(pp_world_def, sleep_time);
+    F(pp_world_def, continuous);
     end();
 
     S(pp_body_def);
@@ -48,7 +49,7 @@ int main(void)
     F(pp_body_def, category_bits); F(pp_body_def, mask_bits); F(pp_body_def, fixed_rotation);
     F(pp_body_def, width); F(pp_body_def, height); F(pp_body_def, rgba); F(pp_body_def, mask);
     F(pp_body_def, weights); F(pp_body_def, alpha_threshold); F(pp_body_def, detach_islands);
-    F(pp_body_def, user_data);
+    F(pp_body_def, user_data); F(pp_body_def, bullet);
     end();
 
     S(pp_contact);

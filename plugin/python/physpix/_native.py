@@ -47,6 +47,7 @@ class pp_world_def(ctypes.Structure):
         ("sleep_linear_speed", c_float),
         ("sleep_angular_speed", c_float),
         ("sleep_time", c_float),
+        ("continuous", c_uint32),
     ]
 
 
@@ -76,6 +77,7 @@ class pp_body_def(ctypes.Structure):
         ("alpha_threshold", c_uint32),
         ("detach_islands", c_uint32),
         ("user_data", c_uint64),
+        ("bullet", c_uint32),
     ]
 
 
@@ -157,6 +159,7 @@ SIGNATURES = {
     "pp_last_error": (c_char_p, []),
     "pp_set_log_hook": (None, [pp_log_fn, c_void_p]),
     "pp_world_def_default": (pp_world_def, []),
+    "pp_world_def_preset": (pp_world_def, [c_enum]),
     "pp_world_create": (STATUS, [P(pp_world_def), P(pp_world)]),
     "pp_world_destroy": (STATUS, [pp_world]),
     "pp_world_step": (STATUS, [pp_world, c_float]),
