@@ -191,7 +191,7 @@ typedef struct pp_step_stats {
     int32_t contacts;      ///< contact points made in the last substep
     int64_t pixels_tested; ///< raster samples tested (all substeps)
     pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
-    uint32_t reserved;     ///< zero
+    uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
 } pp_step_stats;
 
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.

@@ -56,7 +56,7 @@ void body_update_pose_cache(body *bd)
     bd->aabb = box;
 }
 
-static dvec2 body_com_local(const body *bd)
+dvec2 body_com_local(const body *bd)
 {
     return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
 }
@@ -183,6 +183,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     bd->mask_bits = def->mask_bits;
     bd->fixed_rotation = def->fixed_rotation != 0;
     bd->detach_islands = def->detach_islands != 0;
+    bd->bullet = def->bullet != 0;
     bd->user_data = def->user_data;
     bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
     bd->pos = dv(def->position.x, def->position.y);

@@ -80,6 +80,7 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     d.linear_damping = (float)parent->linear_damping, d.angular_damping = (float)parent->angular_damping;
     d.category_bits = parent->category_bits, d.mask_bits = parent->mask_bits;
     d.fixed_rotation = parent->fixed_rotation, d.detach_islands = parent->detach_islands;
+    d.bullet = parent->bullet;
     d.user_data = parent->user_data;
     pp_status st = pp_body_create(wd->handle, &d, out);
     if (st)

@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#define PP_PI 3.14159265358979323846
+
 typedef struct dvec2 {
     double x, y;
 } dvec2;
@@ -13,6 +15,7 @@ static inline dvec2 dv_add(dvec2 a, dvec2 b) { return dv(a.x + b.x, a.y + b.y); 
 static inline dvec2 dv_sub(dvec2 a, dvec2 b) { return dv(a.x - b.x, a.y - b.y); }
 static inline dvec2 dv_scale(dvec2 a, double s) { return dv(a.x * s, a.y * s); }
 static inline double dv_dot(dvec2 a, dvec2 b) { return a.x * b.x + a.y * b.y; }
+static inline double dv_norm(dvec2 a) { return hypot(a.x, a.y); }
 /* Rotate by angle (radians); +x turns toward +y. */
 static inline dvec2 dv_rot(dvec2 a, double c, double s) { return dv(c * a.x - s * a.y, s * a.x + c * a.y); }
 /* Rotate by −angle. */

@@ -207,6 +207,7 @@ const field world_fields[] = {
     F_FLOAT(pp_world_def, sleep_linear_speed, NUM_NONNEG),
     F_FLOAT(pp_world_def, sleep_angular_speed, NUM_NONNEG),
     F_FLOAT(pp_world_def, sleep_time, NUM_NONNEG),
+    F_BOOL(pp_world_def, continuous),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 
@@ -228,6 +229,7 @@ const field body_fields[] = {
     F_BOOL(pp_body_def, fixed_rotation),
     F_INT(pp_body_def, alpha_threshold, 1, 255),
     F_BOOL(pp_body_def, detach_islands),
+    F_BOOL(pp_body_def, bullet),
     F_INT(pp_body_def, user_data, 0, JSON_MAX_EXACT_INT),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };

@@ -102,6 +102,7 @@ static pp_status write_body(const char *dir, const body *bd, cJSON *arr)
     d.linear_damping = (float)bd->linear_damping, d.angular_damping = (float)bd->angular_damping;
     d.category_bits = bd->category_bits, d.mask_bits = bd->mask_bits;
     d.fixed_rotation = bd->fixed_rotation, d.detach_islands = bd->detach_islands;
+    d.bullet = bd->bullet;
     cJSON *obj = body_settings_to_json(&d);
     if (!obj || !cJSON_AddItemToArray(arr, obj)) {
         cJSON_Delete(obj);

@@ -1,5 +1,6 @@
 /* World lifetime, the handle tables, and the step loop:
  * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
+#include "continuous.h"
 #include "world.h"
 #include "status.h"
 
@@ -199,6 +200,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     free(wd->pair_bodies);
     free(wd->events);
     free(wd->proxies);
+    free(wd->sweep_from);
     free(wd->bodies);
     free(wd->generations);
     free(wd->free_slots);
@@ -439,6 +441,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     const double t_start = now_ms();
     double t_broad = 0, t_narrow = 0, t_solver = 0;
     wd->stats.pixels_tested = 0;
+    wd->stats.swept_stops = 0;
     pp_status est = apply_due_edits(wd, dt);
     if (est)
         return est;
@@ -448,9 +451,12 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         if (st)
             return st;
         const double t0 = now_ms();
+        if ((st = continuous_begin(wd)))
+            return st;
         add_contact_joints(wd);
         solver_step(wd->solver, h);
         sync_bodies(wd);
+        continuous_end(wd);
         update_sleep(wd, h);
         t_solver += now_ms() - t0;
     }

@@ -32,7 +32,15 @@ typedef struct body {
     uint64_t user_data;
     uint64_t serial;         /* creation order; a snapshot recreates ODE bodies in it */
     double slow_time;        /* s the body has stayed under the sleep speeds; ≥ sleep_time: asleep */
+    bool bullet;             /* swept against dynamic bodies too */
 } body;
+
+/* A body's pose at the start of a substep, for continuous collision. */
+typedef struct continuous_pose {
+    dvec2 com;               /* px */
+    double angle;            /* rad */
+    bool valid;              /* the body is swept this substep */
+} continuous_pose;
 
 typedef struct world {
     uint32_t slot;
@@ -63,6 +71,8 @@ typedef struct world {
     pp_timed_edit *edits;    /* pending timed edits, in the order they apply */
     int32_t edit_count, edit_capacity;
     uint64_t next_serial;    /* the next body's creation serial */
+    continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
+    int32_t sweep_capacity;
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
@@ -75,7 +85,8 @@ pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, b
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
 
-/* World position of the centre of mass (the pivot for massless bodies), px. */
+/* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
+dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
 
 /* Queue an event for pp_world_get_events. */

@@ -63,7 +63,7 @@ int main(void)
     F(pp_step_stats, broadphase_ms); F(pp_step_stats, narrowphase_ms); F(pp_step_stats, solver_ms);
     F(pp_step_stats, total_ms); F(pp_step_stats, bodies); F(pp_step_stats, awake_bodies); F(pp_step_stats, pairs);
     F(pp_step_stats, contacts); F(pp_step_stats, pixels_tested); F(pp_step_stats, backend);
-    F(pp_step_stats, reserved);
+    F(pp_step_stats, swept_stops);
     end();
 
     S(pp_camera); F(pp_camera, center); F(pp_camera, zoom); F(pp_camera, width); F(pp_camera, height); end();

@@ -108,7 +108,7 @@ class pp_step_stats(ctypes.Structure):
         ("contacts", c_int32),
         ("pixels_tested", c_int64),
         ("backend", c_enum),
-        ("reserved", c_uint32),
+        ("swept_stops", c_uint32),
     ]
 
 

@@ -1,0 +1,150 @@
+/* Continuous collision. Contacts are found only at the start of a substep, so a body that moves
+ * farther than its own thickness in one substep can pass through a thin wall unseen. After each
+ * substep such a body's motion is swept: poses along its path, spaced at most half its thickness
+ * apart (so no wall at least one pixel thick fits between two of them), are tested against the
+ * rasters it could meet. At the first pose where its overlap with a body grows by more than one
+ * pixel layer, refined by bisection to half a pixel of travel, the body is stopped; it keeps its
+ * velocity, so the next substep's contact takes that velocity away (or bounces it) as usual. */
+#include "continuous.h"
+#include "status.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Overlap tests refine the hit pose until the travel left to resolve is below this, px. */
+#define SWEEP_RESOLUTION 0.5
+
+/* A pose by its centre of mass, as ODE moves a body: the centre along a line, the angle evenly. */
+typedef struct sweep {
+    const body *bd;
+    dvec2 com0, dcom;   /* px */
+    double angle0, dangle;
+    dvec2 com_local;    /* bitmap coordinates, px */
+} sweep;
+
+static void sweep_pose(const sweep *sw, double t, dvec2 *com, double *angle)
+{
+    *com = dv_add(sw->com0, dv_scale(sw->dcom, t));
+    *angle = sw->angle0 + sw->dangle * t;
+}
+
+/* Solid pixels of the swept body at its pose at t whose centres fall in a solid pixel of `other`. */
+static int64_t overlap_at(const sweep *sw, double t, const body *other)
+{
+    dvec2 com;
+    double angle;
+    sweep_pose(sw, t, &com, &angle);
+    const pp_raster *r = &sw->bd->raster, *ro = &other->raster;
+    const double c = cos(angle), s = sin(angle);
+    /* Local pixel centre → world → other's bitmap, as one affine map stepped per pixel. */
+    const double oc = other->cos_a, os = other->sin_a;
+    const dvec2 dx = dv_unrot(dv(c, s), oc, os);
+    int64_t n = 0;
+    for (int32_t y = r->y0; y < r->y1; y++) {
+        const dvec2 w = dv_add(com, dv_rot(dv_sub(dv(r->x0 + 0.5, y + 0.5), sw->com_local), c, s));
+        dvec2 q = dv_add(dv_unrot(dv_sub(w, other->pos), oc, os), other->pivot);
+        for (int32_t x = r->x0; x < r->x1; x++, q = dv_add(q, dx))
+            if (raster_solid(r, x, y) && raster_solid_clamped(ro, (int32_t)floor(q.x), (int32_t)floor(q.y)))
+                n++;
+    }
+    return n;
+}
+
+/* Fraction of the substep at which the swept body (`thin` px across) first hits `other`, or 1 for
+ * no hit (or none before `before`). A hit is an overlap grown by more than one layer of pixels
+ * across the body since the start, so sliding along a body it already touches is not one. */
+static double first_hit(const sweep *sw, const body *other, int32_t thin, int32_t samples, double travel, double before)
+{
+    const int64_t limit = overlap_at(sw, 0.0, other) + thin;
+    for (int32_t k = 1; k <= samples; k++) {
+        double hi = (double)k / samples;
+        if (hi >= before)
+            return 1.0;
+        if (overlap_at(sw, hi, other) <= limit)
+            continue;
+        double lo = (double)(k - 1) / samples;
+        while ((hi - lo) * travel > SWEEP_RESOLUTION) {
+            const double mid = 0.5 * (lo + hi);
+            if (overlap_at(sw, mid, other) > limit)
+                hi = mid;
+            else
+                lo = mid;
+        }
+        return hi;
+    }
+    return 1.0;
+}
+
+static bool aabb_overlap(const pp_aabb *a, const pp_aabb *b)
+{
+    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
+}
+
+static bool sweeps(const world *wd, const body *bd)
+{
+    return bd && bd->type == PP_BODY_DYNAMIC && !raster_empty(&bd->raster) && solver_body_is_awake(&bd->sb) &&
+           (wd->def.continuous || bd->bullet);
+}
+
+pp_status continuous_begin(world *wd)
+{
+    if (wd->body_capacity > wd->sweep_capacity) {
+        continuous_pose *p = realloc(wd->sweep_from, (size_t)wd->body_capacity * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for continuous collision");
+        wd->sweep_from = p;
+        wd->sweep_capacity = wd->body_capacity;
+    }
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        wd->sweep_from[i].valid = sweeps(wd, bd);
+        if (wd->sweep_from[i].valid)
+            wd->sweep_from[i].com = body_com_world(bd), wd->sweep_from[i].angle = bd->angle;
+    }
+    return PP_OK;
+}
+
+/* Sweep one body from its recorded pose to where the substep left it; stop it at its first hit. */
+static void sweep_body(world *wd, body *bd, const continuous_pose *from)
+{
+    const pp_raster *r = &bd->raster;
+    sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle,
+                remainder(bd->angle - from->angle, 2 * PP_PI), body_com_local(bd)};
+    /* The farthest any solid pixel lies from the centre of mass bounds how far a point moves. */
+    double reach = 0;
+    for (int k = 0; k < 4; k++)
+        reach = fmax(reach, dv_norm(dv_sub(dv(k & 1 ? r->x1 : r->x0, k & 2 ? r->y1 : r->y0), sw.com_local)));
+    const double travel = dv_norm(sw.dcom) + fabs(sw.dangle) * reach;
+    const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
+    const double spacing = fmax(1.0, 0.5 * thin);
+    if (travel <= spacing)
+        return;
+    const dvec2 end = dv_add(sw.com0, sw.dcom);
+    const pp_aabb swept = {fmin(sw.com0.x, end.x) - reach, fmin(sw.com0.y, end.y) - reach,
+                           fmax(sw.com0.x, end.x) + reach, fmax(sw.com0.y, end.y) + reach};
+    const int32_t samples = (int32_t)fmin(ceil(travel / spacing), 1 << 20);
+    double t = 1.0;
+    for (int32_t j = 0; j < wd->body_capacity; j++) {
+        const body *o = wd->bodies[j];
+        if (!o || o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet) ||
+            !(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !aabb_overlap(&swept, &o->aabb))
+            continue;
+        t = fmin(t, first_hit(&sw, o, thin, samples, travel, t));
+    }
+    if (t >= 1.0)
+        return;
+    dvec2 com;
+    sweep_pose(&sw, t, &com, &bd->angle);
+    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    bd->pos = dv_sub(com, dv_rot(dv_sub(sw.com_local, bd->pivot), bd->cos_a, bd->sin_a));
+    body_update_pose_cache(bd);
+    solver_body_set_pose(wd->solver, &bd->sb, com, bd->angle);
+    wd->stats.swept_stops++;
+}
+
+void continuous_end(world *wd)
+{
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->sweep_from[i].valid && wd->bodies[i] && solver_body_is_awake(&wd->bodies[i]->sb))
+            sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);
+}

@@ -1,0 +1,14 @@
+/* Continuous collision: fast bodies swept along their substep's motion so they cannot pass
+ * through thin walls between two collision checks (see continuous.c). */
+#ifndef PP_CONTINUOUS_H
+#define PP_CONTINUOUS_H
+
+#include "world.h"
+
+/* Before a substep's solve: remember where every body that may be swept starts. */
+pp_status continuous_begin(world *wd);
+
+/* After the solve and the pose read-back: stop each fast body at its first hit along its path. */
+void continuous_end(world *wd);
+
+#endif
