@@ -255,6 +255,8 @@ PP_API pp_world_def pp_world_def_default(void);
 PP_API pp_world_def pp_world_def_preset(pp_preset preset);
 /// Create a world from a def.
 PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
+/// The settings the world runs with: its def, with zero counts replaced by their defaults.
+PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out);
 /// Destroy a world and all its bodies; the handle becomes stale.
 PP_API pp_status pp_world_destroy(pp_world w);
 /// Advance the world by dt seconds (0 < dt ≤ 1), in `substeps` solver steps.

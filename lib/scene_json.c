@@ -404,10 +404,18 @@ cJSON *fields_to_json(const field *t, const void *s)
 /* ---- settings and bitmaps -------------------------------------------------------------------------- */
 
 /* World settings over *d (start from pp_world_def_default()). */
+/* "preset" names the starting values (pp_world_def_preset); the other keys override them. */
 pp_status parse_world_def(const json_ctx *c, const cJSON *obj, const char *where, pp_world_def *d)
 {
-    pp_status st = check_keys(c, obj, where, world_fields, NULL);
-    return st ? st : read_fields(c, obj, where, world_fields, d);
+    static const char *const extra[] = {"preset", NULL};
+    static const char *const preset_names[] = {"", "fast", "balanced", "accurate", NULL};
+    int32_t preset = -1;
+    pp_status st = check_keys(c, obj, where, world_fields, extra);
+    if (st || (st = read_enum(c, obj, where, "preset", preset_names, &preset)))
+        return st;
+    if (preset > 0)
+        *d = pp_world_def_preset((pp_preset)preset);
+    return read_fields(c, obj, where, world_fields, d);
 }
 
 /* The inverse of parse_world_def: every field, so the default of a later version cannot change a saved world. */

@@ -474,6 +474,17 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     return PP_OK;
 }
 
+PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
+{
+    world *wd = world_lookup(w, "pp_world_get_def");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_def: out is NULL");
+    *out = wd->def;
+    return PP_OK;
+}
+
 PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count)
 {
     world *wd = world_lookup(w, "pp_world_get_bodies");

@@ -38,6 +38,10 @@ Test(misuse, defaults_are_documented_values) {
     cr_assert_eq(wd.normal_method, PP_NORMAL_AREA_GRADIENT);
     cr_assert_eq(wd.contact_mode, PP_CONTACT_MANIFOLD);
     cr_assert_eq(wd.backend, PP_BACKEND_AUTO);
+    cr_assert_eq(wd.continuous, 1u);
+    /* The balanced preset is the default, field for field. */
+    const pp_world_def balanced = pp_world_def_preset(PP_PRESET_BALANCED);
+    cr_assert(memcmp(&wd, &balanced, sizeof wd) == 0);
     pp_body_def bd = pp_body_def_default();
     cr_assert_eq(bd.struct_size, sizeof(pp_body_def));
     cr_assert_eq(bd.type, PP_BODY_DYNAMIC);
@@ -50,6 +54,36 @@ Test(misuse, defaults_are_documented_values) {
     cr_assert_null(bd.rgba);
     cr_assert_null(bd.mask);
     cr_assert_null(bd.weights);
+    cr_assert_eq(bd.bullet, 0u);
+}
+
+Test(misuse, unknown_preset) {
+    /* A preset the library does not know gives a def that every call refuses, with a message that says why. */
+    const pp_preset unknown[] = {0, 4, (pp_preset)-1};
+    for (int k = 0; k < 3; k++) {
+        pp_world_def wd = pp_world_def_preset(unknown[k]);
+        cr_assert_eq(wd.struct_size, 0u);
+        pp_world w = {0x1234};
+        EXPECT_ERR(pp_world_create(&wd, &w), PP_ERR_ABI, "struct_size is 0");
+        char want[160];
+        snprintf(want, sizeof want, "pp_world_create: def->struct_size is 0, this library expects %zu "
+                 "(fill the def from pp_world_def_default or a known preset)", sizeof(pp_world_def));
+        cr_assert_str_eq(pp_last_error(), want);
+        cr_assert_eq(w.id, 0x1234u, "out was written on failure");
+    }
+    for (pp_preset p = PP_PRESET_FAST; p <= PP_PRESET_ACCURATE; p++) {
+        pp_world_def wd = pp_world_def_preset(p);
+        pp_world w;
+        pp_world_def got;
+        PP_OK_OR_FAIL(pp_world_create(&wd, &w));
+        PP_OK_OR_FAIL(pp_world_get_def(w, &got));
+        cr_assert(memcmp(&wd, &got, sizeof wd) == 0, "preset %d: the world runs with other settings", (int)p);
+        PP_OK_OR_FAIL(pp_world_destroy(w));
+        EXPECT_ERR(pp_world_get_def(w, &got), PP_ERR_INVALID_HANDLE, "world|handle");
+    }
+    pp_world w = misuse_world();
+    EXPECT_ERR(pp_world_get_def(w, NULL), PP_ERR_INVALID_ARGUMENT, "out is NULL");
+    pp_world_destroy(w);
 }
 
 Test(misuse, zero_and_stale_body_handles) {

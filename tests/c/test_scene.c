@@ -165,7 +165,7 @@ static const char *full_scene_fmt =
     "             \"backend\": \"cpu\", \"normal_method\": \"kernel\", \"contact_mode\": \"centroid\",\n"
     "             \"raster_stride\": 2, \"pixels_per_meter\": 50, \"contact_slop\": 0.5, \"contact_erp\": 0.3,\n"
     "             \"contact_cfm\": 1e-4, \"bounce_threshold\": 10, \"allow_sleep\": false,\n"
-    "             \"sleep_linear_speed\": 3, \"sleep_angular_speed\": 0.1, \"sleep_time\": 1 },\n"
+    "             \"sleep_linear_speed\": 3, \"sleep_angular_speed\": 0.1, \"sleep_time\": 1, \"continuous\": false },\n"
     "  \"camera\": { \"center\": [100, -50], \"zoom\": 2.5, \"width\": 640, \"height\": 360 },\n"
     "  \"bodies\": [\n"
     "    { \"name\": \"faller\", \"box\": [4, 4], \"position\": [1000, 0], \"angle\": 0.25, \"pivot\": [1, 3],\n"
@@ -194,6 +194,15 @@ Test(scene, every_field_arrives)
     pp_body b[8];
     cr_assert_eq(bodies_of(w, b, 8), 4);
     const pp_body faller = b[0], sprite = b[1], weighted = b[2], terrain = b[3];
+
+    /* The world's settings, each away from its default. */
+    pp_world_def d;
+    PP_OK_OR_FAIL(pp_world_get_def(w, &d));
+    cr_assert(d.gravity.x == 30 && d.gravity.y == 500 && d.substeps == 4 && d.solver_iterations == 7 && d.exact_solver);
+    cr_assert(d.backend == PP_BACKEND_CPU && d.normal_method == PP_NORMAL_KERNEL && d.contact_mode == PP_CONTACT_CENTROID);
+    cr_assert(d.raster_stride == 2 && d.pixels_per_meter == 50 && d.contact_slop == 0.5f && d.contact_erp == 0.3f);
+    cr_assert(d.contact_cfm == 1e-4f && d.bounce_threshold == 10 && !d.allow_sleep && d.sleep_linear_speed == 3);
+    cr_assert(d.sleep_angular_speed == 0.1f && d.sleep_time == 1 && !d.continuous);
 
     pp_camera cam;
     PP_OK_OR_FAIL(pp_world_get_camera(w, &cam));
@@ -292,6 +301,51 @@ static int pixels_within(int w, int h, double cx, double cy, double r)
         for (int i = 0; i < w; i++)
             n += (i + 0.5 - cx) * (i + 0.5 - cx) + (j + 0.5 - cy) * (j + 0.5 - cy) <= r * r;
     return n;
+}
+
+Test(scene, a_preset_gives_the_starting_values_and_keys_override_them)
+{
+    dir_open();
+    const char *names[] = {"fast", "balanced", "accurate"};
+    const pp_preset presets[] = {PP_PRESET_FAST, PP_PRESET_BALANCED, PP_PRESET_ACCURATE};
+    for (int k = 0; k < 3; k++) {
+        char json[256];
+        snprintf(json, sizeof json, "{ \"world\": { \"contact_erp\": 0.5, \"preset\": \"%s\" } }", names[k]);
+        pp_world w = load_ok(json);
+        pp_world_def want = pp_world_def_preset(presets[k]), got;
+        want.contact_erp = 0.5f; /* a key overrides the preset wherever it stands in the object */
+        PP_OK_OR_FAIL(pp_world_get_def(w, &got));
+        cr_assert(memcmp(&want, &got, sizeof want) == 0, "preset %s: the world's settings differ", names[k]);
+        PP_OK_OR_FAIL(pp_world_destroy(w));
+    }
+    expect_error("{ \"world\": { \"preset\": \"quick\" } }", PP_ERR_FORMAT,
+                 "world.preset: unknown value 'quick' (expected one of fast, balanced, accurate)");
+    dir_close();
+}
+
+Test(scene, a_bullet_stops_at_a_thin_dynamic_wall)
+{
+    /* A 4 px box at 5,000 px/s crosses an 8 px dynamic wall in one substep unless it is a bullet. */
+    dir_open();
+    for (int bullet = 0; bullet <= 1; bullet++) {
+        char json[512];
+        snprintf(json, sizeof json,
+                 "{ \"world\": { \"gravity\": [0, 0] },"
+                 "  \"bodies\": [ { \"box\": [8, 200], \"position\": [500, 100], \"density\": 100 },"
+                 "    { \"box\": [4, 4], \"position\": [100, 100], \"linear_velocity\": [5000, 0], \"bullet\": %s } ] }",
+                 bullet ? "true" : "false");
+        pp_world w = load_ok(json);
+        pp_body b[2];
+        cr_assert_eq(bodies_of(w, b, 2), 2);
+        step_n(w, 1.0f / 60, 30);
+        const float x = body_pos(w, b[1]).x;
+        if (bullet)
+            cr_assert_lt(x, body_pos(w, b[0]).x, "the bullet ended at x %.1f, past the wall", x);
+        else
+            cr_assert_gt(x, 1000, "without bullet the box ended at x %.1f", x);
+        PP_OK_OR_FAIL(pp_world_destroy(w));
+    }
+    dir_close();
 }
 
 Test(scene, timed_edits_apply_at_their_time)

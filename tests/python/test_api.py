@@ -25,6 +25,37 @@ def test_world_accepts_def_fields_as_keywords(fields):
         assert b.velocity[1] == pytest.approx(10.0, rel=1e-3)
 
 
+@pytest.mark.parametrize("name", ["fast", "balanced", "accurate"])
+def test_from_preset_starts_from_the_preset_and_keywords_override_it(name):
+    want = {"fast": (1, 10, 2), "balanced": (2, 20, 1), "accurate": (4, 40, 1)}[name]
+    with physpix.World.from_preset(name, contact_erp=0.5) as w:
+        s = w.settings
+        assert (s["substeps"], s["solver_iterations"], s["raster_stride"]) == want
+        assert s["contact_erp"] == 0.5 and s["continuous"] == 1
+    with physpix.World.from_preset(physpix.Preset[name.upper()]) as w, physpix.World() as default:
+        assert (w.settings == default.settings) == (name == "balanced")
+
+
+def test_from_preset_refuses_an_unknown_name_or_field():
+    with pytest.raises(ValueError, match="preset: 'quick' is not one of 'fast', 'balanced', 'accurate'"):
+        physpix.World.from_preset("quick")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'substep'"):
+        physpix.World.from_preset("fast", substep=3)
+
+
+def test_a_bullet_stops_at_a_thin_wall_that_a_plain_body_passes():
+    with physpix.World(gravity=(0, 0), allow_sleep=False) as w:
+        wall = rect(w, 8, 200, position=(500, 100), density=100)
+        plain = rect(w, 4, 4, position=(100, 60), linear_velocity=(5000, 0))
+        bullet = rect(w, 4, 4, position=(100, 140), linear_velocity=(5000, 0), bullet=True)
+        stops = 0
+        for _ in range(30):
+            w.step(1 / 60)
+            stops += w.stats().swept_stops
+        assert plain.position[0] > 1000
+        assert bullet.position[0] < wall.position[0] and stops == 1
+
+
 def test_properties_and_setters(space):
     b = rect(space, 20, 10, position=(50, 60), angle=0.25, linear_velocity=(3, 4), angular_velocity=0.5,
              user_data=0xDEADBEEF12345678)

@@ -7,7 +7,7 @@ a source checkout's build/ folder, or the system's library path.
 
 from . import _native
 from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, NormalMethod,
-                    Status)
+                    Preset, Status)
 from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleError, LimitError, OutOfMemoryError,
                      PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
@@ -37,7 +37,7 @@ def set_log_hook(fn):
 __all__ = [
     "World", "Body", "Contact", "Event", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
     "load_png", "save_png", "image_info", "set_log_hook",
-    "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Status",
+    "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Preset", "Status",
     "CELL_A", "CELL_B", "CELL_CRITICAL",
     "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
     "FormatError", "UnsupportedError", "LimitError", "AbiError", "library_version", "library_path",

@@ -34,6 +34,13 @@ class ContactMode(IntEnum):
     CENTROID = 1
 
 
+class Preset(IntEnum):
+    """pp_preset: a named point on the measured speed/accuracy trade."""
+    FAST = 1
+    BALANCED = 2
+    ACCURATE = 3
+
+
 class BodyType(IntEnum):
     """pp_body_type: how a body moves."""
     DYNAMIC = 0

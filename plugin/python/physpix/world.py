@@ -11,7 +11,7 @@ from dataclasses import astuple, dataclass, fields as dataclass_fields
 import numpy as np
 
 from . import _native as N
-from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod
+from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod, Preset
 from .errors import InvalidArgumentError, PhysPixError
 
 lib = N.lib
@@ -162,6 +162,7 @@ class StepStats:
     contacts: int
     pixels_tested: int
     backend: Backend
+    swept_stops: int
 
 
 @dataclass(frozen=True)
@@ -210,8 +211,17 @@ class World:
     """A physics world; keywords are pp_world_def field names (gravity=(0, 980) px/s², backend="cpu", …)."""
 
     def __init__(self, **fields):
-        d = lib.pp_world_def_default()
-        _fill_def(d, fields, "World")
+        self._create(lib.pp_world_def_default(), fields, "World")
+
+    @classmethod
+    def from_preset(cls, preset, **fields):
+        """A world from a preset ("fast", "balanced" = the default, "accurate"); keywords override its fields."""
+        world = cls.__new__(cls)
+        world._create(lib.pp_world_def_preset(enum_value(Preset, preset, "preset")), fields, "from_preset")
+        return world
+
+    def _create(self, d, fields, caller):
+        _fill_def(d, fields, caller)
         handle = N.pp_world()
         lib.pp_world_create(byref(d), byref(handle))
         self._adopt(handle)
@@ -335,6 +345,17 @@ class World:
         t = c_double()
         lib.pp_world_get_time(self._handle, byref(t))
         return t.value
+
+    @property
+    def settings(self):
+        """The pp_world_def the world runs with, as a dict of field name to value (vectors as (x, y))."""
+        d = N.pp_world_def()
+        lib.pp_world_get_def(self._handle, byref(d))
+        out = {}
+        for name, _ in d._fields_[1:]:
+            v = getattr(d, name)
+            out[name] = (v.x, v.y) if isinstance(v, N.pp_vec2) else _ENUM_FIELDS[name](v) if name in _ENUM_FIELDS else v
+        return out
 
     @property
     def camera(self):
