@@ -39,11 +39,22 @@ static int64_t overlap_at(const sweep *sw, double t, const body *other)
     /* Local pixel centre → world → other's bitmap, as one affine map stepped per pixel. */
     const double oc = other->cos_a, os = other->sin_a;
     const dvec2 dx = dv_unrot(dv(c, s), oc, os);
+    /* Only the part of the swept body inside the other's world box can overlap it: that box's corners,
+     * taken into the swept body's bitmap, bound the pixels worth testing. */
+    double lx0 = INFINITY, ly0 = INFINITY, lx1 = -INFINITY, ly1 = -INFINITY;
+    for (int k = 0; k < 4; k++) {
+        const pp_aabb *box = &other->aabb;
+        const dvec2 corner = dv(k & 1 ? box->x1 + 1 : box->x0 - 1, k & 2 ? box->y1 + 1 : box->y0 - 1);
+        const dvec2 l = dv_add(dv_unrot(dv_sub(corner, com), c, s), sw->com_local);
+        lx0 = fmin(lx0, l.x), ly0 = fmin(ly0, l.y), lx1 = fmax(lx1, l.x), ly1 = fmax(ly1, l.y);
+    }
+    const int32_t x0 = (int32_t)fmax(r->x0, floor(lx0)), x1 = (int32_t)fmin(r->x1, ceil(lx1));
+    const int32_t y0 = (int32_t)fmax(r->y0, floor(ly0)), y1 = (int32_t)fmin(r->y1, ceil(ly1));
     int64_t n = 0;
-    for (int32_t y = r->y0; y < r->y1; y++) {
-        const dvec2 w = dv_add(com, dv_rot(dv_sub(dv(r->x0 + 0.5, y + 0.5), sw->com_local), c, s));
+    for (int32_t y = y0; y < y1; y++) {
+        const dvec2 w = dv_add(com, dv_rot(dv_sub(dv(x0 + 0.5, y + 0.5), sw->com_local), c, s));
         dvec2 q = dv_add(dv_unrot(dv_sub(w, other->pos), oc, os), other->pivot);
-        for (int32_t x = r->x0; x < r->x1; x++, q = dv_add(q, dx))
+        for (int32_t x = x0; x < x1; x++, q = dv_add(q, dx))
             if (raster_solid(r, x, y) && raster_solid_clamped(ro, (int32_t)floor(q.x), (int32_t)floor(q.y)))
                 n++;
     }
