@@ -137,8 +137,9 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
     double t = 1.0;
     for (int32_t j = 0; j < wd->body_capacity; j++) {
         const body *o = wd->bodies[j];
-        if (!o || o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet) ||
-            !(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !aabb_overlap(&swept, &o->aabb))
+        if (!o || o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet))
+            continue;
+        if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !aabb_overlap(&swept, &o->aabb))
             continue;
         t = fmin(t, first_hit(&sw, o, thin, samples, travel, t));
     }
