@@ -122,6 +122,7 @@ typedef struct pp_world_def {
     float sleep_time;               ///< time a body must stay slow before it sleeps, s (default 0.5)
     uint32_t continuous;            ///< nonzero: a dynamic body moving over half its thickness in a substep is swept
                                     ///< against static and kinematic bodies and stopped where it first hits (default 1)
+    float max_correction_speed;     ///< fastest that contacts push overlapping bodies apart, px/s, > 0 (default 300)
 } pp_world_def;
 
 /// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.

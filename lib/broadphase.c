@@ -25,15 +25,65 @@ static bool before(const bp_proxy *p, uint32_t a, uint32_t b)
     return p[a].box.x0 < p[b].box.x0 || (p[a].box.x0 == p[b].box.x0 && a < b);
 }
 
-static bool may_touch(const bp_proxy *p, const bp_proxy *q)
+/* `roused` marks sleeping bodies that share a pair with an awake one (NULL in the first sweep). */
+static bool may_touch(const bp_proxy *p, const bp_proxy *q, const uint8_t *roused, uint32_t ip, uint32_t iq)
 {
     if (!p->dynamic && !q->dynamic)
         return false; /* static and kinematic never respond to each other */
-    if (!p->awake && !q->awake)
+    if (roused) {
+        /* Second sweep: only a roused sleeper's pairs with static bodies. */
+        if (!((roused[ip] && !q->movable) || (roused[iq] && !p->movable)))
+            return false;
+    } else if (!p->awake && !q->awake) {
         return false;
+    }
     if (!(p->category_bits & q->mask_bits) || !(q->category_bits & p->mask_bits))
         return false;
     return p->box.y0 <= q->box.y1 && q->box.y0 <= p->box.y1;
+}
+
+/* Append the pairs of the sorted order that may touch. */
+static pp_status sweep(pp_broadphase *bp, const bp_proxy *proxies, const uint8_t *roused)
+{
+    for (int32_t i = 0; i < bp->order_count; i++) {
+        const uint32_t ip = bp->order[i];
+        const bp_proxy *p = &proxies[ip];
+        for (int32_t j = i + 1; j < bp->order_count; j++) {
+            const uint32_t iq = bp->order[j];
+            const bp_proxy *q = &proxies[iq];
+            if (q->box.x0 > p->box.x1)
+                break;
+            if (!may_touch(p, q, roused, ip, iq))
+                continue;
+            pp_status st = grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof(bp_pair));
+            if (st)
+                return st;
+            bp->pairs[bp->pair_count++] = ip < iq ? (bp_pair){ip, iq} : (bp_pair){iq, ip};
+        }
+    }
+    return PP_OK;
+}
+
+/* A sleeping body paired with an awake one may be woken by ODE through their contact joint in this
+ * very step, and would then move with nothing under it: the broadphase skipped its pairs with static
+ * bodies while it slept. Such a sleeper gets those pairs too (its other sleeping neighbours stay out). */
+static pp_status rouse_sleepers(pp_broadphase *bp, const bp_proxy *proxies, int32_t n)
+{
+    uint8_t *roused = NULL;
+    for (int32_t k = 0; k < bp->pair_count; k++) {
+        const uint32_t a = bp->pairs[k].a, b = bp->pairs[k].b;
+        const uint32_t sleeper = proxies[a].awake ? b : a, other = sleeper == a ? b : a;
+        if (!proxies[other].awake || proxies[sleeper].awake || !proxies[sleeper].dynamic)
+            continue;
+        if (!roused && !(roused = calloc((size_t)n, 1)))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory");
+        roused[sleeper] = 1;
+    }
+    if (!roused)
+        return PP_OK;
+    const pp_status st = sweep(bp, proxies, roused);
+    free(roused);
+    return st;
 }
 
 pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t n)
@@ -71,22 +121,8 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
     }
 
     bp->pair_count = 0;
-    for (int32_t i = 0; i < m; i++) {
-        const bp_proxy *p = &proxies[bp->order[i]];
-        for (int32_t j = i + 1; j < m; j++) {
-            const bp_proxy *q = &proxies[bp->order[j]];
-            if (q->box.x0 > p->box.x1)
-                break;
-            if (!may_touch(p, q))
-                continue;
-            st = grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof(bp_pair));
-            if (st)
-                return st;
-            uint32_t a = bp->order[i], b = bp->order[j];
-            bp->pairs[bp->pair_count++] = a < b ? (bp_pair){a, b} : (bp_pair){b, a};
-        }
-    }
-    return PP_OK;
+    st = sweep(bp, proxies, NULL);
+    return st ? st : rouse_sleepers(bp, proxies, n);
 }
 
 void broadphase_free(pp_broadphase *bp)

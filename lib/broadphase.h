@@ -33,7 +33,8 @@ typedef struct pp_broadphase {
 } pp_broadphase;
 
 /* Find the pairs among `proxies[0..n)` that can touch: overlapping boxes, passing the category
- * filter, at least one dynamic, at least one awake. Fills bp->pairs in a deterministic order. */
+ * filter, at least one dynamic, at least one awake; and the static pairs of a sleeping body that
+ * is paired with an awake one. Fills bp->pairs in a deterministic order. */
 pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t n);
 void broadphase_free(pp_broadphase *bp);
 

@@ -62,11 +62,11 @@ static int64_t overlap_at(const sweep *sw, double t, const body *other)
 }
 
 /* Fraction of the substep at which the swept body (`thin` px across) first hits `other`, or 1 for
- * no hit (or none before `before`). A hit is an overlap grown by more than one layer of pixels
- * across the body since the start, so sliding along a body it already touches is not one. */
+ * no hit (or none before `before`). A hit is an overlap grown by a whole layer of pixels across
+ * the body since the start, so sliding along a body it already touches is not one. */
 static double first_hit(const sweep *sw, const body *other, int32_t thin, int32_t samples, double travel, double before)
 {
-    const int64_t limit = overlap_at(sw, 0.0, other) + thin;
+    const int64_t limit = overlap_at(sw, 0.0, other) + thin - 1; /* a 1 px body hits on its first pixel in */
     for (int32_t k = 1; k <= samples; k++) {
         double hi = (double)k / samples;
         if (hi >= before)

@@ -69,6 +69,9 @@ pp_status solver_create(const pp_world_def *def, pp_solver **out)
     dWorldSetGravity(s->world, def->gravity.x * s->inv_ppm, def->gravity.y * s->inv_ppm, 0);
     dWorldSetQuickStepNumIterations(s->world, def->solver_iterations);
     dWorldSetContactSurfaceLayer(s->world, def->contact_slop * s->inv_ppm);
+    /* Deep overlaps (spawned bodies, a fast body stopped inside a wall) separate at a bounded speed;
+     * ODE applies the cap to the correction only, never to a bounce. */
+    dWorldSetContactMaxCorrectingVel(s->world, def->max_correction_speed * s->inv_ppm);
     /* Sleep is the world's (world.c): ODE's auto-disable timers cannot be read back for snapshots. */
     dWorldSetAutoDisableFlag(s->world, 0);
     *out = s;

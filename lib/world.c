@@ -57,6 +57,7 @@ PP_API pp_world_def pp_world_def_default(void)
     d.sleep_angular_speed = 0.05f;
     d.sleep_time = 0.5f;
     d.continuous = 1;
+    d.max_correction_speed = 300.0f;
     return d;
 }
 
@@ -120,6 +121,8 @@ static pp_status check_world_def(const pp_world_def *d)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_cfm must be finite and ≥ 0");
     if (!(d->bounce_threshold >= 0) || !isfinite(d->bounce_threshold))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: bounce_threshold must be finite and ≥ 0");
+    if (!(d->max_correction_speed > 0) || !isfinite(d->max_correction_speed))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: max_correction_speed must be finite and > 0");
     if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
         !isfinite(d->sleep_linear_speed) || !isfinite(d->sleep_angular_speed) || !isfinite(d->sleep_time))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: sleep thresholds must be finite and ≥ 0");

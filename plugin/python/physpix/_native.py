@@ -48,6 +48,7 @@ class pp_world_def(ctypes.Structure):
         ("sleep_angular_speed", c_float),
         ("sleep_time", c_float),
         ("continuous", c_uint32),
+        ("max_correction_speed", c_float),
     ]
 
 
