@@ -65,7 +65,7 @@ void main()
     int lo = 0x7fffffff, hi = -0x7fffffff - 1;
     for (int k = 0; k < 4; k++) {
         int x = (k & 1) != 0 ? p.size.x - 1 : 0, y = (k >> 1) != 0 ? p.size.y - 1 : 0;
-        int b = (-x * nqy + y * nqx) >> 14; // arithmetic shift: floor
+        int b = (-x * nqy + y * nqx + ONE / 2) >> 14; // round(t), ties up: the corner's own strip
         lo = min(lo, b);
         hi = max(hi, b);
     }

@@ -19,7 +19,7 @@ void main()
     if ((c & 1u) == 0u || cov == 0)
         return;
     int nqx = int(results[r + R_NQX]), nqy = int(results[r + R_NQY]), lo = int(results[r + R_TMIN]);
-    int ts = -xy.x * nqy + xy.y * nqx - ONE / 2;
+    int ts = -xy.x * nqy + xy.y * nqx; // strip b is centred on t = b
     int b0 = (ts >> 14) - lo, w1 = (ts & (ONE - 1)) >> 6;
     int base = p.q2.z;
     if (b0 >= 0)

@@ -134,20 +134,23 @@ static void intersection_sums(const np_pair *p, const uint8_t *sa, const uint8_t
     }
 }
 
-/* Strips across the normal, one cell wide (glsl/narrow_strips.comp). Per strip: the min and max
- * projection of its intersection cells on the normal (Q14), and the other body's coverage summed
- * over the strip's reference cells, which is the overlap length along the strip to sub-pixel
- * precision (for a flat edge, exactly). Each cell's coverage is shared between the two strips
- * whose centres are nearest, by distance, since a tilted strip holds a varying number of cells. */
+/* Strips across the normal, one cell wide (glsl/narrow_strips.comp). Strip b is centred on the
+ * tangent coordinate t = b, so a cell belongs to strip round(t) and an axis-aligned strip is one
+ * column of cells, centred on it. Per strip: the min and max projection of its intersection cells
+ * on the normal (Q14), and the other body's coverage summed over the strip's reference cells,
+ * which is the overlap length along the strip to sub-pixel precision (for a flat edge, exactly).
+ * Each cell's coverage is shared between the two strips whose centres are nearest, by distance,
+ * since a tilted strip holds a varying number of cells. */
 static void strips_along(const np_pair *p, const uint8_t *sa, const uint8_t *sb, const uint16_t *cb, np_core *r,
                          int32_t *strips)
 {
     const int32_t nqx = r->nqx, nqy = r->nqy, ex = p->nx + 2 * RING;
-    /* Tangent coordinate t = −x·ny + y·nx over the rectangle's corners bounds the strip indices. */
+    /* The tangent coordinate t = −x·ny + y·nx is linear, so the cells' own strips round(t) (ties
+     * up) lie between those of the rectangle's corners. */
     int64_t lo = INT64_MAX, hi = INT64_MIN;
     for (int k = 0; k < 4; k++) {
         const int64_t x = (k & 1) ? p->nx - 1 : 0, y = (k >> 1) ? p->ny - 1 : 0;
-        const int64_t b = floor_div(-x * nqy + y * nqx, NP_NORMAL_ONE);
+        const int64_t b = floor_div(-x * nqy + y * nqx + NP_NORMAL_ONE / 2, NP_NORMAL_ONE);
         lo = b < lo ? b : lo;
         hi = b > hi ? b : hi;
     }
@@ -165,8 +168,9 @@ static void strips_along(const np_pair *p, const uint8_t *sa, const uint8_t *sb,
                 continue;
             const int64_t x = ci - RING, y = cj - RING;
             /* Tent-splat the coverage between the two strips whose centres are nearest (8-bit weights):
-             * b0 is the strip whose centre is at or before the cell, w1 the share of the next one. */
-            const int64_t ts = -x * nqy + y * nqx - NP_NORMAL_ONE / 2, b0 = floor_div(ts, NP_NORMAL_ONE) - lo;
+             * b0 is the strip whose centre is at or before the cell, w1 the share of the next one.
+             * b0 may be −1 and b0 + 1 may be n, past the corners' strips: those shares are dropped. */
+            const int64_t ts = -x * nqy + y * nqx, b0 = floor_div(ts, NP_NORMAL_ONE) - lo;
             const int32_t w1 = (int32_t)((ts - (b0 + lo) * NP_NORMAL_ONE) >> 6); /* 0..255 */
             if (b0 >= 0)
                 strips[NP_STRIP_FIELDS * b0 + NP_STRIP_COVER] += (cb[k] * (256 - w1)) >> 8;
@@ -174,7 +178,7 @@ static void strips_along(const np_pair *p, const uint8_t *sa, const uint8_t *sb,
                 strips[NP_STRIP_FIELDS * (b0 + 1) + NP_STRIP_COVER] += (cb[k] * w1) >> 8;
             if (!sb[k])
                 continue;
-            /* The cell's own strip: the later of the two once the cell is past b0's right edge. */
+            /* The cell's own strip, round(t): the later of the two from half-way between them on. */
             int32_t *st = strips + NP_STRIP_FIELDS * (b0 + (w1 >= 128));
             const int32_t pr = (int32_t)(x * nqx + y * nqy);
             if (pr < st[NP_STRIP_MIN]) st[NP_STRIP_MIN] = pr;

@@ -116,11 +116,12 @@ void np_quantize_normal(int64_t gx, int64_t gy, int32_t *nqx, int32_t *nqy)
     *nqy = gy < 0 ? -ky : ky;
 }
 
-/* Inner-cell coordinates of the middle of a strip's intersection, given its projections. */
-static dvec2 strip_point(int32_t strip, int32_t pmin, int32_t pmax, int32_t nqx, int32_t nqy)
+/* Inner-cell coordinates of a contact point on a strip: along n the middle of its intersection
+ * cells' projections, along t the strip's centre (t = strip) moved by `end` strip widths. */
+static dvec2 strip_point(int32_t strip, double end, int32_t pmin, int32_t pmax, int32_t nqx, int32_t nqy)
 {
     const double v = 0.5 * ((double)pmin + pmax) / NP_NORMAL_ONE; /* along n */
-    const double u = (double)strip + 0.5;                          /* along t */
+    const double u = (double)strip + end;                          /* along t */
     const double q = (double)NP_NORMAL_ONE;
     return dv((nqx * v - nqy * u) / q, (nqy * v + nqx * u) / q);
 }
@@ -142,17 +143,19 @@ void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, 
     const double cell = p->s / 256.0;
     dvec2 pts[2];
     double depth[2];
-    const dvec2 first = strip_point(core->tmin + core->first, core->first_min, core->first_max, core->nqx, core->nqy);
     if (set->contact_mode == PP_CONTACT_CENTROID || core->first == core->last) {
         pts[0] = set->contact_mode == PP_CONTACT_CENTROID
                      ? dv((double)core->sx / core->count, (double)core->sy / core->count)
-                     : first;
+                     : strip_point(core->tmin + core->first, 0.0, core->first_min, core->first_max, core->nqx,
+                                   core->nqy);
         depth[0] = core->cover_all * cell;
         out->count = 1;
     } else {
-        /* The two ends along the tangent, each as deep as the deepest strip of its half. */
-        pts[0] = first;
-        pts[1] = strip_point(core->tmin + core->last, core->last_min, core->last_max, core->nqx, core->nqy);
+        /* The two ends along the tangent, on the outer edges of the first and last strips so that
+         * they span the whole patch (a box on flat ground: its two bottom corners), each as deep
+         * as the deepest strip of its half. */
+        pts[0] = strip_point(core->tmin + core->first, -0.5, core->first_min, core->first_max, core->nqx, core->nqy);
+        pts[1] = strip_point(core->tmin + core->last, 0.5, core->last_min, core->last_max, core->nqx, core->nqy);
         depth[0] = core->cover_lo * cell;
         depth[1] = core->cover_hi * cell;
         out->count = 2;

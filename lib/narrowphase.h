@@ -51,7 +51,7 @@ typedef struct np_core {
     int64_t count, sx, sy;      /* intersection cells and the sums of their inner-cell coordinates */
     int64_t gx, gy;             /* unnormalised normal estimate, reference axes */
     int32_t nqx, nqy;           /* the normal in Q14 */
-    int32_t tmin, nstrips;      /* strip index of strip 0, and the strip count */
+    int32_t tmin, nstrips;      /* strip index of strip 0, and the strip count; strip b is centred on t = b */
     int32_t first, last;        /* first and last strips holding intersection cells */
     int32_t first_min, first_max, last_min, last_max; /* their projections on the normal, Q14 */
     int32_t cover_all, cover_lo, cover_hi; /* deepest cover (1/256 cell): all strips, [first, mid], (mid, last] */
@@ -92,7 +92,9 @@ static inline dvec2 np_grid_to_local(const np_pair *p, double ci, double cj)
 /* Set a pair up; false when the bodies' boxes cannot overlap (no contact, nothing to run). */
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p);
 
-/* Cells of the sampled plane (inner grid plus ring), and the most strips the pair can have. */
+/* Cells of the sampled plane (inner grid plus ring), and the most strips the pair can have: the
+ * inner cells' tangent coordinates span at most (nx − 1) + (ny − 1) cells, so their rounded values
+ * at most nx + ny strips. */
 static inline int64_t np_pair_cells(const np_pair *p)
 {
     return (int64_t)(p->nx + 2 * NP_RING) * (p->ny + 2 * NP_RING);
