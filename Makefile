@@ -178,12 +178,24 @@ $(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
+# Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
+ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
+$(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(ACC_SRC) $(STATIC) $(LIBS)
+
 bench: deps
-	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel
+	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
+	  $(BUILD)/bench/bench_accuracy
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
+	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
+	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
+	@$(PYTHON) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing from PyPI: matplotlib"; \
+	  $(PYTHON) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
+	$(PYTHON) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig

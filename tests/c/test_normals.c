@@ -1,18 +1,17 @@
 /* Contact normals, depths and points from pp_world_collide at set poses (no stepping),
- * against the analytic answer: circle–circle at 36 directions, box–ground at 0..90°. */
+ * against the analytic answer: circle–circle at 36 directions, box–ground at 0..90°, rotated
+ * box–box. The poses live in tests/bench/accuracy/analytic.h, shared with the accuracy benchmark. */
 #include "helpers.h"
+#include "../bench/accuracy/analytic.h"
 
 PP_TEST_SUITE(normals);
 
-#define DISC_R 30
-#define CIRCLE_DIRS 36
-#define BOX_HALF 20
-#define BOX_ANGLES 91
-#define PEN 3.0 /* penetration of the analytic shapes, px */
-#define MAXC 8
-#define BOXBOX_POSES 90
+#define DISC_R ANALYTIC_DISC_R
+#define BOX_HALF ANALYTIC_BOX_HALF
+#define PEN ANALYTIC_PEN /* penetration of the analytic shapes, px */
+#define MAXC ANALYTIC_MAX_CONTACTS
 
-#define MAX_PAIRS (2 * BOXBOX_POSES + BOX_ANGLES + CIRCLE_DIRS)
+#define MAX_PAIRS (2 * ANALYTIC_BOXBOX_POSES + ANALYTIC_BOX_ANGLES + ANALYTIC_CIRCLE_DIRS)
 
 typedef struct sample_set {
     double normal_err[2 * MAX_PAIRS]; /* degrees, per contact */
@@ -21,18 +20,26 @@ typedef struct sample_set {
     int n_depth;
 } sample_set;
 
-static pp_world collide_world(pp_normal_method nm, pp_contact_mode cm) {
+static pp_world_def collide_def(pp_normal_method nm, pp_contact_mode cm) {
     pp_world_def d = pp_world_def_default();
     d.gravity = v2(0, 0);
     d.normal_method = nm;
     d.contact_mode = cm;
+    return d;
+}
+
+static pp_world collide_world(pp_normal_method nm, pp_contact_mode cm) {
+    pp_world_def d = collide_def(nm, cm);
     return make_world_def(&d);
 }
 
-/* Checks what every contact of a pair must satisfy, and returns the count. */
-static int collide_pair(pp_world w, pp_body a, pp_body b, pp_contact *c, pp_contact_mode cm, const char *what) {
-    int32_t n = -1;
-    PP_OK_OR_FAIL(pp_world_collide(w, a, b, c, MAXC, &n));
+/* Checks what every contact of a collided pair must satisfy, and returns the count. */
+static int check_pair(const analytic_pair *p, pp_contact_mode cm) {
+    const char *what = p->what;
+    const pp_contact *c = p->c;
+    int32_t n = p->count;
+    cr_assert_eq(p->status, PP_OK, "%s: pp_world_collide -> %s (%s)", what, pp_status_name(p->status),
+                 pp_last_error());
     cr_assert_geq(n, 1, "%s: no contact for an overlapping pair", what);
     if (cm == PP_CONTACT_CENTROID)
         cr_assert_eq(n, 1, "%s: CENTROID mode gave %d contacts", what, n);
@@ -42,67 +49,56 @@ static int collide_pair(pp_world w, pp_body a, pp_body b, pp_contact *c, pp_cont
         double len = hypot(c[k].normal.x, c[k].normal.y);
         cr_assert_float_eq(len, 1.0, 1e-3, "%s: contact %d normal (%g, %g) is not unit", what, k, c[k].normal.x,
                            c[k].normal.y);
-        cr_assert_eq(c[k].a.id, a.id, "%s: contact %d: a is not the first body", what, k);
-        cr_assert_eq(c[k].b.id, b.id, "%s: contact %d: b is not the second body", what, k);
+        cr_assert_eq(c[k].a.id, p->a.id, "%s: contact %d: a is not the first body", what, k);
+        cr_assert_eq(c[k].b.id, p->b.id, "%s: contact %d: b is not the second body", what, k);
         cr_assert_gt(c[k].pixel_count, 0, "%s: contact %d: pixel_count %d", what, k, c[k].pixel_count);
         cr_assert(isfinite(c[k].depth) && c[k].depth >= 0, "%s: contact %d depth %g", what, k, c[k].depth);
     }
     return n;
 }
 
+/* Collides every pose of a family; checks each pair and gathers its errors into s. */
+static const analytic_set *run_family(analytic_family f, pp_normal_method nm, pp_contact_mode cm, sample_set *s) {
+    static analytic_set set;
+    pp_world_def d = collide_def(nm, cm);
+    PP_OK_OR_FAIL(analytic_run(f, &d, &set));
+    s->n_normal = s->n_depth = 0;
+    for (int i = 0; i < set.n; i++) {
+        check_pair(&set.pair[i], cm);
+        s->depth_err[s->n_depth++] = analytic_errors(&set.pair[i], s->normal_err, &s->n_normal);
+    }
+    return &set;
+}
+
 /* Disc b around disc a at 36 directions, overlapping by PEN px. */
 static void run_circles(pp_normal_method nm, pp_contact_mode cm, sample_set *s) {
-    pp_world w = collide_world(nm, cm);
-    const double ax = 400.0, ay = 400.0, d = 2.0 * DISC_R - PEN;
-    pp_body a = add_disc(w, body_def(PP_BODY_DYNAMIC, (float)ax, (float)ay, 0), DISC_R);
-    pp_body b = add_disc(w, body_def(PP_BODY_DYNAMIC, 0, 0, 0), DISC_R);
-    s->n_normal = s->n_depth = 0;
-    for (int k = 0; k < CIRCLE_DIRS; k++) {
-        double th = DEG2RAD(10.0 * k + 3.0); /* off the axes, so no direction is pixel-aligned by luck */
-        double ux = cos(th), uy = sin(th);
-        double bx = ax + d * ux, by = ay + d * uy;
-        PP_OK_OR_FAIL(pp_body_set_transform(w, b, v2((float)bx, (float)by), (float)(0.1 * k)));
-        pp_contact c[MAXC];
-        char what[64];
-        snprintf(what, sizeof what, "circles at %.0f deg", RAD2DEG(th));
-        int n = collide_pair(w, a, b, c, cm, what);
-        double maxdepth = 0;
-        for (int i = 0; i < n; i++) {
-            s->normal_err[s->n_normal++] = angle_between_deg(c[i].normal.x, c[i].normal.y, ux, uy);
-            if (c[i].depth > maxdepth) maxdepth = c[i].depth;
+    const analytic_set *set = run_family(ANALYTIC_CIRCLES, nm, cm, s);
+    for (int k = 0; k < set->n; k++) {
+        const analytic_pair *p = &set->pair[k];
+        const char *what = p->what;
+        const pp_contact *c = p->c;
+        for (int i = 0; i < p->count; i++) {
             /* The point lies in the lens: within both discs (1 px of slack for the raster). */
-            double da = hypot(c[i].point.x - ax, c[i].point.y - ay);
-            double db = hypot(c[i].point.x - bx, c[i].point.y - by);
+            double da = hypot(c[i].point.x - p->a_x, c[i].point.y - p->a_y);
+            double db = hypot(c[i].point.x - p->b_x, c[i].point.y - p->b_y);
             cr_assert_leq(da, DISC_R + 1.0, "%s: point (%g, %g) is %g px from a's centre", what, c[i].point.x,
                           c[i].point.y, da);
             cr_assert_leq(db, DISC_R + 1.0, "%s: point (%g, %g) is %g px from b's centre", what, c[i].point.x,
                           c[i].point.y, db);
         }
-        s->depth_err[s->n_depth++] = fabs(maxdepth - PEN);
     }
-    pp_world_destroy(w);
 }
 
 /* A 40×40 box at 0..90° sunk PEN px into a wide static ground; a = box, b = ground. */
 static void run_box_ground(pp_normal_method nm, pp_contact_mode cm, sample_set *s) {
-    pp_world w = collide_world(nm, cm);
-    const double top = 500.0;
-    pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 1000, (float)(top + 50), 0), 2000, 100);
-    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 0, 0, 0), 2 * BOX_HALF, 2 * BOX_HALF);
-    s->n_normal = s->n_depth = 0;
-    for (int deg = 0; deg < BOX_ANGLES; deg++) {
-        double a = DEG2RAD((double)deg);
-        double h = BOX_HALF * (fabs(cos(a)) + fabs(sin(a)));
-        double x = 1000.0 + 0.37 * deg, y = top - h + PEN;
-        PP_OK_OR_FAIL(pp_body_set_transform(w, box, v2((float)x, (float)y), (float)a));
-        pp_contact c[MAXC];
-        char what[64];
-        snprintf(what, sizeof what, "box at %d deg", deg);
-        int n = collide_pair(w, box, ground, c, cm, what);
-        double maxdepth = 0;
-        for (int i = 0; i < n; i++) {
-            s->normal_err[s->n_normal++] = angle_between_deg(c[i].normal.x, c[i].normal.y, 0.0, 1.0);
-            if (c[i].depth > maxdepth) maxdepth = c[i].depth;
+    const analytic_set *set = run_family(ANALYTIC_BOX_GROUND, nm, cm, s);
+    const double top = ANALYTIC_GROUND_TOP;
+    for (int k = 0; k < set->n; k++) {
+        const analytic_pair *p = &set->pair[k];
+        const char *what = p->what;
+        const pp_contact *c = p->c;
+        const double x = p->a_x, y = p->a_y, a = p->a_angle;
+        for (int i = 0; i < p->count; i++) {
             /* The point lies in the overlap: below the ground top, above the box's lowest point, inside the box. */
             cr_assert(c[i].point.y >= top - 1.0 && c[i].point.y <= top + PEN + 1.0,
                       "%s: point y %g outside the overlap [%g, %g]", what, c[i].point.y, top, top + PEN);
@@ -111,42 +107,13 @@ static void run_box_ground(pp_normal_method nm, pp_contact_mode cm, sample_set *
             cr_assert(fabs(lx) <= BOX_HALF + 1.0 && fabs(ly) <= BOX_HALF + 1.0,
                       "%s: point (%g, %g) outside the box (local %g, %g)", what, c[i].point.x, c[i].point.y, lx, ly);
         }
-        s->depth_err[s->n_depth++] = fabs(maxdepth - PEN);
     }
-    pp_world_destroy(w);
 }
 
-/* A 30×30 box B, turned by rel = 5..85° relative to a 60×60 box A, its corner PEN px into A's
- * right face, for A at 0..89°: the analytic normal is A's face normal n = R(alpha)·(1, 0).
- * Each pose is collided both ways: (A, B) must give n, (B, A) must give -n. */
+/* A 30×30 box's corner PEN px into a 60×60 box's face, turned 5..85° against it, at 90 poses,
+ * collided both ways: (A, B) must give A's face normal n, (B, A) must give -n. */
 static void run_box_box(pp_normal_method nm, pp_contact_mode cm, sample_set *s) {
-    pp_world w = collide_world(nm, cm);
-    const double ax = 500.0, ay = 500.0;
-    pp_body A = add_rect(w, body_def(PP_BODY_DYNAMIC, (float)ax, (float)ay, 0), 60, 60);
-    pp_body B = add_rect(w, body_def(PP_BODY_DYNAMIC, 0, 0, 0), 30, 30);
-    s->n_normal = s->n_depth = 0;
-    for (int deg = 0; deg < BOXBOX_POSES; deg++) {
-        double rel = DEG2RAD(5.0 + (deg * 37) % 81), hb = 15.0 * (cos(rel) + sin(rel));
-        double al = DEG2RAD((double)deg), c = cos(al), sn = sin(al);
-        double lx = 30.0 + hb - PEN, ly = 4.0 - 0.1 * deg; /* in A's frame */
-        double bx = ax + c * lx - sn * ly, by = ay + sn * lx + c * ly;
-        PP_OK_OR_FAIL(pp_body_set_transform(w, A, v2((float)ax, (float)ay), (float)al));
-        PP_OK_OR_FAIL(pp_body_set_transform(w, B, v2((float)bx, (float)by), (float)(al + rel)));
-        for (int swap = 0; swap < 2; swap++) {
-            pp_contact ct[MAXC];
-            char what[80];
-            snprintf(what, sizeof what, "box-box at %d deg, relative %.0f deg%s", deg, RAD2DEG(rel),
-                     swap ? ", swapped" : "");
-            int n = swap ? collide_pair(w, B, A, ct, cm, what) : collide_pair(w, A, B, ct, cm, what);
-            double sign = swap ? -1.0 : 1.0, maxdepth = 0;
-            for (int i = 0; i < n; i++) {
-                s->normal_err[s->n_normal++] = angle_between_deg(ct[i].normal.x, ct[i].normal.y, sign * c, sign * sn);
-                if (ct[i].depth > maxdepth) maxdepth = ct[i].depth;
-            }
-            s->depth_err[s->n_depth++] = fabs(maxdepth - PEN);
-        }
-    }
-    pp_world_destroy(w);
+    (void)run_family(ANALYTIC_BOX_BOX, nm, cm, s);
 }
 
 static void report(const char *name, sample_set *s, double *med, double *p95, double *dmed, double *dp95) {
