@@ -41,8 +41,8 @@ PP_API pp_world_def pp_world_def_default(void)
     memset(&d, 0, sizeof d);
     d.struct_size = sizeof d;
     d.gravity = (pp_vec2){0.0f, 980.0f};
-    d.substeps = 2;
-    d.solver_iterations = 20;
+    d.substeps = 4;
+    d.solver_iterations = 40;
     d.backend = PP_BACKEND_AUTO;
     d.normal_method = PP_NORMAL_AREA_GRADIENT;
     d.contact_mode = PP_CONTACT_MANIFOLD;
@@ -54,29 +54,30 @@ PP_API pp_world_def pp_world_def_default(void)
     d.bounce_threshold = 20.0f;
     d.allow_sleep = 1;
     d.sleep_linear_speed = 5.0f;
-    d.sleep_angular_speed = 0.05f;
+    d.sleep_angular_speed = 0.1f;
     d.sleep_time = 0.5f;
     d.continuous = 1;
     d.max_correction_speed = 300.0f;
     return d;
 }
 
-/* The presets differ only in the knobs that trade speed for accuracy; the figures behind each
- * choice are in the README ("Presets") and come from build/bench/bench_accuracy. */
+/* The presets differ only in the solver's work, the knob that decides whether stacks stand; the
+ * figures behind each are in the README ("Presets") and come from build/bench/bench_accuracy.
+ * Coarser strides and one substep were measured too: they topple the pyramid, so no preset uses
+ * them; one contact point a pair (CENTROID) holds stacks cheaply but lets a box tip on a gentle
+ * slope, so every preset keeps two. */
 PP_API pp_world_def pp_world_def_preset(pp_preset preset)
 {
     pp_world_def d = pp_world_def_default();
     switch (preset) {
     case PP_PRESET_FAST:
-        d.substeps = 1;
-        d.solver_iterations = 10;
-        d.raster_stride = 2;
+        d.substeps = 2;
+        d.solver_iterations = 20;
         return d;
     case PP_PRESET_BALANCED:
         return d;
     case PP_PRESET_ACCURATE:
-        d.substeps = 4;
-        d.solver_iterations = 40;
+        d.solver_iterations = 80;
         return d;
     default:
         d.struct_size = 0;
@@ -204,6 +205,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     free(wd->events);
     free(wd->proxies);
     free(wd->sweep_from);
+    free(wd->group);
     free(wd->bodies);
     free(wd->generations);
     free(wd->free_slots);
@@ -357,9 +359,14 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     return PP_OK;
 }
 
+/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
+ * pairs each have two points leans toward the point solved first. The order flips every solver
+ * step (by the step count, so snapshots keep it), and the biases cancel. */
 static void add_contact_joints(world *wd)
 {
-    for (int32_t i = 0; i < wd->contact_count; i++) {
+    const bool reversed = solver_get_steps(wd->solver) & 1;
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        const int32_t i = reversed ? wd->contact_count - 1 - k : k;
         const pp_contact *c = &wd->contacts[i];
         const body *a = wd->bodies[(uint32_t)c->a.id - 1], *b = wd->bodies[(uint32_t)c->b.id - 1];
         const solver_contact sc = {
@@ -390,27 +397,63 @@ static void sync_bodies(world *wd)
     }
 }
 
-/* A dynamic body slower than the sleep speeds for sleep_time goes to sleep, as ODE's auto-disable
- * would, but with its timer here so that a snapshot can save it. ODE wakes a sleeping body that an
- * awake one touches; its timer then starts again. */
-static void update_sleep(world *wd, double h)
+static int32_t group_root(int32_t *parent, int32_t i)
+{
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+/* A dynamic body slower than the sleep speeds for sleep_time may sleep, as under ODE's auto-disable,
+ * but with its timer here so that a snapshot can save it. Bodies touching each other sleep together
+ * or not at all: ODE wakes a sleeper that an awake body touches, so one that slept alone would be
+ * woken at once, its timer restarted, and a resting pile would never settle. */
+static pp_status update_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
+    if (wd->body_capacity > wd->group_capacity) {
+        int32_t *g = realloc(wd->group, 2 * (size_t)wd->body_capacity * sizeof *g);
+        if (!g)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for sleep groups");
+        wd->group = g;
+        wd->group_capacity = wd->body_capacity;
+    }
+    int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
+        parent[i] = i, restless[i] = 0;
         body *bd = wd->bodies[i];
         if (!bd || bd->type != PP_BODY_DYNAMIC || !solver_body_is_awake(&bd->sb))
             continue;
-        if (bd->slow_time >= d->sleep_time)
-            bd->slow_time = 0; /* woken since it slept */
-        if (!d->allow_sleep)
-            continue;
+        if (bd->slow_time > d->sleep_time)
+            bd->slow_time = 0; /* woken since it slept (the mark set below) */
         solver_body_state s;
         solver_body_get_state(wd->solver, &bd->sb, &s);
-        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed && fabs(s.angular_velocity) <= d->sleep_angular_speed;
-        bd->slow_time = slow ? bd->slow_time + h : 0;
-        if (bd->slow_time >= d->sleep_time)
-            solver_body_sleep(&bd->sb);
+        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed &&
+                          fabs(s.angular_velocity) <= d->sleep_angular_speed;
+        /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
+        bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
     }
+    if (!d->allow_sleep)
+        return PP_OK;
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        const uint32_t a = (uint32_t)wd->contacts[k].a.id - 1, b = (uint32_t)wd->contacts[k].b.id - 1;
+        if (wd->bodies[a]->type == PP_BODY_DYNAMIC && wd->bodies[b]->type == PP_BODY_DYNAMIC)
+            parent[group_root(parent, (int32_t)a)] = group_root(parent, (int32_t)b);
+    }
+    /* A group with a body not yet ready stays awake. */
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (bd && bd->type == PP_BODY_DYNAMIC && bd->slow_time < d->sleep_time)
+            restless[group_root(parent, i)] = 1;
+    }
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        body *bd = wd->bodies[i];
+        if (bd && bd->type == PP_BODY_DYNAMIC && solver_body_is_awake(&bd->sb) && !restless[group_root(parent, i)]) {
+            solver_body_sleep(&bd->sb);
+            bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
+        }
+    }
+    return PP_OK;
 }
 
 /* Apply, in order, the timed edits due at a step that starts now: those nearest this step or earlier. */
@@ -460,7 +503,8 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         solver_step(wd->solver, h);
         sync_bodies(wd);
         continuous_end(wd);
-        update_sleep(wd, h);
+        if ((st = update_sleep(wd, h)))
+            return st;
         t_solver += now_ms() - t0;
     }
     int32_t awake = 0;

@@ -31,7 +31,8 @@ typedef struct body {
     pp_aabb aabb;            /* world bounds of the solid pixels */
     uint64_t user_data;
     uint64_t serial;         /* creation order; a snapshot recreates ODE bodies in it */
-    double slow_time;        /* s the body has stayed under the sleep speeds; ≥ sleep_time: asleep */
+    double slow_time;        /* s the body has stayed under the sleep speeds, at most sleep_time while awake;
+                              * sleep_time + 1 while asleep */
     bool bullet;             /* swept against dynamic bodies too */
 } body;
 
@@ -73,6 +74,8 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
+    int32_t *group;          /* by slot: union-find of bodies in contact, so that they sleep together */
+    int32_t group_capacity;
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */

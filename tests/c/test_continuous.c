@@ -12,6 +12,7 @@ static pp_world wall_world(uint32_t continuous, pp_body_type wall_type, pp_body 
     pp_world_def d = pp_world_def_default();
     d.gravity = v2(0, 0);
     d.continuous = continuous;
+    d.substeps = 2; /* the figures below are per 1/120 s substep */
     d.allow_sleep = 0; /* a heavy wall pushed to 0.5 px/s would otherwise fall asleep and drop its momentum */
     pp_world w = make_world_def(&d);
     pp_body_def wd = body_def(wall_type, WALL_X, 100, 0);

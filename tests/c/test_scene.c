@@ -330,7 +330,7 @@ Test(scene, a_bullet_stops_at_a_thin_dynamic_wall)
     for (int bullet = 0; bullet <= 1; bullet++) {
         char json[512];
         snprintf(json, sizeof json,
-                 "{ \"world\": { \"gravity\": [0, 0] },"
+                 "{ \"world\": { \"gravity\": [0, 0], \"substeps\": 2 },"
                  "  \"bodies\": [ { \"box\": [8, 200], \"position\": [500, 100], \"density\": 100 },"
                  "    { \"box\": [4, 4], \"position\": [100, 100], \"linear_velocity\": [5000, 0], \"bullet\": %s } ] }",
                  bullet ? "true" : "false");

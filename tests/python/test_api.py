@@ -27,7 +27,7 @@ def test_world_accepts_def_fields_as_keywords(fields):
 
 @pytest.mark.parametrize("name", ["fast", "balanced", "accurate"])
 def test_from_preset_starts_from_the_preset_and_keywords_override_it(name):
-    want = {"fast": (1, 10, 2), "balanced": (2, 20, 1), "accurate": (4, 40, 1)}[name]
+    want = {"fast": (2, 20, 1), "balanced": (4, 40, 1), "accurate": (4, 80, 1)}[name]
     with physpix.World.from_preset(name, contact_erp=0.5) as w:
         s = w.settings
         assert (s["substeps"], s["solver_iterations"], s["raster_stride"]) == want
@@ -44,7 +44,7 @@ def test_from_preset_refuses_an_unknown_name_or_field():
 
 
 def test_a_bullet_stops_at_a_thin_wall_that_a_plain_body_passes():
-    with physpix.World(gravity=(0, 0), allow_sleep=False) as w:
+    with physpix.World(gravity=(0, 0), allow_sleep=False, substeps=2) as w:
         wall = rect(w, 8, 200, position=(500, 100), density=100)
         plain = rect(w, 4, 4, position=(100, 60), linear_velocity=(5000, 0))
         bullet = rect(w, 4, 4, position=(100, 140), linear_velocity=(5000, 0), bullet=True)

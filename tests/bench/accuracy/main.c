@@ -229,6 +229,8 @@ static int build_settings(setting *list, int gpu_ok)
         {2, 10, 1, 0, 1, 0, ROLE_FAST_CAND}, {2, 30, 1, 0, 1, 0, ROLE_FAST_CAND},
         {2, 30, 1, 0, 1, 1, ROLE_FAST_CAND}, {2, 40, 1, 0, 1, 1, ROLE_FAST_CAND},
         {4, 40, 1, 0, 0, 0, ROLE_ACC_CAND},  {8, 40, 1, 0, 0, 0, ROLE_ACC_CAND},
+        {2, 60, 1, 0, 0, 0, ROLE_ACC_CAND},  {2, 80, 1, 0, 0, 0, ROLE_ACC_CAND},
+        {4, 80, 1, 0, 0, 0, ROLE_ACC_CAND},
         {2, 40, 1, 0, 1, 0, ROLE_ACC_CAND},  {2, 80, 1, 0, 1, 0, ROLE_ACC_CAND},
         {4, 40, 1, 0, 1, 0, ROLE_ACC_CAND},  {2, 20, 1, 1, 1, 0, ROLE_ACC_CAND},
     };
