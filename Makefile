@@ -105,11 +105,11 @@ $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 	mkdir -p $@
 
 # C tests: Criterion, linked against the sanitized library (ASan + UBSan).
-$(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h | $(BUILD)/tests
+$(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
 	$(CC) $(CFLAGS_) -O1 -g $(SANFLAGS) -o $@ $(TEST_SRC) $(SAN_OBJ) -lcriterion $(LIBS)
 
 # The same tests against the optimised shared library, as a user links it.
-$(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h | $(BUILD)/tests
+$(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $(TEST_SRC) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lcriterion $(LIBS)
 
 test-compile: | $(BUILD)/tests
