@@ -164,7 +164,7 @@ $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $(BENCH_SRC) $(STATIC) $(LIBS)
 
 # Narrowphase throughput, CPU against GPU, and what AUTO picks.
-$(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c $(STATIC)
+$(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
@@ -174,13 +174,13 @@ $(BUILD)/bench/bench_edit: tests/bench/edit/main.c $(STATIC)
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
 # Tunnelling: the largest speed at which a fast body never passes through an 8 px wall.
-$(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c $(STATIC)
+$(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
-$(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h $(STATIC)
+$(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(ACC_SRC) $(STATIC) $(LIBS)
 

@@ -5,6 +5,7 @@
  *   bench [--csv PATH] [--quick] [--runs N] [--scene NAME]
  */
 #include "bench.h"
+#include "machine.h"
 #include "physpix.h"
 
 #include <ode/ode.h>
@@ -98,20 +99,8 @@ static bench_settings settings_from_defaults(void)
 
 static void print_machine(void)
 {
-    char model[256] = "unknown";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (f) {
-        char line[512];
-        while (fgets(line, sizeof line, f)) {
-            char *colon = strchr(line, ':');
-            if (strncmp(line, "model name", 10) == 0 && colon) {
-                snprintf(model, sizeof model, "%s", colon + 2);
-                model[strcspn(model, "\n")] = '\0';
-                break;
-            }
-        }
-        fclose(f);
-    }
+    char model[256];
+    bench_cpu_model(model, sizeof model);
     uint32_t v = pp_version();
     printf("PhysPix %u.%u.%u benchmark\n", v / 10000, v / 100 % 100, v % 100);
     printf("machine: %ld cpus online, %s\n", sysconf(_SC_NPROCESSORS_ONLN), model);

@@ -7,6 +7,7 @@
  *   bench_accuracy [--csv PATH] [--quick] [--only TEXT]
  */
 #include "accuracy.h"
+#include "machine.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -357,18 +358,8 @@ static int measure(setting *s, const acc_plan *plan, bench_scene *pyramid, bench
 
 static void print_machine(const acc_plan *plan, const options *o)
 {
-    char model[256] = "unknown", line[512];
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    while (f && fgets(line, sizeof line, f)) {
-        char *colon = strchr(line, ':');
-        if (strncmp(line, "model name", 10) == 0 && colon) {
-            snprintf(model, sizeof model, "%s", colon + 2);
-            model[strcspn(model, "\n")] = '\0';
-            break;
-        }
-    }
-    if (f)
-        fclose(f);
+    char model[256];
+    bench_cpu_model(model, sizeof model);
     uint32_t v = pp_version();
     printf("PhysPix %u.%u.%u accuracy benchmark%s\n", v / 10000, v / 100 % 100, v % 100, o->quick ? " (--quick)" : "");
     printf("machine: %ld cpus online, %s; one thread\n", sysconf(_SC_NPROCESSORS_ONLN), model);

@@ -4,6 +4,7 @@
  *
  *   bench_narrow [--csv PATH] [--quick] [--runs N] [--max-cells N]
  */
+#include "../machine.h"
 #include "physpix.h"
 
 #include <math.h>
@@ -110,18 +111,8 @@ static void log_hook(int level, const char *msg, void *user)
 
 static void print_machine(const options *o)
 {
-    char model[256] = "unknown", line[512];
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    while (f && fgets(line, sizeof line, f)) {
-        char *colon = strchr(line, ':');
-        if (strncmp(line, "model name", 10) == 0 && colon) {
-            snprintf(model, sizeof model, "%s", colon + 2);
-            model[strcspn(model, "\n")] = '\0';
-            break;
-        }
-    }
-    if (f)
-        fclose(f);
+    char model[256];
+    bench_cpu_model(model, sizeof model);
     uint32_t v = pp_version();
     printf("PhysPix %u.%u.%u narrowphase benchmark\n", v / 10000, v / 100 % 100, v % 100);
     printf("machine: %ld cpus online, %s\nGPU: see PHYSPIX log\n", sysconf(_SC_NPROCESSORS_ONLN), model);

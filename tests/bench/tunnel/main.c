@@ -4,6 +4,7 @@
  *
  *   bench_tunnel [--csv PATH] [--detail PATH] [--quick]
  */
+#include "../machine.h"
 #include "physpix.h"
 
 #include <math.h>
@@ -293,18 +294,8 @@ static double time_step(const config *c, const shape *sh, double speed, int graz
 static void print_machine(const options *o, int nspeeds, const double *speeds, int nphase, int nangle,
                           const double *angles)
 {
-    char model[256] = "unknown", line[512];
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    while (f && fgets(line, sizeof line, f)) {
-        char *colon = strchr(line, ':');
-        if (strncmp(line, "model name", 10) == 0 && colon) {
-            snprintf(model, sizeof model, "%s", colon + 2);
-            model[strcspn(model, "\n")] = '\0';
-            break;
-        }
-    }
-    if (f)
-        fclose(f);
+    char model[256];
+    bench_cpu_model(model, sizeof model);
     const uint32_t v = pp_version();
     printf("PhysPix %u.%u.%u tunnelling benchmark%s\n", v / 10000, v / 100 % 100, v % 100, o->quick ? " (--quick)" : "");
     printf("machine: %ld cpus online, %s\n", sysconf(_SC_NPROCESSORS_ONLN), model);
