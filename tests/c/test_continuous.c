@@ -21,6 +21,18 @@ static pp_world wall_world(uint32_t continuous, pp_body_type wall_type, pp_body 
     return w;
 }
 
+/* Step n times at 1/60 s; the times continuous collision stopped a body. */
+static int step_counting_stops(pp_world w, int n) {
+    int stops = 0;
+    for (int i = 0; i < n; i++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
+        pp_step_stats st;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+        stops += (int)st.swept_stops;
+    }
+    return stops;
+}
+
 /* Fire a size × size box at the wall from x = 100 and step one second; returns its final x. */
 static float fire(pp_world w, int size, float speed, uint32_t bullet, float restitution, int *stops) {
     pp_body_def d = body_def(PP_BODY_DYNAMIC, 100, 100, 0);
@@ -28,13 +40,7 @@ static float fire(pp_world w, int size, float speed, uint32_t bullet, float rest
     d.bullet = bullet;
     d.restitution = restitution;
     pp_body b = add_rect(w, d, size, size);
-    *stops = 0;
-    for (int i = 0; i < 60; i++) {
-        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
-        pp_step_stats st;
-        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
-        *stops += (int)st.swept_stops;
-    }
+    *stops = step_counting_stops(w, 60);
     return body_pos(w, b).x;
 }
 
@@ -124,14 +130,7 @@ Test(continuous, sliding_fast_along_the_ground_is_not_stopped) {
     step_n(w, 1.0f / 60, 60);
     PP_OK_OR_FAIL(pp_body_set_velocity(w, b, v2(3000, 0), 0));
     const float x0 = body_pos(w, b).x;
-    int stops = 0;
-    for (int i = 0; i < 60; i++) {
-        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
-        pp_step_stats st;
-        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
-        stops += (int)st.swept_stops;
-    }
-    cr_assert_eq(stops, 0);
+    cr_assert_eq(step_counting_stops(w, 60), 0);
     const float slid = body_pos(w, b).x - x0;
     cr_assert_float_eq(slid, 3000.0f, 30.0f, "slid %.1f px in 1 s at 3000 px/s", slid);
     pp_world_destroy(w);
