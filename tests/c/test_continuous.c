@@ -152,3 +152,16 @@ Test(continuous, a_falling_stick_does_not_pass_a_thin_floor) {
     cr_assert_gt(p.y, 4990, "the stick ended at y %.1f, not on the floor", p.y);
     pp_world_destroy(w);
 }
+
+Test(continuous, a_filtered_wall_is_not_swept) {
+    /* A body whose mask_bits leave out the wall's category passes it, swept or not. */
+    pp_body wall;
+    pp_world w = wall_world(1, PP_BODY_STATIC, &wall);
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 100, 100, 0);
+    d.linear_velocity = v2(5000, 0);
+    d.mask_bits = ~1u; /* the wall is in category 1 */
+    pp_body b = add_rect(w, d, 8, 8);
+    cr_assert_eq(step_counting_stops(w, 60), 0);
+    cr_assert_gt(body_pos(w, b).x, WALL_X + 1000, "the filtered box ended at x %.1f", body_pos(w, b).x);
+    pp_world_destroy(w);
+}
