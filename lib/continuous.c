@@ -99,13 +99,10 @@ static bool sweeps(const world *wd, const body *bd)
 
 pp_status continuous_begin(world *wd)
 {
-    if (wd->body_capacity > wd->sweep_capacity) {
-        continuous_pose *p = realloc(wd->sweep_from, (size_t)wd->body_capacity * sizeof *p);
-        if (!p)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for continuous collision");
-        wd->sweep_from = p;
-        wd->sweep_capacity = wd->body_capacity;
-    }
+    pp_status st = world_slot_array(wd, (void **)&wd->sweep_from, &wd->sweep_capacity, sizeof *wd->sweep_from,
+                                    "continuous collision");
+    if (st)
+        return st;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         wd->sweep_from[i].valid = sweeps(wd, bd);

@@ -11,6 +11,7 @@
 #include "solver_ode.h"
 
 #include <stdbool.h>
+#include <stddef.h>
 
 typedef struct body {
     uint32_t index;          /* slot in the world's body table */
@@ -74,7 +75,7 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
-    int32_t *group;          /* by slot: union-find of bodies in contact, so that they sleep together */
+    int32_t *group;          /* two per slot: union-find parents, then restless flags (bodies in contact sleep together) */
     int32_t group_capacity;
 } world;
 
@@ -101,6 +102,9 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
 /* The integer cores of wd->pairs[0, n) (`cells` samples in all) on the backend the world asked
  * for; returns which one ran. */
 pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran);
+
+/* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
+pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
 
 /* Refresh cached trig and world bounds after a pose change. */
 void body_update_pose_cache(body *bd);

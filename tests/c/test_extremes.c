@@ -59,14 +59,11 @@ static int32_t body_count(pp_world w) {
  * 1. Mass ratio 1:1000 stacks. Two s×s boxes on the ground; every contact keeps about contact_slop
  * (0.75 px) of overlap, so the centres rest at GROUND_TOP − s/2 + slop and GROUND_TOP − 3s/2 + 2·slop.
  *
- * Measured (10 s, 16 and 32 px boxes): light (1) on heavy (1000) stands with the defaults, sleep
- * on or off: heights within 0.06 px of the above, no sideways motion. Heavy on light does not:
- * with the defaults (QuickStep, 20 iterations, 2 substeps) it holds to 1:5 (sideways drift
- * ≤ 0.84 px with sleep, up to 2.5 px without), slides 7–13 px at 1:10, and from 1:20 the top box
- * falls off; at 1:100 and beyond the heavy box drives the light one 10–24 px into the ground
- * within 4 steps and topples it. The accurate preset keeps it standing to 1:30 and 100 iterations
- * to 1:100, sliding up to 2 px; the exact solver (dWorldStep) holds 1:1000 (heights within 0.4 px,
- * drift ≤ 0.15 px).
+ * Measured: light (1) on heavy (1000) stands with the defaults, sleep on or off. Heavy on light
+ * does not everywhere: two 16 px boxes, sleep off, 5 s, with the defaults (4 substeps × 40
+ * iterations) slide 0.33 px at 1:30 and 2.6 px at 1:100, and from 1:300 the top box falls off;
+ * the accurate preset holds 1:100 (0.6 px) and slides 4.2 px at 1:300; the exact solver
+ * (dWorldStep) holds 1:1000.
  * --------------------------------------------------------------------------------------------- */
 
 typedef struct stack_outcome {
@@ -156,14 +153,11 @@ Test(extremes, heavy_on_light_1_to_1000_stands_with_the_defaults, .disabled = tr
  * 2. One-pixel bodies. A 1×1 body's contact depth saturates at about 0.5 px (below contact_slop,
  * 0.75 px), so it is held by the contact's velocity constraint alone and never pushed back out:
  * it keeps whatever penetration its impact left (0.7 px placed on the ground, 2.3 px after a
- * 20 px drop, 4.6 px after 200 px) and, awake, creeps in at 0.01 px/s. Its contact point lies on
- * the ground's pixel grid, up to 0.75 px from its centre (MANIFOLD points also sit half a pixel
- * along the tangent from the intersection's end pixels: 385 and 416 for a box over 384..416), a
- * lever arm as long as the body: with free rotation it spins, sinks and falls through the 40 px
- * ground, placed on it or dropped, at 5 of the 6 sub-pixel x tried (at x = k + 0 the shifted point
- * lands on its centre). Continuous collision does not stop it either: a 1×1 body's overlap cannot
- * grow by "more than one layer". So these tests hold its rotation fixed and drop it at most 1 px;
- * the disabled twin is the target.
+ * 20 px drop, 4.6 px after 200 px) and, awake, creeps in at 0.01 px/s. These tests hold its
+ * rotation fixed and drop it at most 1 px. With free rotation it used to spin and fall through the
+ * ground, from contact points half a pixel off along the tangent (since centred), a joint order
+ * that leaned every two-point contact one way (since alternated) and sleepers woken one at a time
+ * (since grouped); one_pixel_body_dropped_anywhere_rests now holds it for every placement tried.
  * --------------------------------------------------------------------------------------------- */
 
 /* Steps a 1×1 body for 10 s; *worst_err receives its worst |penetration − slop| after the first
@@ -826,11 +820,11 @@ Test(extremes, ten_box_tower_stands_with_the_defaults, .timeout = 120) {
  * leave the box (through the floor or anywhere else). Each scene has its own seed, derived from
  * RANDOM_SEED and its index, so a failure names a scene that can be replayed alone.
  *
- * Measured: bodies 1–2 px thin are lost through the 40 px walls in about 1 scene in 200 (1×1,
- * 1×2, 2×1, 1×3 boxes, 2×2 discs at 250–750 px/s), and so is a thin body asleep on the floor when
- * something fast lands on it (a 5×12 box hit by a 16 px disc at 850 px/s, with 8 bodies a scene):
- * the broadphase skips sleeping–static pairs, so the body woken by the hit has no floor contact
- * in that substep, and the sweep skips it because it was asleep when the substep began.
+ * Measured when this suite was written: bodies 1–2 px thin were lost through the 40 px walls in
+ * about 1 scene in 200 (1×1, 1×2, 2×1, 1×3 boxes, 2×2 discs at 250–750 px/s), and so was a thin
+ * body asleep on the floor when something fast landed on it; the latter is fixed (a sleeper paired
+ * with an awake body keeps its static pairs, tests/c/test_resting.c). Sizes stay at 3–32 px and
+ * speeds at 1,000 px/s here.
  * --------------------------------------------------------------------------------------------- */
 
 #define RANDOM_SEED 0x5eed2024u
