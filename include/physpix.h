@@ -123,6 +123,8 @@ typedef struct pp_world_def {
     uint32_t continuous;            ///< nonzero: a dynamic body moving over half its thickness in a substep is swept
                                     ///< against static and kinematic bodies and stopped where it first hits (default 1)
     float max_correction_speed;     ///< fastest that contacts push overlapping bodies apart, px/s, > 0 (default 300)
+    int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0 for one per CPU (default 0);
+                                    ///< started only when a step's pairs are big enough to need them
 } pp_world_def;
 
 /// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
@@ -193,6 +195,8 @@ typedef struct pp_step_stats {
     int64_t pixels_tested; ///< raster samples tested (all substeps)
     pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
     uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
+    int32_t threads;       ///< threads that ran the last substep's CPU narrowphase, the calling one included
+                           ///< (1: it alone; 0: the narrowphase ran on the GPU or had no pairs)
 } pp_step_stats;
 
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.

@@ -209,6 +209,7 @@ const field world_fields[] = {
     F_FLOAT(pp_world_def, sleep_time, NUM_NONNEG),
     F_BOOL(pp_world_def, continuous),
     F_FLOAT(pp_world_def, max_correction_speed, NUM_POSITIVE),
+    F_INT(pp_world_def, worker_threads, 0, 16),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 

@@ -58,6 +58,7 @@ PP_API pp_world_def pp_world_def_default(void)
     d.sleep_time = 0.5f;
     d.continuous = 1;
     d.max_correction_speed = 300.0f;
+    d.worker_threads = 0; /* one per CPU */
     return d;
 }
 
@@ -122,6 +123,9 @@ static pp_status check_world_def(const pp_world_def *d)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: contact_cfm must be finite and ≥ 0");
     if (!(d->bounce_threshold >= 0) || !isfinite(d->bounce_threshold))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: bounce_threshold must be finite and ≥ 0");
+    if (d->worker_threads < 0 || d->worker_threads > 16)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: worker_threads must be 0 (one per CPU) or 1..16, got %d",
+                       (int)d->worker_threads);
     if (!(d->max_correction_speed > 0) || !isfinite(d->max_correction_speed))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: max_correction_speed must be finite and > 0");
     if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
@@ -198,6 +202,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     solver_destroy(wd->solver);
     broadphase_free(&wd->broad);
     np_scratch_free(&wd->scratch);
+    workers_free(wd->workers);
     gpu_narrow_destroy(wd->gpu);
     free(wd->pairs);
     free(wd->cores);
@@ -296,18 +301,15 @@ static pp_backend choose_backend(world *wd, int64_t cells)
     return wd->gpu && !gpu_narrow_is_software(wd->gpu) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
 }
 
-pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran)
+pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran, int32_t *threads)
 {
     const np_settings set = world_np_settings(wd);
     *ran = choose_backend(wd, cells);
+    *threads = 0;
     if (*ran == PP_BACKEND_GPU)
         return gpu_narrow_run(wd->gpu, fn, &set, wd->pairs, n, &wd->scratch, wd->cores);
-    for (int32_t k = 0; k < n; k++) {
-        pp_status st = narrow_cpu_core(&set, &wd->pairs[k], &wd->scratch, &wd->cores[k]);
-        if (st)
-            return st;
-    }
-    return PP_OK;
+    const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
+    return workers_run(&wd->workers, wanted, &set, wd->pairs, n, &wd->scratch, wd->cores, threads);
 }
 
 /* Broadphase and narrowphase at the current poses; fills wd->contacts. */
@@ -345,7 +347,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
         wd->pair_bodies[2 * n] = ia, wd->pair_bodies[2 * n + 1] = ib;
         n++;
     }
-    if ((st = world_run_cores(wd, fn, n, cells, &wd->stats.backend)))
+    if ((st = world_run_cores(wd, fn, n, cells, &wd->stats.backend, &wd->stats.threads)))
         return st;
     wd->contact_count = 0;
     for (int32_t k = 0; k < n; k++) {

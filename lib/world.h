@@ -9,6 +9,7 @@
 #include "narrowphase.h"
 #include "raster.h"
 #include "solver_ode.h"
+#include "workers.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -63,6 +64,7 @@ typedef struct world {
     np_core *cores;          /* … their integer cores … */
     int32_t *pair_bodies;    /* … and their bodies' slots, two per pair */
     int32_t pair_capacity;
+    np_workers *workers;     /* NULL until a batch needs more than one thread */
     gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
     bool gpu_tried;          /* AUTO tried to bring the GPU up */
     pp_event *events;        /* since the host last read them, oldest first */
@@ -100,8 +102,8 @@ pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body oth
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
 
 /* The integer cores of wd->pairs[0, n) (`cells` samples in all) on the backend the world asked
- * for; returns which one ran. */
-pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran);
+ * for; says which one ran and on how many threads (0 on the GPU). */
+pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran, int32_t *threads);
 
 /* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);

@@ -99,3 +99,51 @@ Test(determinism, interleaved_worlds_match_a_lone_run, .timeout = 60) {
     pp_world_destroy(b.w);
     pp_world_destroy(other);
 }
+
+/* A world whose pairs are big enough for the narrowphase to share them over threads: crates on a
+ * terrain with a pillar, so that each crate's whole box lies inside the terrain's solid bounds. */
+static uint64_t threaded_run(int32_t worker_threads, int32_t *max_threads) {
+    pp_world_def d = pp_world_def_default();
+    d.worker_threads = worker_threads;
+    pp_world w = make_world_def(&d);
+    enum { TW = 900, TH = 300, CRATES = 10 };
+    uint8_t *terrain = calloc((size_t)TW * TH, 1);
+    cr_assert_not_null(terrain);
+    for (int y = 0; y < TH; y++)
+        for (int x = 0; x < TW; x++)
+            terrain[y * TW + x] = y >= TH - 40 || x < 8;
+    pp_body_def t = body_def(PP_BODY_STATIC, 450, 450, 0);
+    t.width = TW, t.height = TH, t.mask = terrain;
+    create_body_ok(w, &t);
+    free(terrain);
+    pp_body crates[CRATES];
+    for (int i = 0; i < CRATES; i++)
+        crates[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 60.0f + 80.0f * i, 520.0f - 20.0f * (i % 3), 0.1f * (i % 4)), 60, 60);
+    uint64_t h = 1469598103934665603ull;
+    *max_threads = 0;
+    for (int k = 0; k < 120; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        pp_step_stats st;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+        if (st.threads > *max_threads) *max_threads = st.threads;
+        for (int i = 0; i < CRATES; i++) {
+            pp_vec2 p = body_pos(w, crates[i]);
+            h = fnv1a(h, &p, sizeof p);
+        }
+    }
+    pp_vec2 p = body_pos(w, crates[0]);
+    cr_assert(p.y > 500 && p.y < 580, "crate 0 did not land on the terrain (y = %g)", p.y);
+    pp_world_destroy(w);
+    return h;
+}
+
+Test(determinism, worker_threads_give_the_result_of_one, .timeout = 60) {
+    int32_t used1, used4, used_auto;
+    const uint64_t h1 = threaded_run(1, &used1), h4 = threaded_run(4, &used4), h_auto = threaded_run(0, &used_auto);
+    cr_assert_eq(used1, 1, "worker_threads 1 ran on %d threads", used1);
+    cr_assert_eq(used4, 4, "worker_threads 4 never ran on 4 threads (at most %d): the test shares nothing", used4);
+    cr_assert_geq(used_auto, 1);
+    cr_assert_eq(h1, h4, "1 thread: %016llx, 4 threads: %016llx", (unsigned long long)h1, (unsigned long long)h4);
+    cr_assert_eq(h1, h_auto, "1 thread: %016llx, one per CPU: %016llx", (unsigned long long)h1,
+                 (unsigned long long)h_auto);
+}

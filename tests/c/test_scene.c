@@ -165,7 +165,8 @@ static const char *full_scene_fmt =
     "             \"backend\": \"cpu\", \"normal_method\": \"kernel\", \"contact_mode\": \"centroid\",\n"
     "             \"raster_stride\": 2, \"pixels_per_meter\": 50, \"contact_slop\": 0.5, \"contact_erp\": 0.3,\n"
     "             \"contact_cfm\": 1e-4, \"bounce_threshold\": 10, \"allow_sleep\": false,\n"
-    "             \"sleep_linear_speed\": 3, \"sleep_angular_speed\": 0.1, \"sleep_time\": 1, \"continuous\": false },\n"
+    "             \"sleep_linear_speed\": 3, \"sleep_angular_speed\": 0.1, \"sleep_time\": 1, \"continuous\": false,\n"
+    "             \"max_correction_speed\": 150, \"worker_threads\": 3 },\n"
     "  \"camera\": { \"center\": [100, -50], \"zoom\": 2.5, \"width\": 640, \"height\": 360 },\n"
     "  \"bodies\": [\n"
     "    { \"name\": \"faller\", \"box\": [4, 4], \"position\": [1000, 0], \"angle\": 0.25, \"pivot\": [1, 3],\n"
@@ -203,6 +204,7 @@ Test(scene, every_field_arrives)
     cr_assert(d.raster_stride == 2 && d.pixels_per_meter == 50 && d.contact_slop == 0.5f && d.contact_erp == 0.3f);
     cr_assert(d.contact_cfm == 1e-4f && d.bounce_threshold == 10 && !d.allow_sleep && d.sleep_linear_speed == 3);
     cr_assert(d.sleep_angular_speed == 0.1f && d.sleep_time == 1 && !d.continuous);
+    cr_assert(d.max_correction_speed == 150 && d.worker_threads == 3);
 
     pp_camera cam;
     PP_OK_OR_FAIL(pp_world_get_camera(w, &cam));

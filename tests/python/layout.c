@@ -39,6 +39,7 @@ int main(void)
     F(pp_world_def, contact_cfm); F(pp_world_def, bounce_threshold); F(pp_world_def, allow_sleep);
     F(pp_world_def, sleep_linear_speed); F(pp_world_def, sleep_angular_speed); F(pp_world_def, sleep_time);
     F(pp_world_def, continuous); F(pp_world_def, max_correction_speed);
+    F(pp_world_def, worker_threads);
     end();
 
     S(pp_body_def);
@@ -63,7 +64,7 @@ int main(void)
     F(pp_step_stats, broadphase_ms); F(pp_step_stats, narrowphase_ms); F(pp_step_stats, solver_ms);
     F(pp_step_stats, total_ms); F(pp_step_stats, bodies); F(pp_step_stats, awake_bodies); F(pp_step_stats, pairs);
     F(pp_step_stats, contacts); F(pp_step_stats, pixels_tested); F(pp_step_stats, backend);
-    F(pp_step_stats, swept_stops);
+    F(pp_step_stats, swept_stops); F(pp_step_stats, threads);
     end();
 
     S(pp_camera); F(pp_camera, center); F(pp_camera, zoom); F(pp_camera, width); F(pp_camera, height); end();

@@ -49,6 +49,7 @@ class pp_world_def(ctypes.Structure):
         ("sleep_time", c_float),
         ("continuous", c_uint32),
         ("max_correction_speed", c_float),
+        ("worker_threads", c_int32),
     ]
 
 
@@ -110,6 +111,7 @@ class pp_step_stats(ctypes.Structure):
         ("pixels_tested", c_int64),
         ("backend", c_enum),
         ("swept_stops", c_uint32),
+        ("threads", c_int32),
     ]
 
 

@@ -163,6 +163,7 @@ class StepStats:
     pixels_tested: int
     backend: Backend
     swept_stops: int
+    threads: int
 
 
 @dataclass(frozen=True)

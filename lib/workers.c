@@ -1,0 +1,180 @@
+/* Narrowphase pairs are independent: each core reads two rasters and writes its own np_core. A
+ * batch is shared out one pair at a time through an atomic counter (pair costs differ by orders of
+ * magnitude, so fixed slices would leave threads idle), the calling thread working too. Threads
+ * start on the first batch big enough to need them, so a small scene never has any. */
+#include "workers.h"
+#include "status.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#define WORKERS_MAX 16
+
+struct np_workers {
+    int32_t count;                  /* threads besides the caller */
+    pthread_t *threads;
+    np_scratch *scratch;            /* one per thread */
+    pthread_mutex_t lock;
+    pthread_cond_t wake, done;
+    uint64_t batch;                 /* bumped for each batch; a thread runs each batch once */
+    int32_t running;                /* threads still on the current batch */
+    bool quit;
+    /* The current batch. */
+    const np_settings *set;
+    const np_pair *pairs;
+    np_core *cores;
+    int32_t n;
+    atomic_int next;                /* the next pair to take */
+    pp_status status;               /* the first failure, and its message */
+    char message[256];
+};
+
+int32_t workers_wanted(int32_t worker_threads)
+{
+    if (worker_threads > 0)
+        return worker_threads;
+    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    return cpus < 1 ? 1 : cpus > WORKERS_MAX ? WORKERS_MAX : (int32_t)cpus;
+}
+
+/* Take pairs until none are left; the first failure stops every thread. */
+static void run_pairs(np_workers *w, np_scratch *scratch)
+{
+    for (;;) {
+        const int32_t k = atomic_fetch_add(&w->next, 1);
+        if (k >= w->n)
+            return;
+        const pp_status st = narrow_cpu_core(w->set, &w->pairs[k], scratch, &w->cores[k]);
+        if (st) {
+            pthread_mutex_lock(&w->lock);
+            if (!w->status) {
+                w->status = st;
+                snprintf(w->message, sizeof w->message, "%s", pp_last_error());
+            }
+            pthread_mutex_unlock(&w->lock);
+            atomic_store(&w->next, w->n);
+            return;
+        }
+    }
+}
+
+typedef struct worker_arg {
+    np_workers *pool;
+    int32_t index;
+} worker_arg;
+
+static void *worker_main(void *arg)
+{
+    worker_arg *a = arg;
+    np_workers *w = a->pool;
+    np_scratch *scratch = &w->scratch[a->index];
+    free(a);
+    uint64_t seen = 0;
+    pthread_mutex_lock(&w->lock);
+    for (;;) {
+        while (w->batch == seen && !w->quit)
+            pthread_cond_wait(&w->wake, &w->lock);
+        if (w->quit)
+            break;
+        seen = w->batch;
+        pthread_mutex_unlock(&w->lock);
+        run_pairs(w, scratch);
+        pthread_mutex_lock(&w->lock);
+        if (--w->running == 0)
+            pthread_cond_signal(&w->done);
+    }
+    pthread_mutex_unlock(&w->lock);
+    return NULL;
+}
+
+static pp_status workers_start(np_workers **pool, int32_t count)
+{
+    np_workers *w = calloc(1, sizeof *w);
+    if (!w)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for narrowphase workers");
+    w->threads = calloc((size_t)count, sizeof *w->threads);
+    w->scratch = calloc((size_t)count, sizeof *w->scratch);
+    if (!w->threads || !w->scratch) {
+        free(w->threads);
+        free(w->scratch);
+        free(w);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for narrowphase workers");
+    }
+    pthread_mutex_init(&w->lock, NULL);
+    pthread_cond_init(&w->wake, NULL);
+    pthread_cond_init(&w->done, NULL);
+    for (int32_t i = 0; i < count; i++) {
+        worker_arg *a = malloc(sizeof *a);
+        if (a)
+            *a = (worker_arg){w, i};
+        if (!a || pthread_create(&w->threads[i], NULL, worker_main, a) != 0) {
+            free(a);
+            break; /* run with the threads that did start */
+        }
+        w->count++;
+    }
+    *pool = w;
+    return PP_OK;
+}
+
+pp_status workers_run(np_workers **pool, int32_t threads, const np_settings *set, const np_pair *pairs, int32_t n,
+                      np_scratch *scratch, np_core *cores, int32_t *used)
+{
+    *used = n > 0;
+    if (threads > 1 && !*pool) {
+        pp_status st = workers_start(pool, threads - 1);
+        if (st)
+            return st;
+    }
+    np_workers *w = *pool;
+    if (threads <= 1 || !w || w->count == 0) {
+        for (int32_t k = 0; k < n; k++) {
+            pp_status st = narrow_cpu_core(set, &pairs[k], scratch, &cores[k]);
+            if (st)
+                return st;
+        }
+        return PP_OK;
+    }
+    *used = 1 + w->count;
+    pthread_mutex_lock(&w->lock);
+    w->set = set, w->pairs = pairs, w->cores = cores, w->n = n;
+    atomic_store(&w->next, 0);
+    w->status = PP_OK;
+    w->running = w->count;
+    w->batch++;
+    pthread_cond_broadcast(&w->wake);
+    pthread_mutex_unlock(&w->lock);
+
+    run_pairs(w, scratch);
+
+    pthread_mutex_lock(&w->lock);
+    while (w->running > 0)
+        pthread_cond_wait(&w->done, &w->lock);
+    const pp_status st = w->status;
+    pthread_mutex_unlock(&w->lock);
+    /* The message was recorded on the thread that failed; repeat it on the caller's. */
+    return st ? pp_fail(st, "%s", w->message) : PP_OK;
+}
+
+void workers_free(np_workers *w)
+{
+    if (!w)
+        return;
+    pthread_mutex_lock(&w->lock);
+    w->quit = true;
+    pthread_cond_broadcast(&w->wake);
+    pthread_mutex_unlock(&w->lock);
+    for (int32_t i = 0; i < w->count; i++) {
+        pthread_join(w->threads[i], NULL);
+        np_scratch_free(&w->scratch[i]);
+    }
+    pthread_mutex_destroy(&w->lock);
+    pthread_cond_destroy(&w->wake);
+    pthread_cond_destroy(&w->done);
+    free(w->threads);
+    free(w->scratch);
+    free(w);
+}
