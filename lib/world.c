@@ -389,12 +389,12 @@ static void add_contact_joints(world *wd)
     }
 }
 
-/* Read every moving body back from ODE into the cached pose. */
+/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved). */
 static void sync_bodies(world *wd)
 {
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
-        if (!bd || !bd->sb.body)
+        if (!bd || !bd->sb.body || !solver_body_is_awake(&bd->sb))
             continue;
         solver_body_flatten(&bd->sb);
         solver_body_state s;
