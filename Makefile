@@ -178,6 +178,11 @@ $(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c tests/bench/machine.h $(S
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
+# What a scene pays for the features it does not use.
+$(BUILD)/bench/bench_features: tests/bench/features/main.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
 $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
@@ -186,8 +191,9 @@ $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) t
 
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
-	  $(BUILD)/bench/bench_accuracy
+	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
+	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
