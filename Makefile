@@ -189,19 +189,28 @@ $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) t
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(ACC_SRC) $(STATIC) $(LIBS)
 
+# How cost grows with bodies, bitmap sizes, overlap and edits, raster beside analytic: a table, CSV, a plot.
+SCALE_SRC := $(wildcard tests/bench/scale/*.c) tests/bench/engine_ode.c tests/bench/engine_physpix.c \
+  tests/bench/scenes.c tests/bench/settings.c
+$(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/bench.h tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(SCALE_SRC) $(STATIC) $(LIBS)
+
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
-	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features
+	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_scale
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
+	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(PYTHON) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing from PyPI: matplotlib"; \
 	  $(PYTHON) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
 	$(PYTHON) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
+	$(PYTHON) tests/bench/scale/plot.py $(BUILD)/bench/scale.csv $(BUILD)/bench/scale.png
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig

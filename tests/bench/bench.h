@@ -11,6 +11,7 @@ typedef struct bench_box {
     int32_t w, h;         ///< size, px
     double angle;         ///< rotation, radians (+x turns toward +y)
     int is_static;        ///< nonzero: never moves (ground)
+    int32_t empty_top;    ///< static boxes: empty rows at the bitmap's top (a terrain's sky), px; ODE's box is the rest
 } bench_box;
 
 /// A named scene: its boxes, how long it runs, and which box's drop is the sanity number.
@@ -22,6 +23,8 @@ typedef struct bench_scene {
     int steps;            ///< pp_world_step calls per run
     int tracked;          ///< index of the box whose final drop is reported, or -1
     double ground_top;    ///< y of the ground's top edge, px: a box whose centre ends below it is lost
+    int settle_steps;     ///< untimed steps before the timed ones (0: none)
+    int settle_to_sleep;  ///< nonzero: settling ends as soon as no body is awake
 } bench_scene;
 
 /// Settings both engines share, taken from pp_world_def_default() and pp_body_def_default().
@@ -48,16 +51,29 @@ typedef struct bench_settings {
 /// What one run of one engine measured.
 typedef struct bench_run {
     double *step_ms;        ///< per-step wall time, ms; caller-owned, scene->steps long
+    double *narrow_ms;      ///< optional per-step narrowphase ms (ODE: dSpaceCollide); caller-owned, or NULL
     double contacts_mean;   ///< mean contact points of the last substep, per step
+    double pairs_mean;      ///< mean pairs tested in the last substep, per step (ODE: pairs handed to dCollide)
     double tracked_drop;    ///< final y − initial y of the tracked box, px (down is positive)
     double phase_ms[3];     ///< mean broadphase, narrowphase, solver ms per step (ODE: 0, dSpaceCollide, solve)
     int awake_end;          ///< bodies awake after the last step
+    int awake_max;          ///< most bodies awake after any timed step
+    int settled;            ///< untimed steps run before timing
     int lost;               ///< dynamic boxes whose centre ended below the ground's top edge
     int backend;            ///< PhysPix: pp_backend that ran the narrowphase; ODE: -1
 } bench_run;
 
 /// Monotonic clock, milliseconds.
 double bench_now_ms(void);
+
+/// The library's default world and body settings, copied for the ODE baseline.
+bench_settings bench_settings_from_defaults(void);
+/// Print the machine (CPU model, CPUs online), the library version and ODE's precision; title names the bench.
+void bench_print_machine(const char *title);
+/// Print the settings both engines run with, three lines.
+void bench_print_settings(const bench_settings *set);
+/// Median of v[0..n) (sorts v); 0 when n is 0.
+double bench_median(double *v, int n);
 
 /// The 10-row pyramid of 16 px boxes on a static ground (55 boxes).
 int bench_scene_pyramid(bench_scene *out, int steps);
@@ -70,7 +86,11 @@ void bench_scene_free(bench_scene *scene);
 int bench_run_physpix(const bench_scene *scene, const bench_settings *set, bench_run *out);
 /// Run a scene with ODE's analytic boxes; 0 on success, else prints why and returns -1.
 int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run *out);
-/// Release ODE if bench_run_ode initialised it.
+/// Median time of one dCollide on two ODE boxes built as bench_run_ode builds them, µs, over `batches`
+/// batches of `reps` calls; contacts receives one call's points (at most set->max_contacts_ode). 0 or -1.
+int bench_ode_collide_us(const bench_box *a, const bench_box *b, const bench_settings *set, int batches, int reps,
+                         double *us_median, int *contacts);
+/// Release ODE if bench_run_ode or bench_ode_collide_us initialised it.
 void bench_ode_shutdown(void);
 
 #endif

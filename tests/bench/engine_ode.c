@@ -23,6 +23,7 @@ typedef struct ode_scene {
     int body_count;
     const bench_settings *set;
     int contacts;                 ///< contact points made in the current substep
+    int pairs;                    ///< pairs handed to dCollide in the current substep
 } ode_scene;
 
 static int body_awake(dBodyID b) { return b && dBodyIsEnabled(b); }
@@ -43,6 +44,7 @@ static void near_callback(void *data, dGeomID g1, dGeomID g2)
     dContactGeom geoms[MAX_CONTACTS];
     int max = set->max_contacts_ode < MAX_CONTACTS ? set->max_contacts_ode : MAX_CONTACTS;
     int n = dCollide(g1, g2, max, geoms, sizeof geoms[0]);
+    os->pairs++;
     /* PhysPix reads contact_cfm relative to the pair's reduced mass, so softness does not
      * depend on body size; the same here. */
     double inv_m = body_inv_mass(b1) + body_inv_mass(b2);
@@ -106,16 +108,29 @@ static void world_setup(ode_scene *os, const bench_settings *set)
     os->contact_group = dJointGroupCreate(0);
 }
 
+/* The box's geom in `space` (0: none), at its pose unless it gets a body; a terrain's box is
+ * its solid part, below the empty top rows. */
+static dGeomID box_geom(dSpaceID space, const bench_box *box, const bench_settings *set)
+{
+    double ppm = set->pixels_per_meter;
+    double solid_h = box->h - box->empty_top;
+    dGeomID g = dCreateBox(space, box->w / ppm, solid_h / ppm, ODE_BOX_DEPTH_PX / ppm);
+    dMatrix3 R;
+    dRFromAxisAndAngle(R, 0, 0, 1, box->angle);
+    double c = cos(box->angle), s = sin(box->angle), down = 0.5 * box->empty_top; /* along the box's own y */
+    dGeomSetPosition(g, (box->x - s * down) / ppm, (box->y + c * down) / ppm, 0);
+    dGeomSetRotation(g, R);
+    return g;
+}
+
 static void add_box(ode_scene *os, const bench_box *box, int index, const bench_settings *set)
 {
     double ppm = set->pixels_per_meter;
     double lx = box->w / ppm, ly = box->h / ppm, lz = ODE_BOX_DEPTH_PX / ppm;
-    dGeomID g = dCreateBox(os->space, lx, ly, lz);
+    dGeomID g = box_geom(os->space, box, set);
     dMatrix3 R;
     dRFromAxisAndAngle(R, 0, 0, 1, box->angle);
     if (box->is_static) {
-        dGeomSetPosition(g, box->x / ppm, box->y / ppm, 0);
-        dGeomSetRotation(g, R);
         os->bodies[index] = 0;
         os->inv_mass[index] = 0.0;
         return;
@@ -142,6 +157,7 @@ static void ode_step(ode_scene *os, double dt, int substeps, unsigned long *seed
     for (int k = 0; k < substeps; k++) {
         double t0 = bench_now_ms();
         os->contacts = 0;
+        os->pairs = 0;
         dSpaceCollide(os->space, os, near_callback);
         double t1 = bench_now_ms();
         dRandSetSeed((*seed)++);
@@ -165,7 +181,7 @@ void bench_ode_shutdown(void)
     ode_initialised = 0;
 }
 
-int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run *out)
+static int ode_init(void)
 {
     if (!ode_initialised) {
         if (!dInitODE2(0) || !dAllocateODEDataForThread(dAllocateMaskAll)) {
@@ -174,6 +190,21 @@ int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run
         }
         ode_initialised = 1;
     }
+    return 0;
+}
+
+static int awake_count(const ode_scene *os)
+{
+    int n = 0;
+    for (int i = 0; i < os->body_count; i++)
+        n += body_awake(os->bodies[i]);
+    return n;
+}
+
+int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run *out)
+{
+    if (ode_init() != 0)
+        return -1;
     ode_scene os = {.set = set, .body_count = scene->count};
     os.bodies = calloc((size_t)scene->count, sizeof *os.bodies);
     os.inv_mass = calloc((size_t)scene->count, sizeof *os.inv_mass);
@@ -188,15 +219,28 @@ int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run
         add_box(&os, &scene->boxes[i], i, set);
 
     unsigned long seed = 1;
-    double contacts = 0.0, collide_ms = 0.0, solve_ms = 0.0;
+    double contacts = 0.0, pairs = 0.0, collide_ms = 0.0, solve_ms = 0.0;
+    for (out->settled = 0; out->settled < scene->settle_steps; out->settled++) {
+        if (scene->settle_to_sleep && awake_count(&os) == 0)
+            break;
+        ode_step(&os, set->dt, set->substeps, &seed, &collide_ms, &solve_ms);
+    }
+    collide_ms = solve_ms = 0.0;
+    out->awake_max = 0;
     for (int s = 0; s < scene->steps; s++) {
-        double t0 = bench_now_ms();
+        double t0 = bench_now_ms(), collide_before = collide_ms;
         ode_step(&os, set->dt, set->substeps, &seed, &collide_ms, &solve_ms);
         out->step_ms[s] = bench_now_ms() - t0;
+        if (out->narrow_ms)
+            out->narrow_ms[s] = collide_ms - collide_before;
         contacts += os.contacts;
+        pairs += os.pairs;
+        int awake = awake_count(&os);
+        out->awake_max = awake > out->awake_max ? awake : out->awake_max;
     }
 
     out->contacts_mean = contacts / scene->steps;
+    out->pairs_mean = pairs / scene->steps;
     out->phase_ms[0] = 0.0; /* the hash space's pair search runs inside dSpaceCollide */
     out->phase_ms[1] = collide_ms / scene->steps;
     out->phase_ms[2] = solve_ms / scene->steps;
@@ -219,5 +263,35 @@ int bench_run_ode(const bench_scene *scene, const bench_settings *set, bench_run
     dWorldDestroy(os.world);
     free(os.bodies);
     free(os.inv_mass);
+    return 0;
+}
+
+int bench_ode_collide_us(const bench_box *a, const bench_box *b, const bench_settings *set, int batches, int reps,
+                         double *us_median, int *contacts)
+{
+    if (ode_init() != 0)
+        return -1;
+    double *batch_us = malloc((size_t)batches * sizeof *batch_us);
+    if (!batch_us) {
+        fprintf(stderr, "bench: out of memory for the dCollide batches\n");
+        return -1;
+    }
+    /* Bodiless geoms outside any space: dCollide alone, as pp_world_collide runs the narrowphase alone. */
+    dGeomID ga = box_geom(0, a, set), gb = box_geom(0, b, set);
+    enum { MAX_CONTACTS = 8 };
+    dContactGeom geoms[MAX_CONTACTS];
+    int max = set->max_contacts_ode < MAX_CONTACTS ? set->max_contacts_ode : MAX_CONTACTS;
+    int n = 0;
+    for (int k = 0; k < batches; k++) {
+        double t0 = bench_now_ms();
+        for (int r = 0; r < reps; r++)
+            n = dCollide(ga, gb, max, geoms, sizeof geoms[0]);
+        batch_us[k] = (bench_now_ms() - t0) * 1e3 / reps;
+    }
+    *us_median = bench_median(batch_us, batches);
+    *contacts = n;
+    dGeomDestroy(ga);
+    dGeomDestroy(gb);
+    free(batch_us);
     return 0;
 }
