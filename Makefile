@@ -104,9 +104,10 @@ $(BUILD)/physpix.pc: Makefile | $(BUILD)
 $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 	mkdir -p $@
 
-# C tests: Criterion, linked against the sanitized library (ASan + UBSan).
+# C tests: Criterion, linked against the sanitized library (ASan + UBSan). It links the objects, so
+# PP_TEST_PRIVATE lets tests reach private headers (tests/c/test_tiles.c).
 $(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -O1 -g $(SANFLAGS) -o $@ $(TEST_SRC) $(SAN_OBJ) -lcriterion $(LIBS)
+	$(CC) $(CFLAGS_) -O1 -g $(SANFLAGS) -DPP_TEST_PRIVATE -o $@ $(TEST_SRC) $(SAN_OBJ) -lcriterion $(LIBS)
 
 # The same tests against the optimised shared library, as a user links it.
 $(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests

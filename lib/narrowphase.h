@@ -64,12 +64,16 @@ typedef struct np_result {
     int64_t samples;    /* raster samples examined */
 } np_result;
 
-/* Reusable CPU buffers, grown as needed, owned by the world. */
+/* Reusable CPU buffers, grown as needed, owned by the world (one per thread). */
 typedef struct np_scratch {
     uint8_t *cells;     /* sampled planes of A and B and B's coverage */
     int64_t cells_cap;
     int32_t *strips;    /* min/max projection and cover per strip */
     int64_t strips_cap;
+    uint64_t *leaves;   /* tiled core: a bit per leaf summed cell by cell */
+    int64_t leaves_cap;
+    int32_t *rects;     /* tiled core: rectangles of cells all in the intersection, 4 ints each */
+    int64_t rects_cap;
 } np_scratch;
 
 enum { NP_STRIP_MIN, NP_STRIP_MAX, NP_STRIP_COVER, NP_STRIP_FIELDS };
@@ -105,8 +109,13 @@ static inline int64_t np_pair_max_strips(const np_pair *p) { return (int64_t)p->
  * each component rounded exactly (half away from zero) without floating point. */
 void np_quantize_normal(int64_t gx, int64_t gy, int32_t *nqx, int32_t *nqy);
 
-/* The CPU backend's integer core of one pair. */
+/* The CPU backend's integer core of one pair: works only near the contact (tiles known empty or
+ * all intersection are skipped or summed in closed form); the same integers as the dense core. */
 pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out);
+
+/* The plain per-cell core, the reference the tiled core is tested against: every cell of the plane
+ * sampled and summed, as the GPU does. */
+pp_status narrow_cpu_core_dense(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out);
 
 /* Contacts from a pair's core (both backends). */
 void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, const np_pair *p,

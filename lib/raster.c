@@ -1,6 +1,7 @@
 /* Collision rasters: building the bit-packed mask from a sprite, a mask or both, editing
  * single pixels, and keeping the bounds of the solid pixels exact through per-row and
- * per-column counts (an edit never rescans the bitmap). */
+ * per-column counts and the tile occupancy exact through per-tile counts (an edit never
+ * rescans the bitmap). */
 #include "raster.h"
 #include "status.h"
 
@@ -37,7 +38,10 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     r->bits = calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
     r->row_count = calloc((size_t)h, sizeof(int32_t));
     r->col_count = calloc((size_t)w, sizeof(int32_t));
-    if (!r->bits || !r->row_count || !r->col_count) {
+    r->tiles_x = (w + RASTER_TILE - 1) >> RASTER_TILE_SHIFT;
+    r->tiles_y = (h + RASTER_TILE - 1) >> RASTER_TILE_SHIFT;
+    r->tile_count = calloc((size_t)r->tiles_x * (size_t)r->tiles_y, sizeof *r->tile_count);
+    if (!r->bits || !r->row_count || !r->col_count || !r->tile_count) {
         raster_free(r);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);
     }
@@ -63,6 +67,7 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
             r->solid_count++;
             r->row_count[y]++;
             r->col_count[x]++;
+            r->tile_count[(int64_t)(y >> RASTER_TILE_SHIFT) * r->tiles_x + (x >> RASTER_TILE_SHIFT)]++;
             if (x < x0) x0 = x;
             if (x >= x1) x1 = x + 1;
             if (y < y0) y0 = y;
@@ -97,6 +102,8 @@ void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weigh
     r->solid_count += d;
     r->row_count[y] += d;
     r->col_count[x] += d;
+    uint8_t *tile = &r->tile_count[(int64_t)(y >> RASTER_TILE_SHIFT) * r->tiles_x + (x >> RASTER_TILE_SHIFT)];
+    *tile = (uint8_t)(*tile + d);
     if (solid) { /* growing is immediate; shrinking waits for raster_edit_done */
         if (raster_empty(r))
             r->x0 = x, r->x1 = x + 1, r->y0 = y, r->y1 = y + 1;
@@ -125,5 +132,56 @@ void raster_free(pp_raster *r)
     free(r->weights);
     free(r->row_count);
     free(r->col_count);
+    free(r->tile_count);
     memset(r, 0, sizeof *r);
+}
+
+int64_t raster_memory_bytes(const pp_raster *r)
+{
+    const int64_t pixels = (int64_t)r->width * r->height;
+    return (int64_t)r->words_per_row * r->height * (int64_t)sizeof(uint64_t) + (r->weights ? pixels : 0) +
+           ((int64_t)r->width + r->height) * (int64_t)sizeof(int32_t) +
+           (int64_t)r->tiles_x * r->tiles_y * (int64_t)sizeof *r->tile_count;
+}
+
+/* Read the bits of [x0, x1) × [y0, y1) (inside the bitmap): is any solid, is any empty? */
+static void scan_bits(const pp_raster *r, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool *solid, bool *hole)
+{
+    for (int64_t y = y0; y < y1 && !(*solid && *hole); y++) {
+        const uint64_t *row = r->bits + y * r->words_per_row;
+        for (int64_t w = x0 >> 6; w <= (x1 - 1) >> 6; w++) {
+            const int64_t a = x0 > 64 * w ? x0 - 64 * w : 0, b = x1 < 64 * w + 64 ? x1 - 64 * w : 64;
+            const uint64_t mask = (b - a == 64 ? ~(uint64_t)0 : (((uint64_t)1 << (b - a)) - 1)) << a;
+            *solid |= (row[w] & mask) != 0;
+            *hole |= (row[w] & mask) != mask;
+        }
+    }
+}
+
+raster_state raster_rect_state(const pp_raster *r, int64_t x0, int64_t y0, int64_t x1, int64_t y1)
+{
+    bool solid = false, hole = x0 < 0 || y0 < 0 || x1 > r->width || y1 > r->height;
+    x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > r->width ? r->width : x1, y1 = y1 > r->height ? r->height : y1;
+    if (x0 >= x1 || y0 >= y1)
+        return RASTER_EMPTY;
+    const int64_t tx0 = x0 >> RASTER_TILE_SHIFT, tx1 = (x1 - 1) >> RASTER_TILE_SHIFT;
+    const int64_t ty0 = y0 >> RASTER_TILE_SHIFT, ty1 = (y1 - 1) >> RASTER_TILE_SHIFT;
+    for (int64_t ty = ty0; ty <= ty1 && !(solid && hole); ty++)
+        for (int64_t tx = tx0; tx <= tx1 && !(solid && hole); tx++) {
+            const raster_state st = raster_tile_state(r, (int32_t)tx, (int32_t)ty);
+            /* The tile [ax, ex) × [ay, ey), and its part inside the region. */
+            const int64_t ax = tx << RASTER_TILE_SHIFT, ay = ty << RASTER_TILE_SHIFT;
+            const int64_t ex = ax + RASTER_TILE < r->width ? ax + RASTER_TILE : r->width;
+            const int64_t ey = ay + RASTER_TILE < r->height ? ay + RASTER_TILE : r->height;
+            const int64_t cx0 = ax > x0 ? ax : x0, cy0 = ay > y0 ? ay : y0;
+            const int64_t cx1 = ex < x1 ? ex : x1, cy1 = ey < y1 ? ey : y1;
+            if (st == RASTER_MIXED && (cx0 > ax || cy0 > ay || cx1 < ex || cy1 < ey)) {
+                scan_bits(r, cx0, cy0, cx1, cy1, &solid, &hole);
+            } else {
+                solid |= st != RASTER_EMPTY;
+                hole |= st != RASTER_FULL;
+            }
+        }
+    return !solid ? RASTER_EMPTY : hole ? RASTER_MIXED : RASTER_FULL;
 }

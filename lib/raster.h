@@ -1,5 +1,6 @@
-/* A body's collision raster: a bit-packed solid mask, an optional weight plane,
- * and the bounds of its solid pixels. */
+/* A body's collision raster: a bit-packed solid mask, an optional weight plane, the bounds of
+ * its solid pixels, and its tile occupancy (solid pixels per tile, so that a region can be known
+ * all empty or all solid without reading its bits). */
 #ifndef PP_RASTER_H
 #define PP_RASTER_H
 
@@ -7,6 +8,17 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+
+/* Occupancy tiles are RASTER_TILE × RASTER_TILE pixels; those on the right and bottom edges are
+ * cut by the bitmap. 8 px measured best against 16 and 32 on terrain contacts (tests/bench/
+ * narrowphase/core.c: a crate in a crater 5-10% faster, a deep 256 px overlap 2-4% slower), and
+ * its byte counts cost 1/8 bit per pixel. */
+#define RASTER_TILE_SHIFT 3
+#define RASTER_TILE (1 << RASTER_TILE_SHIFT)
+_Static_assert(RASTER_TILE * RASTER_TILE <= UINT8_MAX, "a tile's count must fit its byte");
+
+/* What a tile or a region holds: no solid pixel, only solid pixels, or both. */
+typedef enum raster_state { RASTER_EMPTY, RASTER_FULL, RASTER_MIXED } raster_state;
 
 typedef struct pp_raster {
     int32_t width, height;
@@ -16,6 +28,8 @@ typedef struct pp_raster {
     int64_t solid_count;     /* number of solid pixels */
     int32_t x0, y0, x1, y1;  /* solid bounds [x0, x1) × [y0, y1); empty when x0 ≥ x1 */
     int32_t *row_count, *col_count; /* solid pixels per row and per column: exact bounds after edits */
+    int32_t tiles_x, tiles_y; /* occupancy tiles per row and per column */
+    uint8_t *tile_count;     /* solid pixels per tile, tiles_y × tiles_x, exact after every write */
     int64_t gpu_word;        /* first 32-bit word of the mask in the world's GPU mirror; −1: not mirrored */
     int32_t dirty_y0, dirty_y1; /* rows edited since the mirror was written; clean when y0 ≥ y1 */
 } pp_raster;
@@ -27,6 +41,13 @@ pp_status raster_check_def(const pp_body_def *def);
 pp_status raster_init(pp_raster *r, const pp_body_def *def);
 
 void raster_free(pp_raster *r);
+
+/* Bytes the raster allocates (mask, weight plane, row, column and tile counts). */
+int64_t raster_memory_bytes(const pp_raster *r);
+
+/* The state of the pixels [x0, x1) × [y0, y1), exactly; pixels outside the bitmap are empty. Whole
+ * tiles answer from their counts, the bits are read only where a mixed tile is cut by the region. */
+raster_state raster_rect_state(const pp_raster *r, int64_t x0, int64_t y0, int64_t x1, int64_t y1);
 
 /* Give the raster a weight plane (every pixel 255) before a write of another weight. */
 pp_status raster_ensure_weights(pp_raster *r);
@@ -46,6 +67,16 @@ static inline bool raster_solid(const pp_raster *r, int32_t x, int32_t y)
 static inline bool raster_solid_clamped(const pp_raster *r, int32_t x, int32_t y)
 {
     return (uint32_t)x < (uint32_t)r->width && (uint32_t)y < (uint32_t)r->height && raster_solid(r, x, y);
+}
+
+/* The state of tile (tx, ty) from its count (an edge tile holds fewer pixels). */
+static inline raster_state raster_tile_state(const pp_raster *r, int32_t tx, int32_t ty)
+{
+    const int32_t n = r->tile_count[(int64_t)ty * r->tiles_x + tx];
+    if (n == 0)
+        return RASTER_EMPTY;
+    const int32_t w = r->width - (tx << RASTER_TILE_SHIFT), h = r->height - (ty << RASTER_TILE_SHIFT);
+    return n == (w < RASTER_TILE ? w : RASTER_TILE) * (h < RASTER_TILE ? h : RASTER_TILE) ? RASTER_FULL : RASTER_MIXED;
 }
 
 static inline uint32_t raster_weight(const pp_raster *r, int32_t x, int32_t y)
