@@ -301,6 +301,9 @@ PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, flo
 PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point);
 /// Mass (mass units), centre of mass in bitmap coordinates (px) and inertia about it (mass·px²); any pointer may be NULL.
 PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia);
+/// Memory the body holds, bytes: its collision raster (1-bit mask, tile, row and column counts, and an 8-bit
+/// weight plane only if it has weights) and its sprite copy (4 bytes a pixel; 0 without a sprite); either may be NULL.
+PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_bytes, int64_t *sprite_bytes);
 /// Whether the body is awake (1) or asleep (0); static bodies are never awake.
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
 /// Erase the body's pixels whose centres lie within radius (px) of a world point (px); changed receives how many (may be NULL).

@@ -362,6 +362,20 @@ PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *l
     return PP_OK;
 }
 
+PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_bytes, int64_t *sprite_bytes)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_get_memory", &wd, &bd);
+    if (st)
+        return st;
+    if (collision_bytes)
+        *collision_bytes = raster_memory_bytes(&bd->raster);
+    if (sprite_bytes)
+        *sprite_bytes = bd->sprite ? 4 * (int64_t)bd->raster.width * bd->raster.height : 0;
+    return PP_OK;
+}
+
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
 {
     world *wd;

@@ -79,3 +79,43 @@ Test(idle_features, small_batches_start_no_threads) {
     pp_world_destroy(w);
     cr_assert_eq(thread_count(), before, "pp_world_destroy left %d threads", thread_count() - before);
 }
+
+Test(idle_features, a_body_without_weights_stores_no_weight_plane) {
+    pp_world w = make_world(0, 0);
+    enum { S = 1024 };
+    uint8_t *mask = rect_mask(S, S), *weights = malloc((size_t)S * S);
+    cr_assert_not_null(weights);
+    memset(weights, 200, (size_t)S * S);
+    pp_body_def d = body_def(PP_BODY_STATIC, 0, 0, 0);
+    d.width = d.height = S;
+    d.mask = mask;
+    const pp_body plain = create_body_ok(w, &d);
+    d.weights = weights;
+    const pp_body weighted = create_body_ok(w, &d);
+    int64_t plain_bytes, weighted_bytes, sprite_bytes;
+    PP_OK_OR_FAIL(pp_body_get_memory(w, plain, &plain_bytes, &sprite_bytes));
+    PP_OK_OR_FAIL(pp_body_get_memory(w, weighted, &weighted_bytes, NULL));
+    const double bpp = 8.0 * (double)plain_bytes / ((double)S * S);
+    cr_log_info("1024² mask: %.3f bits per pixel; with weights %.3f", bpp, 8.0 * (double)weighted_bytes / ((double)S * S));
+    cr_assert_eq(sprite_bytes, 0, "a body made from a mask keeps a %lld-byte sprite", (long long)sprite_bytes);
+    /* One bit of mask a pixel, plus counts per row, column and tile: well under two bits. */
+    cr_assert(bpp >= 1.0 && bpp < 1.25, "a mask without weights takes %.3f bits per pixel", bpp);
+    cr_assert_eq(weighted_bytes - plain_bytes, (int64_t)S * S, "the weight plane takes %lld bytes, not one a pixel",
+                 (long long)(weighted_bytes - plain_bytes));
+
+    /* Painting weight 255 onto a body without weights keeps it without a plane; another weight makes one. */
+    int32_t changed;
+    PP_OK_OR_FAIL(pp_body_paint_circle(w, plain, v2(0, 0), 4, 255, &changed));
+    int64_t after;
+    PP_OK_OR_FAIL(pp_body_get_memory(w, plain, &after, NULL));
+    cr_assert_eq(after, plain_bytes);
+    PP_OK_OR_FAIL(pp_body_paint_circle(w, plain, v2(0, 0), 4, 100, &changed));
+    PP_OK_OR_FAIL(pp_body_get_memory(w, plain, &after, NULL));
+    cr_assert_eq(after, plain_bytes + (int64_t)S * S);
+
+    PP_OK_OR_FAIL(pp_body_destroy(w, weighted));
+    cr_assert_eq(pp_body_get_memory(w, weighted, &after, NULL), PP_ERR_INVALID_HANDLE);
+    free(mask);
+    free(weights);
+    pp_world_destroy(w);
+}

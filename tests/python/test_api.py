@@ -143,3 +143,27 @@ def test_stats_fields(world):
     s = world.stats()
     assert s.bodies == 1 and s.awake_bodies == 1 and s.total_ms >= 0 and isinstance(s.backend, Backend)
     assert math.isfinite(s.solver_ms)
+
+
+def test_worker_threads_and_memory():
+    """Threads share the narrowphase without changing it; a body's memory counts a weight plane only when it has one."""
+    finals = []
+    for threads in (1, 2):
+        with physpix.World(worker_threads=threads, allow_sleep=False) as w:
+            # A pillar at the terrain's left end puts each box's whole square inside the terrain's bounds.
+            terrain = np.zeros((300, 2000), np.uint8)
+            terrain[260:, :] = terrain[:, :8] = 1
+            w.create_body(mask=terrain, position=(1000, 570), type="static")
+            boxes = [rect(w, 96, 96, position=(60 + 110 * i, 560 - 7 * (i % 5)), angle=0.1 * (i % 3)) for i in range(16)]
+            used = 0
+            for _ in range(40):
+                w.step(1 / 60)
+                used = max(used, w.stats().threads)
+            assert used == threads
+            finals.append([b.position for b in boxes])
+    assert finals[0] == finals[1]
+    with physpix.World() as w:
+        plain = rect(w, 256, 256, type="static")
+        weighted = rect(w, 256, 256, type="static", weights=np.full((256, 256), 9, np.uint8))
+        assert weighted.memory[0] - plain.memory[0] == 256 * 256
+        assert plain.memory[1] == 0 and 8 * plain.memory[0] / 256**2 < 1.5  # 1 bit a pixel, plus counts

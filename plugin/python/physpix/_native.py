@@ -183,6 +183,7 @@ SIGNATURES = {
     "pp_body_set_velocity": (STATUS, [pp_world, pp_body, pp_vec2, c_float]),
     "pp_body_apply_impulse": (STATUS, [pp_world, pp_body, pp_vec2, pp_vec2]),
     "pp_body_get_mass": (STATUS, [pp_world, pp_body, P(c_float), P(pp_vec2), P(c_float)]),
+    "pp_body_get_memory": (STATUS, [pp_world, pp_body, P(c_int64), P(c_int64)]),
     "pp_body_is_awake": (STATUS, [pp_world, pp_body, P(c_int32)]),
     "pp_body_erase_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, P(c_int32)]),
     "pp_body_paint_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, c_uint8, P(c_int32)]),

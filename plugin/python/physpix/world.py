@@ -5,7 +5,7 @@ the PhysPixError subclass of its status with the library's message.
 """
 import os
 import weakref
-from ctypes import POINTER, byref, c_double, c_float, c_int32, c_uint64
+from ctypes import POINTER, byref, c_double, c_float, c_int32, c_int64, c_uint64
 from dataclasses import astuple, dataclass, fields as dataclass_fields
 
 import numpy as np
@@ -506,6 +506,13 @@ class Body:
     def apply_impulse(self, impulse, point):
         """Apply an impulse (mass·px/s) at a world point (px); dynamic bodies only."""
         self._call(lib.pp_body_apply_impulse, vec2(impulse, "impulse"), vec2(point, "point"))
+
+    @property
+    def memory(self):
+        """Bytes the body holds: (collision raster, sprite copy); the weight plane counts only where there is one."""
+        collision, sprite = c_int64(), c_int64()
+        self._call(lib.pp_body_get_memory, byref(collision), byref(sprite))
+        return collision.value, sprite.value
 
     def _mass(self):
         m, c, i = c_float(), N.pp_vec2(), c_float()
