@@ -169,6 +169,11 @@ $(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c tests/bench/machine.
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
+# The CPU narrowphase core alone, tiled against dense, on named pairs (private headers: the static library).
+$(BUILD)/bench/bench_core: tests/bench/narrowphase/core.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+
 # Edit latency: a crater in a large terrain, and the step after it.
 $(BUILD)/bench/bench_edit: tests/bench/edit/main.c $(STATIC)
 	mkdir -p $(BUILD)/bench
@@ -199,10 +204,11 @@ $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/b
 
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
-	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_scale
+	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
+	$(BUILD)/bench/bench_core
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv

@@ -1,11 +1,9 @@
 /* The CPU narrowphase core alone, dense against tiled, on named pairs: ns per pair (the fastest of the
  * repeats) and sampled cells per second (the plane a dense core samples, over its time), with a
- * check that both give the same np_core. Links the static library for its private headers:
+ * check that both give the same np_core. Links the static library for its private headers; part of
+ * `make bench`, or alone:
  *
- *   make all && mkdir -p build/bench && cc -std=c11 -D_POSIX_C_SOURCE=200809L -O2 -g -Iinclude -Ilib \
- *     -o build/bench/bench_core tests/bench/narrowphase/core.c build/libphyspix.a \
- *     -lode -lpng -lcjson -lm -lpthread -ldl
- *   build/bench/bench_core [--reps N] [--only NAME] [--tiled-only] [--dense-only]
+ *   make build/bench/bench_core && build/bench/bench_core [--reps N] [--only NAME] [--tiled-only] [--dense-only]
  */
 #include "../machine.h"
 #include "narrowphase.h"
