@@ -6,8 +6,12 @@ named. Without matplotlib it says why and exits 0, so `make bench` never fails o
     plot.py ACCURACY.csv OUT.png
 """
 import csv
+import os
 import math
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plotting import start  # noqa: E402  (tests/bench/plotting.py)
 
 CAP = 100.0  # scores above this are drawn at it
 
@@ -24,23 +28,7 @@ def load(path):
 
 
 def main(argv):
-    if len(argv) != 3:
-        print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
-        return 2
-    csv_path, png_path = argv[1], argv[2]
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")  # no display: write the file only
-        import matplotlib.pyplot as plt
-    except ImportError as e:
-        print(f"plot.py: matplotlib is not available ({e}); {png_path} not drawn")
-        return 0
-
-    rows = load(csv_path)
-    if not rows:
-        print(f"plot.py: {csv_path} has no rows; {png_path} not drawn")
-        return 0
+    plt, rows, png_path = start(argv, __doc__, load)
     # Scores past CAP (stacks that fell apart or blew up) are drawn on the CAP line, so that the
     # region around 1, where the choice is made, keeps the room.
     for r in rows:

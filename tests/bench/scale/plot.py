@@ -6,7 +6,11 @@ and exits 0, so `make bench` never fails on the plot.
     plot.py SCALE.csv OUT.png
 """
 import csv
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plotting import start  # noqa: E402  (tests/bench/plotting.py)
 
 RASTER, ANALYTIC = "tab:blue", "tab:orange"
 
@@ -115,23 +119,7 @@ def plot_edits(ax, rows):
 
 
 def main(argv):
-    if len(argv) != 3:
-        print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
-        return 2
-    csv_path, png_path = argv[1], argv[2]
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")  # no display: write the file only
-        import matplotlib.pyplot as plt
-    except ImportError as e:
-        print(f"plot.py: matplotlib is not available ({e}); {png_path} not drawn")
-        return 0
-
-    curves = load(csv_path)
-    if not curves:
-        print(f"plot.py: {csv_path} has no rows; {png_path} not drawn")
-        return 0
+    plt, curves, png_path = start(argv, __doc__, load)
     panels = [("bodies", plot_bodies), ("terrain", plot_terrain), ("body_size", plot_body_size),
               ("overlap", plot_overlap), ("edits", plot_edits)]
     fig, axes = plt.subplots(2, 3, figsize=(17, 10), dpi=100)
