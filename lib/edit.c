@@ -22,10 +22,11 @@ void edit_pixel(body *bd, edit_span *e, int32_t x, int32_t y, bool solid, uint32
         mass_sums_pixel(&bd->sums, r->width, r->height, x, y, weight, +1);
     raster_write(r, x, y, solid, weight);
     e->removed |= was && !solid;
-    if (e->changed++ == 0 || y < e->y0)
-        e->y0 = y;
-    if (e->changed == 1 || y >= e->y1)
-        e->y1 = y + 1;
+    const bool first = e->changed++ == 0;
+    if (first || x < e->x0) e->x0 = x;
+    if (first || x >= e->x1) e->x1 = x + 1;
+    if (first || y < e->y0) e->y0 = y;
+    if (first || y >= e->y1) e->y1 = y + 1;
 }
 
 void edit_update_solver_body(world *wd, body *bd)
@@ -43,7 +44,26 @@ void edit_update_solver_body(world *wd, body *bd)
 
 static bool boxes_overlap(pp_aabb a, pp_aabb b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; }
 
-/* Wake every body that may have rested on the edited region (the body's bounds before and after). */
+/* Bodies within this many pixels of an edited pixel wake: a resting contact is up to contact_slop
+ * (0.75 px by default) deep, plus a pixel of rounding. */
+#define EDIT_WAKE_MARGIN 2.0
+
+/* The world box of the edited pixels, grown by the margin. */
+static pp_aabb edited_region(const body *bd, const edit_span *e)
+{
+    pp_aabb box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 4; k++) {
+        const dvec2 l = dv((k & 1 ? e->x1 + EDIT_WAKE_MARGIN : e->x0 - EDIT_WAKE_MARGIN) - bd->pivot.x,
+                           (k & 2 ? e->y1 + EDIT_WAKE_MARGIN : e->y0 - EDIT_WAKE_MARGIN) - bd->pivot.y);
+        const dvec2 w = dv_add(bd->pos, dv_rot(l, bd->cos_a, bd->sin_a));
+        box.x0 = fmin(box.x0, w.x), box.y0 = fmin(box.y0, w.y);
+        box.x1 = fmax(box.x1, w.x), box.y1 = fmax(box.y1, w.y);
+    }
+    return box;
+}
+
+/* Wake every body that may rest on, or now overlap, the edited pixels. Only those: a crater deep
+ * in a large terrain leaves the bodies sleeping on its surface asleep. */
 static void wake_around(world *wd, pp_aabb region)
 {
     for (int32_t i = 0; i < wd->body_capacity; i++) {
@@ -58,14 +78,9 @@ static pp_status commit_edit(world *wd, body *bd, const edit_span *e)
 {
     if (e->changed == 0)
         return PP_OK;
-    pp_aabb region = bd->aabb;
     raster_edit_done(&bd->raster, e->y0, e->y1);
     body_update_pose_cache(bd);
-    if (!raster_empty(&bd->raster)) {
-        region.x0 = fmin(region.x0, bd->aabb.x0), region.y0 = fmin(region.y0, bd->aabb.y0);
-        region.x1 = fmax(region.x1, bd->aabb.x1), region.y1 = fmax(region.y1, bd->aabb.y1);
-    }
-    wake_around(wd, region);
+    wake_around(wd, edited_region(bd, e));
     /* Nothing left to simulate: no pixels, or a dynamic body without mass. */
     if (bd->raster.solid_count == 0 || (bd->type == PP_BODY_DYNAMIC && bd->sums.w <= 0)) {
         const pp_body gone = bd->handle;

@@ -7,6 +7,7 @@
 /* What a batch of pixel writes did to one body. */
 typedef struct edit_span {
     int32_t changed;    /* pixels whose mask bit or weight changed */
+    int32_t x0, x1;     /* columns touched, [x0, x1) */
     int32_t y0, y1;     /* rows touched, [y0, y1) */
     bool removed;       /* some solid pixel became empty (the body may have come apart) */
 } edit_span;

@@ -163,6 +163,28 @@ Test(edit, a_box_falls_within_5_steps_when_the_ground_under_it_is_erased) {
     pp_world_destroy(w);
 }
 
+/* An edit wakes only the bodies near the pixels it changed: a crater deep in the terrain, or at its
+ * far end, leaves a box sleeping on the surface asleep; cutting to within a pixel under it wakes it. */
+Test(edit, an_edit_wakes_only_the_bodies_near_its_pixels) {
+    pp_world w = make_world(0, 980);
+    pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 1000, 700, 0), 2000, 400); /* top at y 500 */
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 484, 0), 32, 32);
+    step_n(w, 1.0f / 60.0f, 120);
+    int32_t awake = 1, changed;
+    PP_OK_OR_FAIL(pp_body_is_awake(w, box, &awake));
+    cr_assert_eq(awake, 0, "the box should sleep on the ground first");
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, ground, v2(400, 600), 40, &changed)); /* 60 px under it */
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, ground, v2(1800, 500), 40, &changed)); /* at the surface, far away */
+    cr_assert_gt(changed, 1000);
+    PP_OK_OR_FAIL(pp_body_is_awake(w, box, &awake));
+    cr_assert_eq(awake, 0, "craters far from the box woke it");
+    /* A cut reaching one pixel under the box's bottom edge wakes it. */
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, ground, v2(400, 560), 58.6f, &changed));
+    PP_OK_OR_FAIL(pp_body_is_awake(w, box, &awake));
+    cr_assert_eq(awake, 1, "a cut 1 px under the box left it asleep");
+    pp_world_destroy(w);
+}
+
 Test(edit, erasing_every_pixel_destroys_the_body_with_an_event) {
     pp_world w = make_world(0, 0);
     pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
