@@ -252,8 +252,12 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in)
 uint64_t solver_get_steps(const pp_solver *s) { return s->steps; }
 void solver_set_steps(pp_solver *s, uint64_t steps) { s->steps = steps; }
 
-void solver_step(pp_solver *s, double h)
+void solver_step(pp_solver *s, double h, bool anything_awake)
 {
+    if (!anything_awake) {
+        s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
+        return;
+    }
     pthread_mutex_lock(&ode_step_lock);
     dRandSetSeed((unsigned long)(s->steps * 2654435761u + 12345u));
     if (s->exact)

@@ -81,7 +81,8 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in);
 uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
-/* Advance by h seconds (one substep) and drop the contact joints. */
-void solver_step(pp_solver *s, double h);
+/* Advance by h seconds (one substep) and drop the contact joints. `anything_awake` false (no dynamic
+ * or kinematic body awake) skips ODE, which would change nothing but still walk every body. */
+void solver_step(pp_solver *s, double h, bool anything_awake);
 
 #endif

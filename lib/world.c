@@ -321,6 +321,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                                     "the broadphase");
     if (st)
         return st;
+    wd->awake_movers = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
@@ -328,6 +329,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                                          bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
                                          true}
                             : (bp_proxy){.live = false};
+        wd->awake_movers += bd && bd->sb.body && wd->proxies[i].awake;
     }
     st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
     if (st || (st = world_reserve_pairs(wd, fn, wd->broad.pair_count)))
@@ -508,7 +510,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         if ((st = continuous_begin(wd)))
             return st;
         add_contact_joints(wd);
-        solver_step(wd->solver, h);
+        solver_step(wd->solver, h, wd->awake_movers > 0);
         sync_bodies(wd);
         continuous_end(wd);
         if ((st = update_sleep(wd, h)))

@@ -57,6 +57,7 @@ typedef struct world {
     pp_broadphase broad;
     pp_contact *contacts;    /* the last substep's contacts */
     int32_t contact_count, contact_capacity;
+    int32_t awake_movers;    /* dynamic or kinematic bodies awake at the last broadphase */
     np_scratch scratch;
     bp_proxy *proxies;       /* the broadphase's view of every slot, refilled each substep */
     int32_t proxy_capacity;
