@@ -175,7 +175,7 @@ $(BUILD)/bench/bench_core: tests/bench/narrowphase/core.c tests/bench/machine.h 
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
 # Edit latency: a crater in a large terrain, and the step after it.
-$(BUILD)/bench/bench_edit: tests/bench/edit/main.c $(STATIC)
+$(BUILD)/bench/bench_edit: tests/bench/edit/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 

@@ -1,17 +1,13 @@
 /* The benchmark's scenes as plain lists of boxes, so that the raster run and the analytic
  * run are built from the same numbers. */
 #include "bench.h"
+#include "machine.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 
-double bench_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
+double bench_now_ms(void) { return bench_clock_ms(); }
 
 static int scene_alloc(bench_scene *out, const char *name, int count, int steps)
 {

@@ -1,6 +1,7 @@
 /* The accuracy benchmark's measurements, through the public API only: analytic collisions,
  * stacks stepped with sleep off, a timing scene, an elastic bounce and free collisions. */
 #include "accuracy.h"
+#include "machine.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,17 +16,11 @@ static int check(pp_status st, const char *what)
     return -1;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 double acc_quantile(double *v, int n, double q)
 {
     if (n <= 0)
         return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
     int k = (int)ceil(q * n) - 1;
     k = k < 0 ? 0 : k >= n ? n - 1 : k;
     return v[k];
@@ -35,7 +30,7 @@ static double median_of(double *v, int n)
 {
     if (n <= 0)
         return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 

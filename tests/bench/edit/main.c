@@ -4,6 +4,7 @@
  *
  *   bench_edit [--csv PATH] [--craters N]
  */
+#include "../machine.h"
 #include "physpix.h"
 
 #include <stdio.h>
@@ -15,13 +16,6 @@
 #define TH 2048
 #define TOP 1000.0f /* world y of the terrain's top edge */
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 static void check(pp_status st, const char *what)
 {
     if (st != PP_OK) {
@@ -30,15 +24,9 @@ static void check(pp_status st, const char *what)
     }
 }
 
-static int cmp(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double pct(double *v, int n, double p)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp);
+    qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
     return v[(int)(p * (n - 1) + 0.5)];
 }
 
@@ -85,19 +73,19 @@ int main(int argc, char **argv)
     double *plain = malloc(sizeof(double) * craters);
     long long erased = 0;
     for (int k = 0; k < craters; k++) {
-        double t0 = now_ms();
+        double t0 = bench_clock_ms();
         check(pp_world_step(w, 1.0f / 60), "step");
-        plain[k] = now_ms() - t0;
+        plain[k] = bench_clock_ms() - t0;
         /* Craters across the surface, below the boxes' row so no box is cut. */
         const pp_vec2 c = {40.0f + (float)((k * 997) % (TW - 80)), TOP + 100.0f + (float)((k * 131) % 1800)};
         int32_t changed;
-        t0 = now_ms();
+        t0 = bench_clock_ms();
         check(pp_world_erase_circle(w, c, 32.0f, &changed), "erase");
-        edit[k] = now_ms() - t0;
+        edit[k] = bench_clock_ms() - t0;
         erased += changed;
-        t0 = now_ms();
+        t0 = bench_clock_ms();
         check(pp_world_step(w, 1.0f / 60), "step after the edit");
-        after[k] = now_ms() - t0;
+        after[k] = bench_clock_ms() - t0;
     }
     const double e50 = pct(edit, craters, 0.5), e99 = pct(edit, craters, 0.99);
     const double a50 = pct(after, craters, 0.5), a99 = pct(after, craters, 0.99);

@@ -31,25 +31,12 @@ static const char *const variant_names[V_COUNT] = {
     "AUTO backend",
 };
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 static void check(pp_status st, const char *what)
 {
     if (st != PP_OK) {
         fprintf(stderr, "bench_features: %s: %s (%s)\n", what, pp_status_name(st), pp_last_error());
         exit(1);
     }
-}
-
-static int cmp(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /// The scene with one variant applied; returns the world and fills the timing per step.
@@ -104,7 +91,7 @@ static double run(variant v, int steps, const uint8_t *solid, const uint8_t *hea
         exit(1);
     double sum_contacts = 0;
     for (int s = 0; s < 60 + steps; s++) {
-        const double t0 = now_ms();
+        const double t0 = bench_clock_ms();
         check(pp_world_step(w, 1.0f / 60.0f), "pp_world_step");
         int32_t n;
         if (v == V_EVENTS)
@@ -112,7 +99,7 @@ static double run(variant v, int steps, const uint8_t *solid, const uint8_t *hea
         if (v == V_CONTACTS)
             check(pp_world_get_contacts(w, buf, 4096, &n), "pp_world_get_contacts");
         if (s >= 60) {
-            ms[s - 60] = now_ms() - t0;
+            ms[s - 60] = bench_clock_ms() - t0;
             pp_step_stats st;
             check(pp_world_get_stats(w, &st), "pp_world_get_stats");
             sum_contacts += st.contacts;
@@ -120,8 +107,8 @@ static double run(variant v, int steps, const uint8_t *solid, const uint8_t *hea
         }
     }
     check(pp_world_destroy(w), "pp_world_destroy");
-    qsort(ms, (size_t)steps, sizeof *ms, cmp);
-    qsort(nms, (size_t)steps, sizeof *nms, cmp);
+    qsort(ms, (size_t)steps, sizeof *ms, bench_cmp_double);
+    qsort(nms, (size_t)steps, sizeof *nms, bench_cmp_double);
     const double med = ms[steps / 2];
     *narrow = nms[steps / 2];
     free(ms);

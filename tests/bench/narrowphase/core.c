@@ -17,19 +17,6 @@
 #define TH 2048
 #define TOP 1024 /* the flat terrain's top row */
 
-static double now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e9 + ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static pp_raster make_raster(int w, int h, const uint8_t *mask)
 {
     pp_body_def d = pp_body_def_default();
@@ -85,11 +72,11 @@ static double time_core(pp_status (*core)(const np_settings *, const np_pair *, 
     double *t = malloc(sizeof(double) * reps);
     core(set, p, s, out); /* warm the scratch */
     for (int i = 0; i < reps; i++) {
-        const double t0 = now_ns();
+        const double t0 = (1e6 * bench_clock_ms());
         core(set, p, s, out);
-        t[i] = now_ns() - t0;
+        t[i] = (1e6 * bench_clock_ms()) - t0;
     }
-    qsort(t, (size_t)reps, sizeof *t, cmp_double);
+    qsort(t, (size_t)reps, sizeof *t, bench_cmp_double);
     const double best = t[0];
     free(t);
     return best;

@@ -212,12 +212,6 @@ static pp_step_stats step_once(scene *sc, int e)
     return s;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Runs alternate between the engines so that a slow patch of the machine hits all of them. */
 static void measure(int n, int side, const options *o, int gpu_ok, result *r)
 {
@@ -246,7 +240,7 @@ static void measure(int n, int side, const options *o, int gpu_ok, result *r)
                 if (e == ENG_AUTO)
                     r->auto_ran = st.backend;
             }
-            qsort(ms, (size_t)k, sizeof *ms, cmp_double);
+            qsort(ms, (size_t)k, sizeof *ms, bench_cmp_double);
             const double med = k % 2 ? ms[k / 2] : 0.5 * (ms[k / 2 - 1] + ms[k / 2]);
             if (r->ms[e] < 0 || med < r->ms[e])
                 r->ms[e] = med;

@@ -126,19 +126,6 @@ static void check(pp_status st, const char *what)
     }
 }
 
-static double now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Half the extent along the wall normal (x) of a w×h box at angle a, px; a spinning box takes
  * its half diagonal, so no angle it reaches starts inside the wall. */
 static double half_extent_x(const shape *sh, double a)
@@ -235,10 +222,10 @@ static enum outcome throw_body(const config *c, const shape *sh, double speed, d
     double t_us = 0;
     enum outcome out = OUT_STUCK;
     for (int s = 0; s < steps + SETTLE_STEPS && out == OUT_STUCK; s++) {
-        const double t0 = now_us();
+        const double t0 = (1e3 * bench_clock_ms());
         check(pp_world_step(w, DT), "pp_world_step");
         if (s < steps)
-            t_us += now_us() - t0;
+            t_us += (1e3 * bench_clock_ms()) - t0;
         pp_step_stats st;
         check(pp_world_get_stats(w, &st), "pp_world_get_stats");
         *swept += st.swept_stops;
@@ -263,9 +250,9 @@ static double graze(const config *c, const shape *sh, double speed)
     const int steps = 3; /* up to 0.9 WALL_H at TIME_FAST: still beside the wall */
     double t_us = 0;
     for (int s = 0; s < steps; s++) {
-        const double t0 = now_us();
+        const double t0 = (1e3 * bench_clock_ms());
         check(pp_world_step(w, DT), "pp_world_step");
-        t_us += now_us() - t0;
+        t_us += (1e3 * bench_clock_ms()) - t0;
     }
     check(pp_world_destroy(w), "pp_world_destroy");
     return t_us / steps;
@@ -284,7 +271,7 @@ static double time_step(const config *c, const shape *sh, double speed, int graz
             else
                 (void)throw_body(c, sh, speed, 0.0, 0.37, &swept, &us[k]);
         }
-        qsort(us, TIMING_TRIALS, sizeof *us, cmp_double);
+        qsort(us, TIMING_TRIALS, sizeof *us, bench_cmp_double);
         if (r >= 0 && (best < 0 || us[TIMING_TRIALS / 2] < best))
             best = us[TIMING_TRIALS / 2];
     }
@@ -359,7 +346,7 @@ int main(int argc, char **argv)
     if (detail)
         fprintf(detail, "setting,shape,speed_px_s,trials,tunnelled,stuck,swept_stops\n");
 
-    const double t_start = now_us();
+    const double t_start = (1e3 * bench_clock_ms());
     static cell cells[NCONFIG][NSHAPE];
     printf("%-23s %-10s %6s %6s %7s %6s %6s %5s %6s %7s %7s %9s\n", "setting", "shape", "bound", "safe", "tunnel@",
            "clean", "tunnel", "stuck", "sweeps", "hit@2k", "hit@50k", "graze@50k");
@@ -415,7 +402,7 @@ int main(int argc, char **argv)
                         ce->swept, ce->us_hit_slow, ce->us_hit_fast, ce->us_graze);
         }
     }
-    const double wall_s = (now_us() - t_start) * 1e-6;
+    const double wall_s = ((1e3 * bench_clock_ms()) - t_start) * 1e-6;
 
     printf("\nsafe speed, px/s (no trial tunnels at or below it):\n%-23s", "setting");
     for (int si = 0; si < nshape; si++)
