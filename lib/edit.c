@@ -44,8 +44,8 @@ void edit_update_solver_body(world *wd, body *bd)
 
 static bool boxes_overlap(pp_aabb a, pp_aabb b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; }
 
-/* Bodies within this many pixels of an edited pixel wake: a resting contact is up to contact_slop
- * (0.75 px by default) deep, plus a pixel of rounding. */
+/* Bodies whose box comes within this many pixels of an edited pixel wake: one resting on the edited
+ * pixels overlaps them already; the margin catches one just touching them, after rounding. */
 #define EDIT_WAKE_MARGIN 2.0
 
 /* The world box of the edited pixels, grown by the margin. */

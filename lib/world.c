@@ -322,7 +322,6 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     if (st)
         return st;
     wd->awake_movers = 0;
-    int32_t awake_proxies = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
@@ -330,11 +329,10 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                                          bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
                                          true}
                             : (bp_proxy){.live = false};
-        wd->awake_movers += bd && bd->sb.body && wd->proxies[i].awake;
-        awake_proxies += bd && wd->proxies[i].awake;
+        wd->awake_movers += bd && wd->proxies[i].awake;
     }
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
-    if (awake_proxies > 0)
+    if (wd->awake_movers > 0)
         st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
     else
         wd->broad.pair_count = 0;
