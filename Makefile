@@ -10,8 +10,9 @@ SOMAJOR := 0
 
 # Debian packages the build, the tests and the demo need (see README).
 # EGL/GLES headers build the GPU backend; Mesa's EGL and llvmpipe run it on a machine without a GPU.
+# clang and its runtime (libFuzzer, TSan) build the fuzz targets; valgrind checks the demo for leaks.
 DEPS := gcc g++ make pkg-config libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
-        libpng-dev libcjson-dev godot3-server python3
+        libpng-dev libcjson-dev godot3-server python3 clang libclang-rt-14-dev valgrind
 # From PyPI: the Python package's tests.
 PY_DEPS := numpy pytest
 PYTHON ?= python3
