@@ -31,6 +31,10 @@ extern "C" {
 #define PP_MAX_BODIES (1 << 20)
 /// Largest number of live worlds in one process.
 #define PP_MAX_WORLDS 4096
+/// Most contact points the narrowphase reports for one pair of bodies in a substep.
+#define PP_MAX_CONTACTS_PER_PAIR 2
+/// Largest scene file (pp_world_load_scene) or snapshot world.json accepted, in bytes.
+#define PP_MAX_SCENE_BYTES (64 * 1024 * 1024)
 
 /// Result of every call that can fail; PP_OK is 0.
 typedef enum pp_status {
@@ -202,6 +206,14 @@ typedef struct pp_step_stats {
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
 typedef void (*pp_log_fn)(int level, const char *msg, void *user);
 
+/// The memory functions behind every allocation the library makes; sizes in bytes, never 0.
+typedef struct pp_allocator {
+    void *(*alloc)(uint64_t size, void *user);              ///< like malloc: NULL when out of memory
+    void *(*realloc)(void *ptr, uint64_t size, void *user); ///< like realloc: ptr from alloc or realloc
+    void (*free)(void *ptr, void *user);                    ///< like free; ptr is never NULL
+    void *user;                                             ///< passed back to every call
+} pp_allocator;
+
 /// A renderer's view of a world: the world point at the image centre, the scale and the image size.
 typedef struct pp_camera {
     pp_vec2 center; ///< world point shown at the image centre, px (default 480, 270)
@@ -253,6 +265,9 @@ PP_API const char *pp_status_name(pp_status status);
 PP_API const char *pp_last_error(void);
 /// Install a process-wide log hook (NULL removes it); called outside steps only.
 PP_API void pp_set_log_hook(pp_log_fn fn, void *user);
+/// Route every allocation the library makes (not ODE's or cJSON's) through a (NULL: back to malloc);
+/// only while no world exists, else PP_ERR_INVALID_ARGUMENT. The functions may be called from worker threads.
+PP_API pp_status pp_set_allocator(const pp_allocator *a);
 
 /// Default world settings (the balanced preset).
 PP_API pp_world_def pp_world_def_default(void);

@@ -1,5 +1,6 @@
 /* Bodies: the handle table (slot + generation), creation from a def, poses and velocities.
  * A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
+#include "alloc.h"
 #include "status.h"
 #include "world.h"
 
@@ -72,8 +73,8 @@ void body_free(world *wd, body *bd)
     if (wd->gpu)
         gpu_narrow_forget(wd->gpu, &bd->raster);
     raster_free(&bd->raster);
-    free(bd->sprite);
-    free(bd);
+    pp_free(bd->sprite);
+    pp_free(bd);
 }
 
 static pp_status check_body_def(const pp_body_def *d)
@@ -112,13 +113,13 @@ static pp_status alloc_slot(world *wd, uint32_t *slot)
     if (wd->body_capacity >= PP_MAX_BODIES)
         return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
     const int32_t n = wd->body_capacity ? 2 * wd->body_capacity : 64;
-    body **bodies = realloc(wd->bodies, (size_t)n * sizeof *bodies);
+    body **bodies = pp_realloc(wd->bodies, (size_t)n * sizeof *bodies);
     if (bodies)
         wd->bodies = bodies;
-    uint32_t *gens = realloc(wd->generations, (size_t)n * sizeof *gens);
+    uint32_t *gens = pp_realloc(wd->generations, (size_t)n * sizeof *gens);
     if (gens)
         wd->generations = gens;
-    uint32_t *fs = realloc(wd->free_slots, (size_t)n * sizeof *fs);
+    uint32_t *fs = pp_realloc(wd->free_slots, (size_t)n * sizeof *fs);
     if (fs)
         wd->free_slots = fs;
     if (!bodies || !gens || !fs)
@@ -145,17 +146,17 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     pp_status st = check_body_def(def);
     if (st)
         return st;
-    body *bd = calloc(1, sizeof *bd);
+    body *bd = pp_calloc(1, sizeof *bd);
     if (!bd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory");
     if ((st = raster_init(&bd->raster, def))) {
-        free(bd);
+        pp_free(bd);
         return st;
     }
     bd->type = def->type;
     if (def->rgba) {
         const size_t bytes = (size_t)def->width * (size_t)def->height * 4;
-        if (!(bd->sprite = malloc(bytes))) {
+        if (!(bd->sprite = pp_malloc(bytes))) {
             body_free(wd, bd);
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d sprite", (int)def->width,
                            (int)def->height);

@@ -1,5 +1,6 @@
 /* Sweep-and-prune on x over the live bodies' world AABBs. The order array persists between
  * steps, so the insertion sort runs in near-linear time on a scene that moves a little. */
+#include "alloc.h"
 #include "broadphase.h"
 #include "status.h"
 
@@ -12,7 +13,7 @@ static pp_status grow(void **buf, int32_t *cap, int32_t need, size_t item)
     int32_t n = *cap ? *cap : 64;
     while (n < need)
         n *= 2;
-    void *p = realloc(*buf, (size_t)n * item);
+    void *p = pp_realloc(*buf, (size_t)n * item);
     if (!p)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d entries", (int)n);
     *buf = p;
@@ -75,14 +76,14 @@ static pp_status rouse_sleepers(pp_broadphase *bp, const bp_proxy *proxies, int3
         const uint32_t sleeper = proxies[a].awake ? b : a, other = sleeper == a ? b : a;
         if (!proxies[other].awake || proxies[sleeper].awake || !proxies[sleeper].dynamic)
             continue;
-        if (!roused && !(roused = calloc((size_t)n, 1)))
+        if (!roused && !(roused = pp_calloc((size_t)n, 1)))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory");
         roused[sleeper] = 1;
     }
     if (!roused)
         return PP_OK;
     const pp_status st = sweep(bp, proxies, roused);
-    free(roused);
+    pp_free(roused);
     return st;
 }
 
@@ -99,7 +100,7 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
             bp->order[m++] = s;
     }
     /* Slots that were not in the order yet are those not seen; mark with a bitmap. */
-    uint8_t *seen = calloc((size_t)n + 1, 1);
+    uint8_t *seen = pp_calloc((size_t)n + 1, 1);
     if (!seen)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory");
     for (int32_t i = 0; i < m; i++)
@@ -107,7 +108,7 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
     for (int32_t s = 0; s < n; s++)
         if (proxies[s].live && !seen[s])
             bp->order[m++] = (uint32_t)s;
-    free(seen);
+    pp_free(seen);
     bp->order_count = m;
 
     for (int32_t i = 1; i < m; i++) {
@@ -127,7 +128,7 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
 
 void broadphase_free(pp_broadphase *bp)
 {
-    free(bp->order);
-    free(bp->pairs);
+    pp_free(bp->order);
+    pp_free(bp->pairs);
     *bp = (pp_broadphase){0};
 }

@@ -2,6 +2,7 @@
  * touching at a corner hold together); the largest island keeps the body and its handle, each other
  * island becomes a new body moving as its material did (v + ω × r), with the parent's material and
  * filter. A static body's islands fall as dynamic bodies when its def asked for detach_islands. */
+#include "alloc.h"
 #include "edit.h"
 #include "status.h"
 
@@ -25,9 +26,9 @@ static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack,
                 continue;
             if (n == cap) {
                 cap = cap ? 2 * cap : 8;
-                island *p = realloc(isl, (size_t)cap * sizeof *p);
+                island *p = pp_realloc(isl, (size_t)cap * sizeof *p);
                 if (!p) {
-                    free(isl);
+                    pp_free(isl);
                     return -1;
                 }
                 isl = p;
@@ -110,12 +111,12 @@ pp_status fracture_split(world *wd, body *bd)
 {
     pp_raster *r = &bd->raster;
     const int64_t area = (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0);
-    int32_t *label = calloc((size_t)area, sizeof *label), *stack = malloc((size_t)area * sizeof *stack);
+    int32_t *label = pp_calloc((size_t)area, sizeof *label), *stack = pp_malloc((size_t)area * sizeof *stack);
     island *isl = NULL;
     const int32_t n = label && stack ? label_islands(r, label, stack, &isl) : -1;
-    free(stack);
+    pp_free(stack);
     if (n < 0) {
-        free(label);
+        pp_free(label);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to find the islands of a %lld-pixel body", (long long)area);
     }
     pp_status st = PP_OK;
@@ -130,12 +131,12 @@ pp_status fracture_split(world *wd, body *bd)
                 continue;
             const island *is = &isl[k];
             const int32_t w = is->x1 - is->x0, h = is->y1 - is->y0;
-            uint8_t *mask = calloc((size_t)w * h, 1), *weights = r->weights ? calloc((size_t)w * h, 1) : NULL;
-            uint8_t *sprite = bd->sprite ? calloc((size_t)w * h, 4) : NULL;
+            uint8_t *mask = pp_calloc((size_t)w * h, 1), *weights = r->weights ? pp_calloc((size_t)w * h, 1) : NULL;
+            uint8_t *sprite = bd->sprite ? pp_calloc((size_t)w * h, 4) : NULL;
             if (!mask || (r->weights && !weights) || (bd->sprite && !sprite)) {
-                free(mask);
-                free(weights);
-                free(sprite);
+                pp_free(mask);
+                pp_free(weights);
+                pp_free(sprite);
                 st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island", (int)w, (int)h);
                 break;
             }
@@ -158,16 +159,16 @@ pp_status fracture_split(world *wd, body *bd)
                 st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
             else if (st == PP_OK)
                 st = world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, child);
-            free(mask);
-            free(weights);
-            free(sprite);
+            pp_free(mask);
+            pp_free(weights);
+            pp_free(sprite);
         }
         raster_edit_done(r, e.y0, e.y1);
         body_update_pose_cache(bd);
         if (bd->sb.body)
             edit_update_solver_body(wd, bd);
     }
-    free(label);
-    free(isl);
+    pp_free(label);
+    pp_free(isl);
     return st;
 }

@@ -1,10 +1,12 @@
 /* PNG in and out, through libpng: every input kind (gray, gray+alpha, RGB, RGBA, palette, 1–16 bit)
  * normalised to RGBA8 by libpng's own transforms. Sizes are checked against the bitmap limits
  * from the header alone, before any large allocation. */
+#include "alloc.h"
 #include "status.h"
 
 #include <png.h>
 #include <setjmp.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -15,7 +17,19 @@ typedef struct png_session {
     FILE *file;
     char error[160];
     char warning[160]; /* libpng's last warning, often the detail behind its error */
+    bool out_of_memory; /* an allocation for libpng failed: its error means OOM, not a bad file */
 } png_session;
+
+/* libpng allocates through the library's allocator too. */
+static png_voidp session_alloc(png_structp png, png_alloc_size_t size)
+{
+    void *p = pp_malloc(size);
+    if (!p)
+        ((png_session *)png_get_mem_ptr(png))->out_of_memory = true;
+    return p;
+}
+
+static void session_free(png_structp png, png_voidp ptr) { pp_free(ptr); }
 
 static void session_error(png_structp png, png_const_charp msg)
 {
@@ -49,7 +63,8 @@ static pp_status reader_open(png_session *r, const char *fn, const char *path)
     png_byte sig[8];
     if (fread(sig, 1, sizeof sig, r->file) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0)
         return pp_fail(PP_ERR_FORMAT, "%s: '%s' is not a PNG file (bad signature)", fn, path);
-    r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, session_error, session_warning);
+    r->png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, r, session_error, session_warning, r, session_alloc,
+                                      session_free);
     r->info = r->png ? png_create_info_struct(r->png) : NULL;
     if (!r->info)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG decoder", fn);
@@ -76,6 +91,8 @@ static pp_status reader_header(png_session *r, const char *fn, const char *path,
 /* A libpng failure: the file is malformed (truncated, bad CRC, bad header). */
 static pp_status reader_failure(const png_session *r, const char *fn, const char *path)
 {
+    if (r->out_of_memory)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to decode '%s'", fn, path);
     if (r->warning[0])
         return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s (%s)", fn, path, r->error, r->warning);
     return pp_fail(PP_ERR_FORMAT, "%s: '%s' is malformed: %s", fn, path, r->error);
@@ -129,7 +146,7 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
                 png_set_add_alpha(r.png, 0xff, PNG_FILLER_AFTER);
                 png_set_interlace_handling(r.png);
                 png_read_update_info(r.png, r.info);
-                rows = malloc((size_t)*height * sizeof *rows);
+                rows = pp_malloc((size_t)*height * sizeof *rows);
                 if (!rows) {
                     st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate %d row pointers", fn, (int)*height);
                 } else {
@@ -141,7 +158,7 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
             }
         }
     }
-    free(rows);
+    pp_free(rows);
     reader_close(&r);
     return st;
 }
@@ -161,12 +178,14 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
     if (!wr.file)
         return pp_fail(PP_ERR_IO, "%s: cannot create '%s'", fn, path);
     pp_status st = PP_OK;
-    wr.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning);
+    wr.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning, &wr, session_alloc,
+                                       session_free);
     wr.info = wr.png ? png_create_info_struct(wr.png) : NULL;
     if (!wr.info) {
         st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
     } else if (setjmp(png_jmpbuf(wr.png))) {
-        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr.error);
+        st = wr.out_of_memory ? pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to encode '%s'", fn, path)
+                              : pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr.error);
     } else {
         png_init_io(wr.png, wr.file);
         png_set_IHDR(wr.png, wr.info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,

@@ -4,6 +4,7 @@
  * give the contact points and depths. Integers only, so the GPU twin matches bit for bit.
  * Two cores compute the same integers: the dense one samples every cell (the specification, as
  * the GPU runs it); the tiled one works only near the contact, from the rasters' tile occupancy. */
+#include "alloc.h"
 #include "narrowphase.h"
 #include "status.h"
 
@@ -41,7 +42,7 @@ static void *grow(void *buf, int64_t *cap, int64_t n, size_t size, pp_status *st
 {
     if (*st || n <= *cap)
         return buf;
-    void *p = realloc(buf, (size_t)n * size);
+    void *p = pp_realloc(buf, (size_t)n * size);
     if (!p) {
         *st = pp_fail(PP_ERR_OUT_OF_MEMORY, "narrowphase: no memory for %lld scratch elements", (long long)n);
         return buf;
@@ -60,10 +61,10 @@ static pp_status grow_scratch(np_scratch *s, int64_t cells, int64_t strips)
 
 void np_scratch_free(np_scratch *s)
 {
-    free(s->cells);
-    free(s->strips);
-    free(s->leaves);
-    free(s->rects);
+    pp_free(s->cells);
+    pp_free(s->strips);
+    pp_free(s->leaves);
+    pp_free(s->rects);
     *s = (np_scratch){0};
 }
 

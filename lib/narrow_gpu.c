@@ -2,6 +2,7 @@
  * buffer, each body's bit-packed rows at its own offset, written once and then only where rows
  * were edited. A step's pairs go up as one table, run as four passes over all of them (sums per
  * 16×16 tile, normal per pair, strips per tile, summary per pair), and come back in one read. */
+#include "alloc.h"
 #include "narrow_gpu.h"
 #include "gpu_context.h"
 #include "status.h"
@@ -45,7 +46,7 @@ pp_status gpu_narrow_create(const char *fn, gpu_narrow **out)
     pp_status st = gpu_acquire(fn, &gl, &info);
     if (st)
         return st;
-    gpu_narrow *g = calloc(1, sizeof *g);
+    gpu_narrow *g = pp_calloc(1, sizeof *g);
     if (g) {
         gl->GenBuffers(BUF_COUNT, g->buf);
         g->software = info->software;
@@ -67,12 +68,12 @@ void gpu_narrow_destroy(gpu_narrow *g)
         gl->DeleteBuffers(BUF_COUNT, g->buf);
         gpu_release();
     }
-    free(g->holes);
-    free(g->pairs);
-    free(g->index);
-    free(g->results);
-    free(g->tiles);
-    free(g);
+    pp_free(g->holes);
+    pp_free(g->pairs);
+    pp_free(g->index);
+    pp_free(g->results);
+    pp_free(g->tiles);
+    pp_free(g);
 }
 
 bool gpu_narrow_is_software(const gpu_narrow *g) { return g->software; }
@@ -105,7 +106,7 @@ void gpu_narrow_forget(gpu_narrow *g, pp_raster *r)
     }
     if (g->hole_count == g->hole_cap) {
         const int32_t cap = g->hole_cap ? 2 * g->hole_cap : 16;
-        span *p = realloc(g->holes, (size_t)cap * sizeof *p);
+        span *p = pp_realloc(g->holes, (size_t)cap * sizeof *p);
         if (!p)
             return; /* the words stay unused until the world goes; nothing is lost but space */
         g->holes = p, g->hole_cap = cap;
@@ -180,13 +181,13 @@ static bool mask_sync(gpu_narrow *g, const gpu_gl *gl, const gpu_info *info, con
 static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs, int64_t tiles)
 {
     if (pairs > g->pair_cap) {
-        gpu_pair *p = realloc(g->pairs, (size_t)pairs * sizeof *p);
+        gpu_pair *p = pp_realloc(g->pairs, (size_t)pairs * sizeof *p);
         if (p)
             g->pairs = p;
-        int32_t *ix = realloc(g->index, (size_t)pairs * sizeof *ix);
+        int32_t *ix = pp_realloc(g->index, (size_t)pairs * sizeof *ix);
         if (ix)
             g->index = ix;
-        uint32_t *res = realloc(g->results, (size_t)pairs * RESULT_WORDS * sizeof *res);
+        uint32_t *res = pp_realloc(g->results, (size_t)pairs * RESULT_WORDS * sizeof *res);
         if (res)
             g->results = res;
         if (!p || !ix || !res)
@@ -194,7 +195,7 @@ static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs, int64_t
         g->pair_cap = pairs;
     }
     if (tiles > g->tile_cap) {
-        uint32_t *t = realloc(g->tiles, (size_t)tiles * sizeof *t);
+        uint32_t *t = pp_realloc(g->tiles, (size_t)tiles * sizeof *t);
         if (!t)
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU tiles", fn, (long long)tiles);
         g->tiles = t, g->tile_cap = tiles;

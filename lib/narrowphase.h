@@ -60,7 +60,7 @@ typedef struct np_core {
 /* Up to two contact points; normal points from a to b (handles are the caller's to fill). */
 typedef struct np_result {
     int32_t count;
-    pp_contact contacts[2];
+    pp_contact contacts[PP_MAX_CONTACTS_PER_PAIR];
     int64_t samples;    /* raster samples examined */
 } np_result;
 

@@ -1,5 +1,6 @@
 /* Queries that read the world without stepping it: the narrowphase on one chosen pair, and its
  * sampled grid for debug views. */
+#include "alloc.h"
 #include "status.h"
 #include "world.h"
 
@@ -88,7 +89,7 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
     if (capacity < n)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the grid has %lld cells, capacity is %lld", fn, (long long)n,
                        (long long)capacity);
-    int32_t *kernel = malloc((size_t)n * 2 * sizeof *kernel);
+    int32_t *kernel = pp_malloc((size_t)n * 2 * sizeof *kernel);
     if (!kernel)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld cells", fn, (long long)n);
     if ((st = narrow_cpu_debug(&p, &wd->scratch, cells, kernel)) == PP_OK) {
@@ -108,6 +109,6 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
             }
         }
     }
-    free(kernel);
+    pp_free(kernel);
     return st;
 }

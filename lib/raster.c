@@ -2,6 +2,7 @@
  * single pixels, and keeping the bounds of the solid pixels exact through per-row and
  * per-column counts and the tile occupancy exact through per-tile counts (an edit never
  * rescans the bitmap). */
+#include "alloc.h"
 #include "raster.h"
 #include "status.h"
 
@@ -35,18 +36,18 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     r->height = h;
     r->words_per_row = (w + 63) / 64;
     r->gpu_word = -1;
-    r->bits = calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
-    r->row_count = calloc((size_t)h, sizeof(int32_t));
-    r->col_count = calloc((size_t)w, sizeof(int32_t));
+    r->bits = pp_calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
+    r->row_count = pp_calloc((size_t)h, sizeof(int32_t));
+    r->col_count = pp_calloc((size_t)w, sizeof(int32_t));
     r->tiles_x = (w + RASTER_TILE - 1) >> RASTER_TILE_SHIFT;
     r->tiles_y = (h + RASTER_TILE - 1) >> RASTER_TILE_SHIFT;
-    r->tile_count = calloc((size_t)r->tiles_x * (size_t)r->tiles_y, sizeof *r->tile_count);
+    r->tile_count = pp_calloc((size_t)r->tiles_x * (size_t)r->tiles_y, sizeof *r->tile_count);
     if (!r->bits || !r->row_count || !r->col_count || !r->tile_count) {
         raster_free(r);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);
     }
     if (def->weights) {
-        r->weights = malloc((size_t)w * (size_t)h);
+        r->weights = pp_malloc((size_t)w * (size_t)h);
         if (!r->weights) {
             raster_free(r);
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d weight plane", (int)w, (int)h);
@@ -82,7 +83,7 @@ pp_status raster_ensure_weights(pp_raster *r)
 {
     if (r->weights)
         return PP_OK;
-    r->weights = malloc((size_t)r->width * (size_t)r->height);
+    r->weights = pp_malloc((size_t)r->width * (size_t)r->height);
     if (!r->weights)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d weight plane", (int)r->width, (int)r->height);
     memset(r->weights, 255, (size_t)r->width * (size_t)r->height);
@@ -128,11 +129,11 @@ void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1)
 
 void raster_free(pp_raster *r)
 {
-    free(r->bits);
-    free(r->weights);
-    free(r->row_count);
-    free(r->col_count);
-    free(r->tile_count);
+    pp_free(r->bits);
+    pp_free(r->weights);
+    pp_free(r->row_count);
+    pp_free(r->col_count);
+    pp_free(r->tile_count);
     memset(r, 0, sizeof *r);
 }
 

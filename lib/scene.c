@@ -1,5 +1,6 @@
 /* JSON scenes: a world's settings, camera, bodies with PNG bitmaps, and timed edits naming bodies.
  * The reading itself is scene_json.c's; every complaint names the JSON path of the value at fault. */
+#include "alloc.h"
 #include "scene_json.h"
 #include "status.h"
 
@@ -48,8 +49,8 @@ static int32_t find_body(const body_names *bn, const char *name)
 static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, pp_world w, body_names *bn)
 {
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
-    bn->names = calloc((size_t)n + 1, sizeof *bn->names);
-    bn->bodies = calloc((size_t)n + 1, sizeof *bn->bodies);
+    bn->names = pp_calloc((size_t)n + 1, sizeof *bn->names);
+    bn->bodies = pp_calloc((size_t)n + 1, sizeof *bn->bodies);
     if (!bn->names || !bn->bodies)
         return json_fail(c, PP_ERR_OUT_OF_MEMORY, "bodies", NULL, "no memory for %d bodies", (int)n);
     int32_t i = 0;
@@ -140,8 +141,8 @@ static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out
         st = json_fail_from_last(c, st, "camera", NULL);
     if (st == PP_OK && (st = parse_bodies(c, bodies, w, &bn)) == PP_OK)
         st = parse_edits(c, edits, w, &bn);
-    free(bn.names);
-    free(bn.bodies);
+    pp_free(bn.names);
+    pp_free(bn.bodies);
     if (st) {
         pp_world_destroy(w);
         return st;

@@ -1,5 +1,6 @@
 /* The JSON layer shared by scene files and snapshots (see scene_json.h): the path-naming reader,
  * the field tables, exact number printing, PNG bitmaps and whole-file parsing. */
+#include "alloc.h"
 #include "scene_json.h"
 #include "status.h"
 
@@ -10,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* ---- reader layer ------------------------------------------------------------------------- */
 
@@ -467,9 +469,9 @@ cJSON *edit_to_json(const pp_timed_edit *e)
 
 void bitmap_free(bitmap *b)
 {
-    free(b->rgba);
-    free(b->mask);
-    free(b->weights);
+    pp_free(b->rgba);
+    pp_free(b->mask);
+    pp_free(b->weights);
 }
 
 /* Decode the PNG named by obj[key], relative to the scene's directory unless absolute. */
@@ -481,21 +483,21 @@ static pp_status load_png(const json_ctx *c, const cJSON *obj, const char *where
     if (st)
         return st;
     const size_t dir = name[0] == '/' ? 0 : c->dir_len;
-    char *path = malloc(dir + strlen(name) + 1);
+    char *path = pp_malloc(dir + strlen(name) + 1);
     if (!path)
         return json_fail(c, PP_ERR_OUT_OF_MEMORY, where, key, "no memory");
     memcpy(path, c->file, dir);
     strcpy(path + dir, name);
     if ((st = pp_image_info(path, w, h)) == PP_OK) {
-        *rgba = malloc((size_t)*w * (size_t)*h * 4);
+        *rgba = pp_malloc((size_t)*w * (size_t)*h * 4);
         if (!*rgba)
             st = pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_image_load: no memory for %d x %d px", (int)*w, (int)*h);
         else if ((st = pp_image_load(path, *rgba, (int64_t)*w * *h * 4, w, h)) != PP_OK) {
-            free(*rgba);
+            pp_free(*rgba);
             *rgba = NULL;
         }
     }
-    free(path);
+    pp_free(path);
     return st ? json_fail_from_last(c, st, where, key) : PP_OK;
 }
 
@@ -521,7 +523,7 @@ static pp_status load_box(const json_ctx *c, const cJSON *box, const char *where
     if (w * h > PP_MAX_BITMAP_AREA)
         return json_fail(c, PP_ERR_LIMIT, where, "box", "%lldx%lld px is over PP_MAX_BITMAP_AREA (%d)", (long long)w,
                          (long long)h, PP_MAX_BITMAP_AREA);
-    if (!(b->mask = malloc((size_t)(w * h))))
+    if (!(b->mask = pp_malloc((size_t)(w * h))))
         return json_fail(c, PP_ERR_OUT_OF_MEMORY, where, "box", "no memory for %lldx%lld px", (long long)w,
                          (long long)h);
     memset(b->mask, 1, (size_t)(w * h));
@@ -537,14 +539,14 @@ static pp_status load_mask(const json_ctx *c, const cJSON *obj, const char *wher
     pp_status st = load_png(c, obj, where, "mask", &px, &w, &h);
     if (st == PP_OK && b->rgba)
         st = check_plane_size(c, where, "mask", w, h, b, "sprite");
-    if (st == PP_OK && !(b->mask = malloc((size_t)w * (size_t)h)))
+    if (st == PP_OK && !(b->mask = pp_malloc((size_t)w * (size_t)h)))
         st = json_fail(c, PP_ERR_OUT_OF_MEMORY, where, "mask", "no memory");
     if (st == PP_OK) {
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
             b->mask[i] = px[4 * i] >= 128 && px[4 * i + 3] >= 128;
         b->width = w, b->height = h;
     }
-    free(px);
+    pp_free(px);
     return st;
 }
 
@@ -556,12 +558,12 @@ static pp_status load_weights(const json_ctx *c, const cJSON *obj, const char *w
     pp_status st = load_png(c, obj, where, "weights", &px, &w, &h);
     if (st == PP_OK)
         st = check_plane_size(c, where, "weights", w, h, b, "bitmap");
-    if (st == PP_OK && !(b->weights = malloc((size_t)w * (size_t)h)))
+    if (st == PP_OK && !(b->weights = pp_malloc((size_t)w * (size_t)h)))
         st = json_fail(c, PP_ERR_OUT_OF_MEMORY, where, "weights", "no memory");
     if (st == PP_OK)
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
             b->weights[i] = px[4 * i];
-    free(px);
+    pp_free(px);
     return st;
 }
 
@@ -587,19 +589,25 @@ pp_status parse_bitmap(const json_ctx *c, const cJSON *obj, const char *where, b
 
 /* ---- the file ------------------------------------------------------------------------------------ */
 
-/* The whole file, NUL-terminated; LIMIT past SCENE_MAX_BYTES. */
+/* The whole file, NUL-terminated; LIMIT past PP_MAX_SCENE_BYTES, from its size before reading when it has one. */
 static pp_status read_text(const json_ctx *c, char **out, size_t *len)
 {
     FILE *f = fopen(c->file, "rb");
     if (!f)
         return pp_fail(PP_ERR_IO, "%s: '%s': cannot open: %s", c->fn, c->file, strerror(errno));
+    struct stat sb;
+    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > PP_MAX_SCENE_BYTES) {
+        fclose(f);
+        return pp_fail(PP_ERR_LIMIT, "%s: '%s' is %lld bytes, over PP_MAX_SCENE_BYTES (%d)", c->fn, c->file,
+                       (long long)sb.st_size, PP_MAX_SCENE_BYTES);
+    }
     size_t n = 0, cap = 0;
     char *buf = NULL;
     pp_status st = PP_OK;
     for (;;) {
         if (n + 1 >= cap) {
             cap = cap ? 2 * cap : 1 << 16;
-            char *p = realloc(buf, cap);
+            char *p = pp_realloc(buf, cap);
             if (!p) {
                 st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: '%s': no memory for %zu bytes", c->fn, c->file, cap);
                 break;
@@ -608,8 +616,8 @@ static pp_status read_text(const json_ctx *c, char **out, size_t *len)
         }
         const size_t got = fread(buf + n, 1, cap - 1 - n, f);
         n += got;
-        if (n > SCENE_MAX_BYTES) {
-            st = pp_fail(PP_ERR_LIMIT, "%s: '%s': the file is over 64 MiB", c->fn, c->file);
+        if (n > PP_MAX_SCENE_BYTES) {
+            st = pp_fail(PP_ERR_LIMIT, "%s: '%s' is over PP_MAX_SCENE_BYTES (%d)", c->fn, c->file, PP_MAX_SCENE_BYTES);
             break;
         }
         if (got == 0) {
@@ -620,7 +628,7 @@ static pp_status read_text(const json_ctx *c, char **out, size_t *len)
     }
     fclose(f);
     if (st) {
-        free(buf);
+        pp_free(buf);
         return st;
     }
     buf[n] = '\0';
@@ -648,6 +656,6 @@ pp_status parse_json(const json_ctx *c, cJSON **root)
         cJSON_Delete(*root);
         *root = NULL;
     }
-    free(text);
+    pp_free(text);
     return st;
 }

@@ -11,8 +11,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Largest scene file read, bytes. */
-#define SCENE_MAX_BYTES ((size_t)64 << 20)
 /* Largest integer a JSON number (a double) holds exactly: 2^53. */
 #define JSON_MAX_EXACT_INT 9007199254740992LL
 

@@ -3,6 +3,7 @@
  * (doubles printed to read back bit for bit, ODE's state as it was set, the slot tables and the bodies'
  * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
 #define _GNU_SOURCE /* renameat2 */
+#include "alloc.h"
 #include "scene_json.h"
 #include "status.h"
 #include "world.h"
@@ -62,7 +63,7 @@ static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
 {
     const pp_raster *r = &bd->raster;
     const size_t n = (size_t)r->width * (size_t)r->height;
-    uint8_t *rgba = malloc(n * 4);
+    uint8_t *rgba = pp_malloc(n * 4);
     if (!rgba)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory for a %d × %d body", (int)r->width,
                        (int)r->height);
@@ -85,7 +86,7 @@ static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
         if (st == PP_OK && !add(obj, kinds[plane], cJSON_CreateString(name)))
             st = pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
     }
-    free(rgba);
+    pp_free(rgba);
     return st;
 }
 
@@ -180,9 +181,9 @@ static pp_status write_world(const char *dir, const world *wd, cJSON *root)
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
               write_edits_and_events(wd, root);
     cJSON *arr = cJSON_CreateArray();
-    body **live = malloc(((size_t)wd->live_count + 1) * sizeof *live);
+    body **live = pp_malloc(((size_t)wd->live_count + 1) * sizeof *live);
     if (!ok || !live || !add(root, "bodies", arr)) {
-        free(live);
+        pp_free(live);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     }
     int32_t n = 0;
@@ -193,7 +194,7 @@ static pp_status write_world(const char *dir, const world *wd, cJSON *root)
     pp_status st = PP_OK;
     for (int32_t i = 0; i < n && st == PP_OK; i++)
         st = write_body(dir, live[i], arr);
-    free(live);
+    pp_free(live);
     return st;
 }
 
@@ -291,7 +292,7 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
         st = publish(fn, tmp, dest);
     if (st)
         remove_folder(tmp);
-    free(text);
+    cJSON_free(text);
     cJSON_Delete(root);
     return st;
 }
@@ -346,7 +347,7 @@ static pp_status read_int_array(const json_ctx *c, const cJSON *obj, const char 
     if (!cJSON_IsArray(arr) || cJSON_GetArraySize(arr) > PP_MAX_BODIES)
         return json_fail(c, PP_ERR_FORMAT, "", key, "expected an array of at most %d integers", PP_MAX_BODIES);
     *n = cJSON_GetArraySize(arr);
-    *out = calloc((size_t)*n + 1, sizeof **out);
+    *out = pp_calloc((size_t)*n + 1, sizeof **out);
     if (!*out)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", c->fn);
     int32_t i = 0;
@@ -367,13 +368,13 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
     int32_t n = 0;
     pp_status st = read_int_array(c, root, "generations", 1, UINT32_MAX, &gens, &n);
     if (st) {
-        free(gens);
+        pp_free(gens);
         return st;
     }
-    body **bodies = calloc((size_t)n + 1, sizeof *bodies);
-    uint32_t *free_slots = calloc((size_t)n + 1, sizeof *free_slots);
+    body **bodies = pp_calloc((size_t)n + 1, sizeof *bodies);
+    uint32_t *free_slots = pp_calloc((size_t)n + 1, sizeof *free_slots);
     if (!bodies || !free_slots) {
-        free(gens), free(bodies), free(free_slots);
+        pp_free(gens), pp_free(bodies), pp_free(free_slots);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)n);
     }
     wd->bodies = bodies, wd->generations = gens, wd->free_slots = free_slots;
@@ -399,7 +400,7 @@ static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *
         memcpy(wd->free_slots, list, (size_t)n * sizeof *list);
     if (st == PP_OK)
         wd->free_count = n;
-    free(list);
+    pp_free(list);
     return st;
 }
 

@@ -1,6 +1,7 @@
 /* The ODE world: one ODE body per dynamic or kinematic body with its centre of mass at the body
  * origin, a plane-2D joint each, contact joints from the raster contacts, QuickStep or Step.
  * Lengths are divided by pixels_per_meter so ODE's tolerances see metre-sized numbers. */
+#include "alloc.h"
 #include "solver_ode.h"
 #include "status.h"
 
@@ -55,7 +56,7 @@ pp_status solver_create(const pp_world_def *def, pp_solver **out)
     pp_status st = ode_ready();
     if (st)
         return st;
-    pp_solver *s = calloc(1, sizeof *s);
+    pp_solver *s = pp_calloc(1, sizeof *s);
     if (!s)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory for the solver");
     s->ppm = def->pixels_per_meter;
@@ -84,7 +85,7 @@ void solver_destroy(pp_solver *s)
         return;
     dJointGroupDestroy(s->contacts);
     dWorldDestroy(s->world);
-    free(s);
+    pp_free(s);
 }
 
 static void set_rotation_z(solver_body *sb, double angle)
@@ -252,19 +253,17 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in)
 uint64_t solver_get_steps(const pp_solver *s) { return s->steps; }
 void solver_set_steps(pp_solver *s, uint64_t steps) { s->steps = steps; }
 
-void solver_step(pp_solver *s, double h, bool anything_awake)
+bool solver_step(pp_solver *s, double h, bool anything_awake)
 {
     if (!anything_awake) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
-        return;
+        return true;
     }
     pthread_mutex_lock(&ode_step_lock);
     dRandSetSeed((unsigned long)(s->steps * 2654435761u + 12345u));
-    if (s->exact)
-        dWorldStep(s->world, h);
-    else
-        dWorldQuickStep(s->world, h);
+    const int ok = s->exact ? dWorldStep(s->world, h) : dWorldQuickStep(s->world, h);
     pthread_mutex_unlock(&ode_step_lock);
     s->steps++;
     dJointGroupEmpty(s->contacts);
+    return ok != 0;
 }

@@ -82,7 +82,8 @@ uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
 /* Advance by h seconds (one substep) and drop the contact joints. `anything_awake` false (no dynamic
- * or kinematic body awake) skips ODE, which would change nothing but still walk every body. */
-void solver_step(pp_solver *s, double h, bool anything_awake);
+ * or kinematic body awake) skips ODE, which would change nothing but still walk every body.
+ * False when ODE could not get memory for its step. */
+bool solver_step(pp_solver *s, double h, bool anything_awake);
 
 #endif

@@ -2,6 +2,7 @@
  * batch is shared out one pair at a time through an atomic counter (pair costs differ by orders of
  * magnitude, so fixed slices would leave threads idle), the calling thread working too. Threads
  * start on the first batch big enough to need them, so a small scene never has any. */
+#include "alloc.h"
 #include "workers.h"
 #include "status.h"
 
@@ -71,7 +72,7 @@ static void *worker_main(void *arg)
     worker_arg *a = arg;
     np_workers *w = a->pool;
     np_scratch *scratch = &w->scratch[a->index];
-    free(a);
+    pp_free(a);
     uint64_t seen = 0;
     pthread_mutex_lock(&w->lock);
     for (;;) {
@@ -92,26 +93,26 @@ static void *worker_main(void *arg)
 
 static pp_status workers_start(np_workers **pool, int32_t count)
 {
-    np_workers *w = calloc(1, sizeof *w);
+    np_workers *w = pp_calloc(1, sizeof *w);
     if (!w)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for narrowphase workers");
-    w->threads = calloc((size_t)count, sizeof *w->threads);
-    w->scratch = calloc((size_t)count, sizeof *w->scratch);
+    w->threads = pp_calloc((size_t)count, sizeof *w->threads);
+    w->scratch = pp_calloc((size_t)count, sizeof *w->scratch);
     if (!w->threads || !w->scratch) {
-        free(w->threads);
-        free(w->scratch);
-        free(w);
+        pp_free(w->threads);
+        pp_free(w->scratch);
+        pp_free(w);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for narrowphase workers");
     }
     pthread_mutex_init(&w->lock, NULL);
     pthread_cond_init(&w->wake, NULL);
     pthread_cond_init(&w->done, NULL);
     for (int32_t i = 0; i < count; i++) {
-        worker_arg *a = malloc(sizeof *a);
+        worker_arg *a = pp_malloc(sizeof *a);
         if (a)
             *a = (worker_arg){w, i};
         if (!a || pthread_create(&w->threads[i], NULL, worker_main, a) != 0) {
-            free(a);
+            pp_free(a);
             break; /* run with the threads that did start */
         }
         w->count++;
@@ -174,7 +175,7 @@ void workers_free(np_workers *w)
     pthread_mutex_destroy(&w->lock);
     pthread_cond_destroy(&w->wake);
     pthread_cond_destroy(&w->done);
-    free(w->threads);
-    free(w->scratch);
-    free(w);
+    pp_free(w->threads);
+    pp_free(w->scratch);
+    pp_free(w);
 }

@@ -1,5 +1,6 @@
 /* World lifetime, the handle tables, and the step loop:
  * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
+#include "alloc.h"
 #include "continuous.h"
 #include "world.h"
 #include "status.h"
@@ -13,6 +14,16 @@
 static world *worlds[PP_MAX_WORLDS];
 static uint32_t world_generations[PP_MAX_WORLDS];
 static pthread_mutex_t worlds_lock = PTHREAD_MUTEX_INITIALIZER;
+
+int32_t world_live_count(void)
+{
+    int32_t n = 0;
+    pthread_mutex_lock(&worlds_lock);
+    for (int32_t i = 0; i < PP_MAX_WORLDS; i++)
+        n += worlds[i] != NULL;
+    pthread_mutex_unlock(&worlds_lock);
+    return n;
+}
 
 static double now_ms(void)
 {
@@ -147,18 +158,18 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     pp_status st = check_world_def(&d);
     if (st)
         return st;
-    world *wd = calloc(1, sizeof *wd);
+    world *wd = pp_calloc(1, sizeof *wd);
     if (!wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");
     wd->def = d;
     wd->camera = (pp_camera){{480.0f, 270.0f}, 1.0f, 960, 540};
     if (d.backend == PP_BACKEND_GPU && (st = gpu_narrow_create("pp_world_create", &wd->gpu))) {
-        free(wd);
+        pp_free(wd);
         return st;
     }
     if ((st = solver_create(&d, &wd->solver))) {
         gpu_narrow_destroy(wd->gpu);
-        free(wd);
+        pp_free(wd);
         return st;
     }
     pthread_mutex_lock(&worlds_lock);
@@ -169,7 +180,7 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
         pthread_mutex_unlock(&worlds_lock);
         solver_destroy(wd->solver);
         gpu_narrow_destroy(wd->gpu);
-        free(wd);
+        pp_free(wd);
         return pp_fail(PP_ERR_LIMIT, "pp_world_create: already %d live worlds (PP_MAX_WORLDS)", PP_MAX_WORLDS);
     }
     if (world_generations[slot] == 0)
@@ -204,19 +215,22 @@ PP_API pp_status pp_world_destroy(pp_world w)
     np_scratch_free(&wd->scratch);
     workers_free(wd->workers);
     gpu_narrow_destroy(wd->gpu);
-    free(wd->pairs);
-    free(wd->cores);
-    free(wd->pair_bodies);
-    free(wd->events);
-    free(wd->proxies);
-    free(wd->sweep_from);
-    free(wd->group);
-    free(wd->bodies);
-    free(wd->generations);
-    free(wd->free_slots);
-    free(wd->contacts);
-    free(wd->edits);
-    free(wd);
+    pp_free(wd->pairs);
+    pp_free(wd->cores);
+    pp_free(wd->pair_bodies);
+    pp_free(wd->events);
+    pp_free(wd->proxies);
+    pp_free(wd->sweep_from);
+    pp_free(wd->group);
+    pp_free(wd->bodies);
+    pp_free(wd->generations);
+    pp_free(wd->free_slots);
+    pp_free(wd->contacts);
+    pp_free(wd->edits);
+    pp_free(wd->undo.bodies);
+    pp_free(wd->undo.contacts);
+    pp_free(wd->undo.order);
+    pp_free(wd);
     return PP_OK;
 }
 
@@ -226,7 +240,7 @@ static bool grow_for_one(void **items, int32_t count, int32_t *capacity, size_t 
     if (count < *capacity)
         return true;
     const int32_t n = *capacity ? 2 * *capacity : 64;
-    void *p = realloc(*items, (size_t)n * size);
+    void *p = pp_realloc(*items, (size_t)n * size);
     if (!p)
         return false;
     *items = p;
@@ -238,7 +252,7 @@ pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t pe
 {
     if (wd->body_capacity <= *capacity)
         return PP_OK;
-    void *p = realloc(*items, (size_t)wd->body_capacity * per_slot);
+    void *p = pp_realloc(*items, (size_t)wd->body_capacity * per_slot);
     if (!p)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %s", what);
     *items = p;
@@ -264,13 +278,13 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
     if (n <= wd->pair_capacity)
         return PP_OK;
     const int32_t cap = n > 2 * wd->pair_capacity ? n : 2 * wd->pair_capacity;
-    np_pair *p = realloc(wd->pairs, (size_t)cap * sizeof *p);
+    np_pair *p = pp_realloc(wd->pairs, (size_t)cap * sizeof *p);
     if (p)
         wd->pairs = p;
-    np_core *c = realloc(wd->cores, (size_t)cap * sizeof *c);
+    np_core *c = pp_realloc(wd->cores, (size_t)cap * sizeof *c);
     if (c)
         wd->cores = c;
-    int32_t *s = realloc(wd->pair_bodies, (size_t)cap * 2 * sizeof *s);
+    int32_t *s = pp_realloc(wd->pair_bodies, (size_t)cap * 2 * sizeof *s);
     if (s)
         wd->pair_bodies = s;
     if (!p || !c || !s)
@@ -470,12 +484,12 @@ static pp_status update_sleep(world *wd, double h)
     return PP_OK;
 }
 
-/* Apply, in order, the timed edits due at a step that starts now: those nearest this step or earlier. */
+/* Apply, in order, the timed edits due at a step that starts now: those nearest this step or earlier.
+ * An edit leaves the queue once applied, so one that fails is tried again by the next step. */
 static pp_status apply_due_edits(world *wd, float dt)
 {
     while (wd->edit_count > 0 && wd->edits[0].time < wd->time + 0.5 * dt) {
         const pp_timed_edit e = wd->edits[0];
-        memmove(wd->edits, wd->edits + 1, (size_t)--wd->edit_count * sizeof e);
         pp_status st;
         if (e.type == PP_EDIT_PAINT_CIRCLE)
             st = pp_body_paint_circle(wd->handle, e.body, e.center, e.radius, (uint8_t)e.weight, NULL);
@@ -487,10 +501,101 @@ static pp_status apply_due_edits(world *wd, float dt)
             pp_log(1, "physpix: a timed edit at t = %g s skipped: its body is gone", e.time);
         else if (st)
             return st;
+        memmove(wd->edits, wd->edits + 1, (size_t)--wd->edit_count * sizeof e);
     }
     return PP_OK;
 }
 
+/* Room for n items in an undo array; the old contents need not survive. */
+static bool undo_room(void **items, int32_t *capacity, int32_t n, size_t size)
+{
+    if (n <= *capacity)
+        return true;
+    void *p = pp_realloc(*items, (size_t)n * size);
+    if (!p)
+        return false;
+    *items = p;
+    *capacity = n;
+    return true;
+}
+
+/* Save what a step may change. It allocates first and changes nothing, so a failure here is harmless. */
+static pp_status step_save(world *wd)
+{
+    step_undo *u = &wd->undo;
+    if (!undo_room((void **)&u->bodies, &u->body_capacity, wd->body_capacity, sizeof *u->bodies) ||
+        !undo_room((void **)&u->contacts, &u->contact_capacity, wd->contact_count, sizeof *u->contacts) ||
+        !undo_room((void **)&u->order, &u->order_capacity, wd->broad.order_count, sizeof *u->order))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
+                       (int)wd->live_count);
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (!bd || !bd->sb.body)
+            continue;
+        step_saved_body *sv = &u->bodies[i];
+        solver_body_save(&bd->sb, &sv->ode);
+        sv->pos = bd->pos, sv->angle = bd->angle, sv->cos_a = bd->cos_a, sv->sin_a = bd->sin_a;
+        sv->slow_time = bd->slow_time, sv->aabb = bd->aabb;
+    }
+    if (wd->contact_count > 0)
+        memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
+    u->contact_count = wd->contact_count;
+    if (wd->broad.order_count > 0)
+        memcpy(u->order, wd->broad.order, (size_t)wd->broad.order_count * sizeof *u->order);
+    u->order_count = wd->broad.order_count;
+    u->stats = wd->stats;
+    u->solver_steps = solver_get_steps(wd->solver);
+    return PP_OK;
+}
+
+/* Put back what step_save saved; the buffers it restores into are at least as large as when saved. */
+static void step_restore(world *wd)
+{
+    const step_undo *u = &wd->undo;
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        body *bd = wd->bodies[i];
+        if (!bd || !bd->sb.body)
+            continue;
+        const step_saved_body *sv = &u->bodies[i];
+        solver_body_restore(&bd->sb, &sv->ode);
+        bd->pos = sv->pos, bd->angle = sv->angle, bd->cos_a = sv->cos_a, bd->sin_a = sv->sin_a;
+        bd->slow_time = sv->slow_time, bd->aabb = sv->aabb;
+    }
+    if (u->contact_count > 0)
+        memcpy(wd->contacts, u->contacts, (size_t)u->contact_count * sizeof *wd->contacts);
+    wd->contact_count = u->contact_count;
+    if (u->order_count > 0)
+        memcpy(wd->broad.order, u->order, (size_t)u->order_count * sizeof *u->order);
+    wd->broad.order_count = u->order_count;
+    wd->stats = u->stats;
+    solver_set_steps(wd->solver, u->solver_steps);
+}
+
+/* The substeps of one step; on failure the caller undoes them. */
+static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_narrow, double *t_solver)
+{
+    const double h = (double)dt / wd->def.substeps;
+    for (int32_t k = 0; k < wd->def.substeps; k++) {
+        pp_status st = find_contacts(wd, t_broad, t_narrow);
+        if (st)
+            return st;
+        const double t0 = now_ms();
+        if ((st = continuous_begin(wd)))
+            return st;
+        add_contact_joints(wd);
+        if (!solver_step(wd->solver, h, wd->awake_movers > 0))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+        sync_bodies(wd);
+        continuous_end(wd);
+        if ((st = update_sleep(wd, h)))
+            return st;
+        *t_solver += now_ms() - t0;
+    }
+    return PP_OK;
+}
+
+/* Timed edits due now are applied first, each whole or not at all, and stay applied; then the step
+ * runs whole or, if memory runs out, not at all. */
 PP_API pp_status pp_world_step(pp_world w, float dt)
 {
     world *wd = world_lookup(w, "pp_world_step");
@@ -500,26 +605,14 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be finite and in (0, 1] s, got %g", dt);
     const double t_start = now_ms();
     double t_broad = 0, t_narrow = 0, t_solver = 0;
+    pp_status st = apply_due_edits(wd, dt);
+    if (st || (st = step_save(wd)))
+        return st;
     wd->stats.pixels_tested = 0;
     wd->stats.swept_stops = 0;
-    pp_status est = apply_due_edits(wd, dt);
-    if (est)
-        return est;
-    const double h = (double)dt / wd->def.substeps;
-    for (int32_t k = 0; k < wd->def.substeps; k++) {
-        pp_status st = find_contacts(wd, &t_broad, &t_narrow);
-        if (st)
-            return st;
-        const double t0 = now_ms();
-        if ((st = continuous_begin(wd)))
-            return st;
-        add_contact_joints(wd);
-        solver_step(wd->solver, h, wd->awake_movers > 0);
-        sync_bodies(wd);
-        continuous_end(wd);
-        if ((st = update_sleep(wd, h)))
-            return st;
-        t_solver += now_ms() - t0;
+    if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
+        step_restore(wd);
+        return st;
     }
     int32_t awake = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++)
@@ -534,7 +627,6 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->time += dt;
     return PP_OK;
 }
-
 PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
 {
     world *wd = world_lookup(w, "pp_world_get_def");

@@ -45,6 +45,26 @@ typedef struct continuous_pose {
     bool valid;              /* the body is swept this substep */
 } continuous_pose;
 
+/* A movable body's part of what a step changes, saved so that a step that fails can be undone. */
+typedef struct step_saved_body {
+    solver_exact_state ode;
+    dvec2 pos;
+    double angle, cos_a, sin_a, slow_time;
+    pp_aabb aabb;
+} step_saved_body;
+
+/* Everything pp_world_step changes after its timed edits, saved before it changes any of it. */
+typedef struct step_undo {
+    step_saved_body *bodies;  /* by slot; only movable bodies' entries are filled */
+    int32_t body_capacity;
+    pp_contact *contacts;
+    int32_t contact_count, contact_capacity;
+    uint32_t *order;          /* the broadphase's sort order, which the next sweep starts from */
+    int32_t order_count, order_capacity;
+    pp_step_stats stats;
+    uint64_t solver_steps;
+} step_undo;
+
 typedef struct world {
     uint32_t slot;
     pp_world handle;
@@ -80,6 +100,7 @@ typedef struct world {
     int32_t sweep_capacity;
     int32_t *group;          /* two per slot: union-find parents, then restless flags (bodies in contact sleep together) */
     int32_t group_capacity;
+    step_undo undo;
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */

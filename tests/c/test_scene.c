@@ -450,12 +450,13 @@ Test(scene, unreadable_files)
     cr_assert_eq(pp_world_load_scene(dir, &w), PP_ERR_IO);
     snprintf(want, sizeof want, "pp_world_load_scene: '%s': cannot read: Is a directory", dir);
     cr_assert_str_eq(pp_last_error(), want);
-    /* Over 64 MiB: a sparse file, refused after reading just past the limit. */
+    /* One byte over PP_MAX_SCENE_BYTES: a sparse file, refused from its size before anything is read. */
     const int fd = open(at("huge.json"), O_CREAT | O_WRONLY, 0644);
-    cr_assert(fd >= 0 && ftruncate(fd, (64 << 20) + 1) == 0);
+    cr_assert(fd >= 0 && ftruncate(fd, PP_MAX_SCENE_BYTES + 1) == 0);
     close(fd);
     cr_assert_eq(pp_world_load_scene(at("huge.json"), &w), PP_ERR_LIMIT);
-    snprintf(want, sizeof want, "pp_world_load_scene: '%s': the file is over 64 MiB", at("huge.json"));
+    snprintf(want, sizeof want, "pp_world_load_scene: '%s' is 67108865 bytes, over PP_MAX_SCENE_BYTES (67108864)",
+             at("huge.json"));
     cr_assert_str_eq(pp_last_error(), want);
     cr_assert_eq(w.id, 7);
     dir_close();
