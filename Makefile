@@ -38,7 +38,8 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo demo bench install clean
+.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo demo bench install clean \
+        fuzz test-fuzz
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -150,6 +151,7 @@ test: deps
 	$(MAKE) test-compile
 	$(MAKE) test-c
 	$(MAKE) test-san
+	$(MAKE) test-fuzz
 	$(MAKE) test-plugin
 	$(MAKE) test-python
 	$(MAKE) test-godot
@@ -160,6 +162,9 @@ include plugin/python/python.mk plugin/godot/godot.mk
 
 # The demo: scene, sprites, renderer; its rules live beside it.
 include demo/demo.mk
+
+# libFuzzer targets: `make fuzz`, `make test-fuzz`; their rules live beside them.
+include tests/fuzz/fuzz.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench

@@ -107,13 +107,15 @@ static pp_status check_circle(const char *fn, pp_vec2 c, float radius)
 static void circle_write(body *bd, edit_span *e, dvec2 c, double r, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
                          bool solid, uint32_t weight)
 {
-    const double top = fmax(y0, floor(c.y - r)), bottom = fmin(y1, ceil(c.y + r));
+    /* Clamped on both sides: a circle far off the bitmap gives bounds past int32 (UBSan, found by fuzz_api). */
+    const double top = fmin(fmax(y0, floor(c.y - r)), y1), bottom = fmax(fmin(y1, ceil(c.y + r)), y0);
     for (int32_t y = (int32_t)top; y < (int32_t)bottom; y++) {
         const double dy = y + 0.5 - c.y, h2 = r * r - dy * dy;
         if (h2 < 0)
             continue;
         const double h = sqrt(h2);
-        const int32_t xa = (int32_t)fmax(x0, ceil(c.x - h - 0.5)), xb = (int32_t)fmin(x1 - 1, floor(c.x + h - 0.5));
+        const int32_t xa = (int32_t)fmin(fmax(x0, ceil(c.x - h - 0.5)), x1),
+                      xb = (int32_t)fmax(fmin(x1 - 1, floor(c.x + h - 0.5)), x0 - 1);
         for (int32_t x = xa; x <= xb; x++)
             edit_pixel(bd, e, x, y, solid, weight);
     }

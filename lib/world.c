@@ -442,6 +442,9 @@ static int32_t group_root(int32_t *parent, int32_t i)
 static pp_status update_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
+    /* No slots yet: no group array either, and NULL + 0 below would be undefined behaviour (found by fuzz_snapshot). */
+    if (wd->body_capacity == 0)
+        return PP_OK;
     pp_status st =
         world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group, "sleep groups");
     if (st)

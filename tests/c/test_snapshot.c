@@ -193,6 +193,34 @@ Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
     remove_tree(dir);
 }
 
+/* A timed edit whose body was destroyed before it came due is a no-op; the snapshot still loads
+ * (the fuzzer found snapshots that saved the stale handle and could not be loaded). */
+Test(snapshot, an_edit_on_a_destroyed_body_does_not_break_the_snapshot)
+{
+    char dir[64], snap[96];
+    temp_dir(dir);
+    snprintf(snap, sizeof snap, "%s/slot", dir);
+    pp_world w = make_world(0, 980);
+    pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 8, 8);
+    add_rect(w, body_def(PP_BODY_STATIC, 100, 200, 0), 40, 8);
+    pp_timed_edit e = {.time = 1.0, .type = PP_EDIT_ERASE_CIRCLE, .body = a, .center = {100, 100}, .radius = 3};
+    PP_OK_OR_FAIL(pp_world_schedule_edit(w, &e));
+    e.body = (pp_body){0};
+    PP_OK_OR_FAIL(pp_world_schedule_edit(w, &e));
+    PP_OK_OR_FAIL(pp_body_destroy(w, a));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    pp_world back;
+    PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
+    int32_t n = -1;
+    PP_OK_OR_FAIL(pp_world_get_scheduled_edits(back, NULL, 0, &n));
+    cr_assert_eq(n, 1, "the edit on every body is kept, the one on the destroyed body dropped: %d", (int)n);
+    PP_OK_OR_FAIL(pp_world_get_bodies(back, NULL, 0, &n));
+    cr_assert_eq(n, 1);
+    pp_world_destroy(back);
+    pp_world_destroy(w);
+    remove_tree(dir);
+}
+
 /* Replace the first occurrence of `from` in the snapshot's world.json by `to`. */
 static void patch_json(const char *snap, const char *from, const char *to)
 {
