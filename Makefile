@@ -38,7 +38,7 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo demo bench install clean
+.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo check-deep demo bench install clean
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -154,12 +154,16 @@ test: deps
 	$(MAKE) test-python
 	$(MAKE) test-godot
 	$(MAKE) test-demo
+	$(MAKE) check-deep
 
 # The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
 include plugin/python/python.mk plugin/godot/godot.mk
 
 # The demo: scene, sprites, renderer; its rules live beside it.
 include demo/demo.mk
+
+# ThreadSanitizer and valgrind checks: tests/deep/.
+include tests/deep/deep.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench
