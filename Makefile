@@ -38,8 +38,8 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo demo bench install clean \
-        fuzz test-fuzz
+.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo check-deep demo bench install \
+        clean fuzz test-fuzz
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -156,6 +156,7 @@ test: deps
 	$(MAKE) test-python
 	$(MAKE) test-godot
 	$(MAKE) test-demo
+	$(MAKE) check-deep
 
 # The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
 include plugin/python/python.mk plugin/godot/godot.mk
@@ -165,6 +166,9 @@ include demo/demo.mk
 
 # libFuzzer targets: `make fuzz`, `make test-fuzz`; their rules live beside them.
 include tests/fuzz/fuzz.mk
+
+# ThreadSanitizer and valgrind checks: tests/deep/.
+include tests/deep/deep.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench

@@ -1,10 +1,14 @@
 /* Status names, the thread-local last-error message, the log hook, the version. */
 #include "status.h"
 
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 
 static _Thread_local char last_error[512];
+/* The hook may be swapped on one thread while another world logs: fn and user are read and written
+ * together under the lock (a data race otherwise, found by make check-tsan); the hook runs outside it. */
+static pthread_mutex_t log_lock = PTHREAD_MUTEX_INITIALIZER;
 static pp_log_fn log_fn;
 static void *log_user;
 
@@ -30,20 +34,26 @@ pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity,
 
 void pp_log(int level, const char *fmt, ...)
 {
-    if (!log_fn)
+    pthread_mutex_lock(&log_lock);
+    const pp_log_fn fn = log_fn;
+    void *const user = log_user;
+    pthread_mutex_unlock(&log_lock);
+    if (!fn)
         return;
     char line[512];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
-    log_fn(level, line, log_user);
+    fn(level, line, user);
 }
 
 PP_API void pp_set_log_hook(pp_log_fn fn, void *user)
 {
+    pthread_mutex_lock(&log_lock);
     log_fn = fn;
     log_user = user;
+    pthread_mutex_unlock(&log_lock);
 }
 
 PP_API const char *pp_last_error(void) { return last_error; }
