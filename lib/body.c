@@ -217,6 +217,16 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     return PP_OK;
 }
 
+void body_unmake(world *wd, body *bd)
+{
+    const uint32_t slot = bd->index;
+    body_free(wd, bd);
+    wd->bodies[slot] = NULL;
+    wd->free_slots[wd->free_count++] = slot; /* back on top, where alloc_slot took it */
+    wd->live_count--;
+    wd->next_serial--;
+}
+
 void body_remove(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;

@@ -2,6 +2,7 @@
  * and bounds follow from the changed pixels alone; the pose (pivot) does not move, the ODE body
  * moves to the new centre of mass with the velocity its material already had; the GPU mirror
  * rewrites only the dirty rows; bodies nearby wake; a body cut apart splits (fracture.c). */
+#include "alloc.h"
 #include "edit.h"
 #include "status.h"
 
@@ -73,25 +74,103 @@ static void wake_around(world *wd, pp_aabb region)
     }
 }
 
-/* Bring the body up to date after a batch of writes; it may be destroyed or split here. */
-static pp_status commit_edit(world *wd, body *bd, const edit_span *e)
+/* A body's part of one edit call. Everything that can fail (room for events, the split's new bodies)
+ * happens between the pixel writes and the commit, and a failure puts the pixels back: an edit call
+ * is made whole or not at all. */
+typedef struct edit_job {
+    body *bd;
+    edit_span e;
+    int32_t x0, y0, x1, y1; /* the rectangle saved before the writes, bitmap px */
+    uint8_t *saved;         /* its pixels then: solid, and the weight after them where the body has a plane */
+    pp_mass_sums sums;      /* the mass sums then */
+    fracture_plan plan;
+} edit_job;
+
+/* Can removing pixels split this body? */
+static bool may_split(const body *bd)
 {
-    if (e->changed == 0)
+    return bd->type == PP_BODY_DYNAMIC || (bd->type == PP_BODY_STATIC && bd->detach_islands);
+}
+
+/* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes
+ * may remove pixels of a body that can split, the pixels to put back should the split fail. */
+static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool removes,
+                           edit_job *j, int32_t *events)
+{
+    const pp_raster *r = &bd->raster;
+    *j = (edit_job){.bd = bd, .sums = bd->sums};
+    pp_status st = world_reserve_events(wd, ++*events);
+    if (st || !removes || !may_split(bd))
+        return st;
+    j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
+    j->x1 = (int32_t)(x1 < r->width ? x1 : r->width), j->y1 = (int32_t)(y1 < r->height ? y1 : r->height);
+    if (j->x0 >= j->x1 || j->y0 >= j->y1)
         return PP_OK;
+    const int64_t n = (int64_t)(j->x1 - j->x0) * (j->y1 - j->y0);
+    if (!(j->saved = pp_malloc((size_t)n * (r->weights ? 2 : 1))))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to save %lld pixels before an edit", (long long)n);
+    int64_t k = 0;
+    for (int32_t y = j->y0; y < j->y1; y++)
+        for (int32_t x = j->x0; x < j->x1; x++, k++) {
+            j->saved[k] = raster_solid(r, x, y);
+            if (r->weights)
+                j->saved[n + k] = (uint8_t)raster_weight(r, x, y);
+        }
+    return PP_OK;
+}
+
+/* Nothing left to simulate: no pixels, or a dynamic body without mass. */
+static bool job_destroys(const edit_job *j)
+{
+    return j->bd->raster.solid_count == 0 || (j->bd->type == PP_BODY_DYNAMIC && j->bd->sums.w <= 0);
+}
+
+/* Put the pixels back as job_begin saw them; bounds only grew meanwhile, so they are right again. */
+static void job_cancel(world *wd, edit_job *j)
+{
+    fracture_cancel(wd, &j->plan);
+    pp_raster *r = &j->bd->raster;
+    const int64_t n = (int64_t)(j->x1 - j->x0) * (j->y1 - j->y0);
+    int64_t k = 0;
+    for (int32_t y = j->y0; j->saved && y < j->y1; y++)
+        for (int32_t x = j->x0; x < j->x1; x++, k++)
+            raster_write(r, x, y, j->saved[k] != 0, r->weights ? j->saved[n + k] : 255u);
+    j->bd->sums = j->sums;
+    pp_free(j->saved);
+    j->saved = NULL;
+}
+
+/* After the writes: a body that came apart gets its pieces made, or the writes are taken back. */
+static pp_status job_prepare(world *wd, edit_job *j, int32_t *events)
+{
+    if (j->e.changed == 0 || !j->e.removed || !may_split(j->bd) || job_destroys(j))
+        return PP_OK;
+    pp_status st = fracture_prepare(wd, j->bd, &j->plan, events);
+    if (st)
+        job_cancel(wd, j);
+    return st;
+}
+
+/* Bring the body up to date; it may be destroyed or split here. Cannot fail. */
+static void job_commit(world *wd, edit_job *j)
+{
+    body *bd = j->bd;
+    const edit_span *e = &j->e;
+    pp_free(j->saved);
+    if (e->changed == 0)
+        return;
     raster_edit_done(&bd->raster, e->y0, e->y1);
     body_update_pose_cache(bd);
     wake_around(wd, edited_region(bd, e));
-    /* Nothing left to simulate: no pixels, or a dynamic body without mass. */
-    if (bd->raster.solid_count == 0 || (bd->type == PP_BODY_DYNAMIC && bd->sums.w <= 0)) {
+    if (job_destroys(j)) {
         const pp_body gone = bd->handle;
         body_remove(wd, bd);
-        return world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0});
+        world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0}); /* room reserved */
+        return;
     }
     if (bd->sb.body)
         edit_update_solver_body(wd, bd);
-    if (e->removed && (bd->type == PP_BODY_DYNAMIC || (bd->type == PP_BODY_STATIC && bd->detach_islands)))
-        return fracture_split(wd, bd);
-    return PP_OK;
+    fracture_commit(wd, bd, &j->plan);
 }
 
 static pp_status check_circle(const char *fn, pp_vec2 c, float radius)
@@ -126,14 +205,22 @@ static dvec2 world_to_local(const body *bd, pp_vec2 p)
     return dv_add(bd->pivot, dv_unrot(dv_sub(dv(p.x, p.y), bd->pos), bd->cos_a, bd->sin_a));
 }
 
-static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, int32_t *changed)
+/* Erase a circle from one body, up to the commit. */
+static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, edit_job *j, int32_t *events)
 {
-    edit_span e = {0};
     const pp_raster *r = &bd->raster;
-    if (!raster_empty(r))
-        circle_write(bd, &e, world_to_local(bd, center), radius, r->x0, r->y0, r->x1, r->y1, false, 0);
-    *changed += e.changed;
-    return commit_edit(wd, bd, &e);
+    const dvec2 c = world_to_local(bd, center);
+    /* The pixels circle_write may touch, with a pixel to spare, within the solid bounds. */
+    const double x0 = fmax(r->x0, floor(c.x - radius) - 1), y0 = fmax(r->y0, floor(c.y - radius) - 1);
+    const double x1 = fmin(r->x1, ceil(c.x + radius) + 1), y1 = fmin(r->y1, ceil(c.y + radius) + 1);
+    const bool touches = !raster_empty(r) && x0 < x1 && y0 < y1;
+    pp_status st = job_begin(wd, bd, touches ? (int64_t)x0 : 0, touches ? (int64_t)y0 : 0, touches ? (int64_t)x1 : 0,
+                             touches ? (int64_t)y1 : 0, touches, j, events);
+    if (st)
+        return st;
+    if (touches)
+        circle_write(bd, &j->e, c, radius, r->x0, r->y0, r->x1, r->y1, false, 0);
+    return job_prepare(wd, j, events);
 }
 
 PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, int32_t *changed)
@@ -144,11 +231,14 @@ PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_cente
     pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
     if (st || (st = check_circle(fn, world_center, radius)))
         return st;
-    int32_t n = 0;
-    st = erase_circle(wd, bd, world_center, radius, &n);
+    edit_job j;
+    int32_t events = 0;
+    if ((st = erase_circle(wd, bd, world_center, radius, &j, &events)))
+        return st;
     if (changed)
-        *changed = n;
-    return st;
+        *changed = j.e.changed;
+    job_commit(wd, &j);
+    return PP_OK;
 }
 
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed)
@@ -162,17 +252,37 @@ PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float r
         return st;
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
-    int32_t n = 0;
-    /* Bodies made by a split during the loop are islands outside the circle: no need to visit them. */
-    const int32_t bodies = wd->body_capacity;
-    for (int32_t i = 0; i < bodies && !st; i++) {
+    int32_t hit = 0;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        hit += wd->bodies[i] && boxes_overlap(wd->bodies[i]->aabb, blast);
+    edit_job *jobs = pp_malloc((size_t)hit * sizeof *jobs);
+    if (!jobs)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)hit);
+    /* Every body's writes and pieces first, then every commit: a failure takes them all back. Pieces
+     * made on the way are islands outside the circle, so the loop passes them by. */
+    const uint64_t before = wd->next_serial;
+    int32_t n = 0, events = 0;
+    for (int32_t i = 0; i < wd->body_capacity && !st; i++) {
         body *bd = wd->bodies[i];
-        if (bd && boxes_overlap(bd->aabb, blast))
-            st = erase_circle(wd, bd, world_center, radius, &n);
+        if (bd && bd->serial < before && boxes_overlap(bd->aabb, blast) &&
+            (st = erase_circle(wd, bd, world_center, radius, &jobs[n], &events)) == PP_OK)
+            n++;
     }
+    if (st) {
+        while (n > 0)
+            job_cancel(wd, &jobs[--n]);
+        pp_free(jobs);
+        return st;
+    }
+    int32_t erased = 0;
+    for (int32_t k = 0; k < n; k++) {
+        erased += jobs[k].e.changed;
+        job_commit(wd, &jobs[k]);
+    }
+    pp_free(jobs);
     if (changed)
-        *changed = n;
-    return st;
+        *changed = erased;
+    return PP_OK;
 }
 
 PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
@@ -188,12 +298,16 @@ PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_cente
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: weight must be 1..255 (0 would paint massless pixels)", fn);
     if (weight != 255 && (st = raster_ensure_weights(&bd->raster)))
         return st;
-    edit_span e = {0};
-    circle_write(bd, &e, world_to_local(bd, world_center), radius, 0, 0, bd->raster.width, bd->raster.height, true,
+    edit_job j;
+    int32_t events = 0;
+    if ((st = job_begin(wd, bd, 0, 0, 0, 0, false, &j, &events)))
+        return st;
+    circle_write(bd, &j.e, world_to_local(bd, world_center), radius, 0, 0, bd->raster.width, bd->raster.height, true,
                  weight);
     if (changed)
-        *changed = e.changed;
-    return commit_edit(wd, bd, &e);
+        *changed = j.e.changed;
+    job_commit(wd, &j);
+    return PP_OK;
 }
 
 PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t y, int32_t width, int32_t height,
@@ -220,13 +334,19 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
                        (int)width, (int)height, (int)x, (int)y, (int)r->width, (int)r->height);
     if (weights && (st = raster_ensure_weights(&bd->raster)))
         return st;
-    edit_span e = {0};
+    edit_job j;
+    int32_t events = 0;
+    if ((st = job_begin(wd, bd, cx0, cy0, cx1, cy1, true, &j, &events)))
+        return st;
     for (int64_t py = cy0; py < cy1; py++)
         for (int64_t px = cx0; px < cx1; px++) {
             const int64_t k = (py - y) * width + (px - x);
-            edit_pixel(bd, &e, (int32_t)px, (int32_t)py, mask[k] != 0, weights ? weights[k] : 255u);
+            edit_pixel(bd, &j.e, (int32_t)px, (int32_t)py, mask[k] != 0, weights ? weights[k] : 255u);
         }
-    return commit_edit(wd, bd, &e);
+    if ((st = job_prepare(wd, &j, &events)))
+        return st;
+    job_commit(wd, &j);
+    return PP_OK;
 }
 
 PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity)

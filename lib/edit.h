@@ -19,7 +19,24 @@ void edit_pixel(body *bd, edit_span *e, int32_t x, int32_t y, bool solid, uint32
  * to the new centre of mass with the velocity the material there already had, awake. */
 void edit_update_solver_body(world *wd, body *bd);
 
-/* Split a body whose solid pixels form several 8-connected islands (fracture.c). */
-pp_status fracture_split(world *wd, body *bd);
+/* A split found but not yet made: the pieces exist as bodies, the parent still holds their pixels. */
+typedef struct fracture_plan {
+    int32_t *label;          /* island of each pixel of the frame, 1..count; 0 empty */
+    int32_t bx, by, bw, bh;  /* the frame: the parent's solid bounds when labelled */
+    struct island *islands;
+    int32_t count, keep;     /* islands; the one that stays the parent */
+    pp_body *children;       /* by island; zero for the kept one and for massless dust */
+} fracture_plan;
+
+/* Find the 8-connected islands of a body just edited and make a body of each but the largest;
+ * everything that can fail happens here, and a failure leaves the world as it was. Adds the events
+ * the split will send to *events and reserves room for all of them. (fracture.c) */
+pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *events);
+
+/* Make the split: move the pieces' pixels out of the parent, set them moving, send the events. */
+void fracture_commit(world *wd, body *bd, fracture_plan *p);
+
+/* Take a prepared split back: the pieces go as if never made. */
+void fracture_cancel(world *wd, fracture_plan *p);
 
 #endif

@@ -64,7 +64,7 @@ static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack,
     return n;
 }
 
-/* Island k as a new body, moving as the parent's material there moves. */
+/* Island k as a new body at rest, posed where it lies in the parent; it moves once the split is committed. */
 static pp_status make_child(world *wd, body *parent, const island *k, const uint8_t *mask, const uint8_t *weights,
                             const uint8_t *sprite, pp_body *out)
 {
@@ -91,84 +91,131 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     child->pos = pos;
     child->angle = parent->angle, child->cos_a = parent->cos_a, child->sin_a = parent->sin_a;
     body_update_pose_cache(child);
-    if (child->sb.body) {
-        dvec2 v = dv(0, 0);
-        double omega = 0;
-        if (parent->sb.body) {
-            solver_body_state s;
-            solver_body_get_state(wd->solver, &parent->sb, &s);
-            const dvec2 r = dv_sub(body_com_world(child), s.com_world);
-            v = dv_add(s.velocity, dv(-s.angular_velocity * r.y, s.angular_velocity * r.x));
-            omega = s.angular_velocity;
-        }
-        solver_body_set_pose(wd->solver, &child->sb, body_com_world(child), child->angle);
-        solver_body_set_velocity(wd->solver, &child->sb, v, child->fixed_rotation ? 0.0 : omega);
-    }
     return PP_OK;
 }
 
-pp_status fracture_split(world *wd, body *bd)
+/* The child moves as the parent's material where it lies: v + ω × r. */
+static void set_child_motion(world *wd, const body *parent, body *child)
 {
-    pp_raster *r = &bd->raster;
+    if (!child->sb.body)
+        return;
+    dvec2 v = dv(0, 0);
+    double omega = 0;
+    if (parent->sb.body) {
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &parent->sb, &s);
+        const dvec2 r = dv_sub(body_com_world(child), s.com_world);
+        v = dv_add(s.velocity, dv(-s.angular_velocity * r.y, s.angular_velocity * r.x));
+        omega = s.angular_velocity;
+    }
+    solver_body_set_pose(wd->solver, &child->sb, body_com_world(child), child->angle);
+    solver_body_set_velocity(wd->solver, &child->sb, v, child->fixed_rotation ? 0.0 : omega);
+}
+
+/* Island k's pixels in bitmaps of its own bounds; false without memory. */
+static bool island_bitmaps(const body *bd, const fracture_plan *p, int32_t k, uint8_t **mask, uint8_t **weights,
+                           uint8_t **sprite)
+{
+    const pp_raster *r = &bd->raster;
+    const island *is = &p->islands[k];
+    const int32_t w = is->x1 - is->x0, h = is->y1 - is->y0;
+    *mask = pp_calloc((size_t)w * h, 1);
+    *weights = r->weights ? pp_calloc((size_t)w * h, 1) : NULL;
+    *sprite = bd->sprite ? pp_calloc((size_t)w * h, 4) : NULL;
+    if (!*mask || (r->weights && !*weights) || (bd->sprite && !*sprite))
+        return false;
+    for (int32_t y = is->y0; y < is->y1; y++)
+        for (int32_t x = is->x0; x < is->x1; x++) {
+            if (p->label[(int64_t)(y - p->by) * p->bw + (x - p->bx)] != k + 1)
+                continue;
+            const int64_t c = (int64_t)(y - is->y0) * w + (x - is->x0);
+            (*mask)[c] = 1;
+            if (*weights)
+                (*weights)[c] = (uint8_t)raster_weight(r, x, y);
+            if (*sprite)
+                memcpy(*sprite + 4 * c, bd->sprite + 4 * ((int64_t)y * r->width + x), 4);
+        }
+    return true;
+}
+
+pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *events)
+{
+    const pp_raster *r = &bd->raster;
+    *p = (fracture_plan){.bx = r->x0, .by = r->y0, .bw = r->x1 - r->x0, .bh = r->y1 - r->y0};
     const int64_t area = (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0);
-    int32_t *label = pp_calloc((size_t)area, sizeof *label), *stack = pp_malloc((size_t)area * sizeof *stack);
-    island *isl = NULL;
-    const int32_t n = label && stack ? label_islands(r, label, stack, &isl) : -1;
+    p->label = pp_calloc((size_t)area, sizeof *p->label);
+    int32_t *stack = pp_malloc((size_t)area * sizeof *stack);
+    p->count = p->label && stack ? label_islands(r, p->label, stack, &p->islands) : -1;
     pp_free(stack);
-    if (n < 0) {
-        pp_free(label);
+    if (p->count < 0) {
+        p->count = 0;
+        fracture_cancel(wd, p);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to find the islands of a %lld-pixel body", (long long)area);
     }
+    if (p->count < 2)
+        return PP_OK;
+    for (int32_t k = 1; k < p->count; k++) /* the largest island stays; the first found on a tie */
+        p->keep = p->islands[k].pixels > p->islands[p->keep].pixels ? k : p->keep;
+    if (!(p->children = pp_calloc((size_t)p->count, sizeof *p->children))) {
+        fracture_cancel(wd, p);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to split a body into %d", (int)p->count);
+    }
     pp_status st = PP_OK;
-    if (n > 1) {
-        int32_t keep = 0; /* the largest island; the first found on a tie */
-        for (int32_t k = 1; k < n; k++)
-            keep = isl[k].pixels > isl[keep].pixels ? k : keep;
-        const int32_t bw = r->x1 - r->x0, bx = r->x0, by = r->y0;
+    for (int32_t k = 0; k < p->count && !st; k++) {
+        if (k == p->keep)
+            continue;
+        uint8_t *mask, *weights, *sprite;
+        if (!island_bitmaps(bd, p, k, &mask, &weights, &sprite))
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island",
+                         (int)(p->islands[k].x1 - p->islands[k].x0), (int)(p->islands[k].y1 - p->islands[k].y0));
+        else if ((st = make_child(wd, bd, &p->islands[k], mask, weights, sprite, &p->children[k])) == PP_ERR_INVALID_ARGUMENT)
+            st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
+        else if (st == PP_OK)
+            ++*events;
+        pp_free(mask);
+        pp_free(weights);
+        pp_free(sprite);
+    }
+    if (st == PP_OK)
+        st = world_reserve_events(wd, *events);
+    if (st)
+        fracture_cancel(wd, p);
+    return st;
+}
+
+void fracture_commit(world *wd, body *bd, fracture_plan *p)
+{
+    if (p->count >= 2) {
+        /* Move every other island's pixels out of the parent; the children have them already. */
+        pp_raster *r = &bd->raster;
         edit_span e = {0};
-        for (int32_t k = 0; k < n && !st; k++) {
-            if (k == keep)
-                continue;
-            const island *is = &isl[k];
-            const int32_t w = is->x1 - is->x0, h = is->y1 - is->y0;
-            uint8_t *mask = pp_calloc((size_t)w * h, 1), *weights = r->weights ? pp_calloc((size_t)w * h, 1) : NULL;
-            uint8_t *sprite = bd->sprite ? pp_calloc((size_t)w * h, 4) : NULL;
-            if (!mask || (r->weights && !weights) || (bd->sprite && !sprite)) {
-                pp_free(mask);
-                pp_free(weights);
-                pp_free(sprite);
-                st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island", (int)w, (int)h);
-                break;
+        for (int32_t j = 0; j < p->bh; j++)
+            for (int32_t i = 0; i < p->bw; i++) {
+                const int32_t l = p->label[(int64_t)j * p->bw + i];
+                if (l && l != p->keep + 1)
+                    edit_pixel(bd, &e, p->bx + i, p->by + j, false, 0);
             }
-            /* Move the island's pixels out of the parent into the child's bitmap. */
-            for (int32_t y = is->y0; y < is->y1; y++)
-                for (int32_t x = is->x0; x < is->x1; x++) {
-                    if (label[(int64_t)(y - by) * bw + (x - bx)] != k + 1)
-                        continue;
-                    const int64_t c = (int64_t)(y - is->y0) * w + (x - is->x0);
-                    mask[c] = 1;
-                    if (weights)
-                        weights[c] = (uint8_t)raster_weight(r, x, y);
-                    if (sprite)
-                        memcpy(sprite + 4 * c, bd->sprite + 4 * ((int64_t)y * r->width + x), 4);
-                    edit_pixel(bd, &e, x, y, false, 0);
-                }
-            pp_body child;
-            st = make_child(wd, bd, is, mask, weights, sprite, &child);
-            if (st == PP_ERR_INVALID_ARGUMENT)
-                st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
-            else if (st == PP_OK)
-                st = world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, child);
-            pp_free(mask);
-            pp_free(weights);
-            pp_free(sprite);
-        }
+        for (int32_t k = 0; k < p->count; k++)
+            if (p->children[k].id) {
+                set_child_motion(wd, bd, wd->bodies[(uint32_t)p->children[k].id - 1]);
+                world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, p->children[k]); /* room reserved */
+            }
         raster_edit_done(r, e.y0, e.y1);
         body_update_pose_cache(bd);
         if (bd->sb.body)
             edit_update_solver_body(wd, bd);
     }
-    pp_free(label);
-    pp_free(isl);
-    return st;
+    p->count = 0; /* the children stay */
+    fracture_cancel(wd, p);
+}
+
+void fracture_cancel(world *wd, fracture_plan *p)
+{
+    for (int32_t k = p->count - 1; k >= 0; k--) /* newest first, so slots and serials come back in order */
+        if (p->children && p->children[k].id)
+            body_unmake(wd, wd->bodies[(uint32_t)p->children[k].id - 1]);
+    pp_free(p->children);
+    pp_free(p->label);
+    pp_free(p->islands);
+    *p = (fracture_plan){0};
 }

@@ -173,7 +173,9 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
              add(e, "body", json_handle(ev->body.id)) && add(e, "other", json_handle(ev->other.id));
     }
-    if (!ok || !add(root, "edits", edits)) {
+    if (!ok)
+        cJSON_Delete(edits);
+    if (!ok || !add(root, "edits", edits)) { /* add deletes what it could not add */
         cJSON_Delete(events);
         return false;
     }
@@ -191,9 +193,9 @@ static pp_status write_world(const char *dir, const world *wd, cJSON *root)
               add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
               write_edits_and_events(wd, root);
-    cJSON *arr = cJSON_CreateArray();
-    body **live = pp_malloc(((size_t)wd->live_count + 1) * sizeof *live);
-    if (!ok || !live || !add(root, "bodies", arr)) {
+    body **live = ok ? pp_malloc(((size_t)wd->live_count + 1) * sizeof *live) : NULL;
+    cJSON *arr = live ? cJSON_CreateArray() : NULL;
+    if (!live || !add(root, "bodies", arr)) {
         pp_free(live);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     }

@@ -109,11 +109,14 @@ static pp_status workers_start(np_workers **pool, int32_t count)
     pthread_cond_init(&w->done, NULL);
     for (int32_t i = 0; i < count; i++) {
         worker_arg *a = pp_malloc(sizeof *a);
-        if (a)
-            *a = (worker_arg){w, i};
-        if (!a || pthread_create(&w->threads[i], NULL, worker_main, a) != 0) {
+        if (!a) { /* nothing kept: the next batch tries again */
+            workers_free(w);
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for narrowphase workers");
+        }
+        *a = (worker_arg){w, i};
+        if (pthread_create(&w->threads[i], NULL, worker_main, a) != 0) {
             pp_free(a);
-            break; /* run with the threads that did start */
+            break; /* the system would start no more: run with the threads that did start */
         }
         w->count++;
     }

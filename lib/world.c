@@ -675,6 +675,21 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     return PP_OK;
 }
 
+pp_status world_reserve_events(world *wd, int32_t n)
+{
+    if (wd->event_count + n <= wd->event_capacity)
+        return PP_OK;
+    int32_t cap = wd->event_capacity ? wd->event_capacity : 64;
+    while (cap < wd->event_count + n)
+        cap *= 2;
+    pp_event *p = pp_realloc(wd->events, (size_t)cap * sizeof *p);
+    if (!p)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)(wd->event_count + n));
+    wd->events = p;
+    wd->event_capacity = cap;
+    return PP_OK;
+}
+
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
 {
     if (!grow_for_one((void **)&wd->events, wd->event_count, &wd->event_capacity, sizeof *wd->events))

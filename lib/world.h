@@ -113,12 +113,17 @@ pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, b
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
 
+/* Undo the latest pp_body_create exactly, for a call that fails after making bodies: the slot, its
+ * generation and the creation serial come back as they were. Newest first when undoing several. */
+void body_unmake(world *wd, body *bd);
+
 /* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
 
-/* Queue an event for pp_world_get_events. */
+/* Queue an event for pp_world_get_events; never fails for n events after world_reserve_events(wd, n). */
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other);
+pp_status world_reserve_events(world *wd, int32_t n);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

@@ -1,0 +1,428 @@
+/* Out of memory anywhere: an allocator (pp_set_allocator) that fails its N-th call, for every N that a
+ * scene's set-up and first steps reach. The failing call must return PP_ERR_OUT_OF_MEMORY and leave
+ * the worlds as they were; retried, it succeeds, and the script ends in the same state as a run with
+ * no failure. */
+#include "helpers.h"
+
+#include <stdbool.h>
+
+PP_TEST_SUITE(out_of_memory);
+
+/* ---- an allocator that fails once, on a chosen call ---------------------------------------------- */
+
+/* Worker threads allocate too, hence the atomics. */
+static struct {
+    int64_t calls;   /* allocations so far (alloc and realloc) */
+    int64_t fail_at; /* the call that fails; 0 never */
+    bool failed;
+} alloc_count;
+
+static bool fail_now(void)
+{
+    const int64_t n = __atomic_add_fetch(&alloc_count.calls, 1, __ATOMIC_RELAXED);
+    if (n != __atomic_load_n(&alloc_count.fail_at, __ATOMIC_RELAXED))
+        return false;
+    __atomic_store_n(&alloc_count.failed, true, __ATOMIC_RELAXED);
+    return true;
+}
+
+static void *failing_alloc(uint64_t size, void *user) { return fail_now() ? NULL : malloc(size); }
+static void *failing_realloc(void *ptr, uint64_t size, void *user) { return fail_now() ? NULL : realloc(ptr, size); }
+static void failing_free(void *ptr, void *user) { free(ptr); }
+
+/* ---- the script: a scene's set-up and first steps, one API call an op -------------------------- */
+
+enum { MAX_BODIES = 16 };
+
+typedef struct script {
+    pp_world w, loaded;            /* the scene, and its snapshot loaded back */
+    pp_body terrain, block, giant, disc, shelf, crates[4], extra;
+    uint8_t *terrain_mask, *terrain_weights, *crate_rgba, *block_mask, *giant_mask, *disc_mask, *shelf_mask;
+    char dir[64], snapshot[96], scene[96], png[96];
+} script;
+
+static pp_body_def crate_def(const script *s, int k)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 60.0f + 3.0f * k, 20.0f - 17.0f * k, 0.05f * k);
+    d.width = d.height = 16;
+    d.rgba = s->crate_rgba;
+    return d;
+}
+
+static pp_status op_create_world(script *s)
+{
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_CPU;
+    d.worker_threads = 2; /* the giant pair's batch is big enough to start the pool */
+    return pp_world_create(&d, &s->w);
+}
+
+static pp_status op_terrain(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_STATIC, 128, 64, 0);
+    d.width = 256, d.height = 64;
+    d.mask = s->terrain_mask;
+    d.weights = s->terrain_weights;
+    return pp_body_create(s->w, &d, &s->terrain);
+}
+
+static pp_status op_crate(script *s, int k) { pp_body_def d = crate_def(s, k); return pp_body_create(s->w, &d, &s->crates[k]); }
+static pp_status op_crate0(script *s) { return op_crate(s, 0); }
+static pp_status op_crate1(script *s) { return op_crate(s, 1); }
+static pp_status op_crate2(script *s) { return op_crate(s, 2); }
+static pp_status op_crate3(script *s) { return op_crate(s, 3); }
+
+static pp_status op_disc(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 160, 10, 0);
+    d.width = d.height = 20;
+    d.mask = s->disc_mask;
+    d.restitution = 0.5f;
+    return pp_body_create(s->w, &d, &s->disc);
+}
+
+/* A static block and a dynamic giant sunk into it, far from the rest: a batch over the pool's threshold. */
+static pp_status op_block(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_STATIC, 2000, 200, 0);
+    d.width = d.height = 256;
+    d.mask = s->block_mask;
+    return pp_body_create(s->w, &d, &s->block);
+}
+
+static pp_status op_giant(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 2000, 190, 0);
+    d.width = d.height = 200;
+    d.mask = s->giant_mask;
+    return pp_body_create(s->w, &d, &s->giant);
+}
+
+/* A static shelf that falls apart into a dynamic piece when cut (fracture). */
+static pp_status op_shelf(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_STATIC, 400, 60, 0);
+    d.width = 64, d.height = 12;
+    d.mask = s->shelf_mask;
+    d.detach_islands = 1;
+    return pp_body_create(s->w, &d, &s->shelf);
+}
+
+static int32_t body_count(pp_world w)
+{
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, NULL, 0, &n));
+    return n;
+}
+
+/* The cut splits the shelf: one more body, or, when memory runs out, none. */
+static pp_status op_cut_shelf(script *s)
+{
+    const int32_t before = body_count(s->w);
+    const pp_status st = pp_body_erase_circle(s->w, s->shelf, v2(410, 60), 8, NULL);
+    cr_assert_eq(body_count(s->w), before + (st == PP_OK), "the cut made %d bodies", body_count(s->w) - before);
+    return st;
+}
+
+static pp_status op_schedule(script *s)
+{
+    const pp_timed_edit e = {.time = 3.0 / 60, .type = PP_EDIT_ERASE_CIRCLE, .center = {100, 40}, .radius = 6};
+    return pp_world_schedule_edit(s->w, &e);
+}
+
+static pp_status op_step(script *s) { return pp_world_step(s->w, 1.0f / 60); }
+static pp_status op_step_loaded(script *s) { return pp_world_step(s->loaded, 1.0f / 60); }
+static pp_status op_erase(script *s) { return pp_body_erase_circle(s->w, s->terrain, v2(150, 40), 5, NULL); }
+static pp_status op_erase_world(script *s) { return pp_world_erase_circle(s->w, v2(70, 40), 4, NULL); }
+static pp_status op_paint(script *s) { return pp_body_paint_circle(s->w, s->crates[0], v2(60, 20), 4, 128, NULL); }
+
+static pp_status op_collide(script *s)
+{
+    pp_contact c[4];
+    int32_t n = 0;
+    return pp_world_collide(s->w, s->crates[0], s->terrain, c, 4, &n);
+}
+
+static pp_status op_debug_collision(script *s)
+{
+    static uint8_t cells[1 << 16];
+    pp_collision_view view;
+    return pp_world_debug_collision(s->w, s->crates[0], s->terrain, cells, NULL, (int64_t)sizeof cells, &view);
+}
+
+static pp_status op_destroy_crate(script *s) { return pp_body_destroy(s->w, s->crates[3]); }
+
+static pp_status op_extra(script *s)
+{
+    pp_body_def d = crate_def(s, 3);
+    d.position = v2(200, 10);
+    return pp_body_create(s->w, &d, &s->extra);
+}
+
+/* The whole of a small file, NUL-terminated, or NULL if there is none. */
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = calloc(1, 1 << 20);
+    cr_assert(fread(text, 1, (1 << 20) - 1, f) < (1 << 20) - 1);
+    fclose(f);
+    return text;
+}
+
+static int entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    int n = 0;
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += e->d_name[0] != '.';
+    if (d)
+        closedir(d);
+    return n;
+}
+
+/* A save that fails leaves the previous snapshot as it was, and nothing beside it. */
+static pp_status op_save_snapshot(script *s)
+{
+    char json[160];
+    snprintf(json, sizeof json, "%s/world.json", s->snapshot);
+    char *before = slurp(json);
+    const int files = entries(s->dir);
+    const pp_status st = pp_world_save_snapshot(s->w, s->snapshot);
+    if (st) {
+        char *after = slurp(json);
+        cr_assert((!before && !after) || (before && after && strcmp(before, after) == 0),
+                  "a failed save changed the snapshot before it");
+        cr_assert_eq(entries(s->dir), files, "a failed save left files behind");
+        free(after);
+    }
+    free(before);
+    return st;
+}
+static pp_status op_load_snapshot(script *s) { return pp_world_load_snapshot(s->snapshot, &s->loaded); }
+static pp_status op_save_png(script *s) { return pp_image_save(s->png, s->crate_rgba, 16, 16); }
+
+static pp_status op_load_png(script *s)
+{
+    uint8_t px[16 * 16 * 4];
+    int32_t w = 0, h = 0;
+    return pp_image_load(s->png, px, (int64_t)sizeof px, &w, &h);
+}
+
+typedef struct op {
+    const char *name;
+    pp_status (*run)(script *s);
+} op;
+
+#define OP(f) {#f, f}
+static const op ops[] = {
+    OP(op_create_world), OP(op_terrain), OP(op_crate0), OP(op_crate1), OP(op_crate2), OP(op_crate3),
+    OP(op_disc), OP(op_block), OP(op_giant), OP(op_shelf), OP(op_schedule), OP(op_step), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_step), OP(op_erase), OP(op_erase_world), OP(op_paint), OP(op_cut_shelf), OP(op_collide),
+    OP(op_debug_collision), OP(op_destroy_crate), OP(op_extra), OP(op_step), OP(op_step), OP(op_save_png),
+    OP(op_load_png), OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step_loaded),
+    OP(op_step), OP(op_step), OP(op_save_snapshot),
+};
+enum { OP_COUNT = (int)(sizeof ops / sizeof ops[0]) };
+
+/* ---- the observable state of the script's worlds ---------------------------------------------- */
+
+/* FNV-1a, eight bytes at a time: the masks are most of what is hashed. */
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const uint8_t *p = data;
+    size_t i = 0;
+    for (uint64_t word; i + 8 <= n; i += 8) {
+        memcpy(&word, p + i, 8);
+        h = (h ^ word) * 1099511628211ull;
+    }
+    for (; i < n; i++)
+        h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+/* Every body's handle, pose, velocity, sleep, mass and mask; the contacts, time and pending edits. */
+static uint64_t world_hash(uint64_t h, pp_world w)
+{
+    if (w.id == 0)
+        return fnv(h, "none", 4);
+    pp_body bodies[MAX_BODIES];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, MAX_BODIES, &n));
+    cr_assert(n <= MAX_BODIES);
+    h = fnv(h, &n, sizeof n);
+    for (int32_t i = 0; i < n; i++) {
+        pp_vec2 p, v;
+        float a, omega, mass[2];
+        pp_vec2 com;
+        int32_t awake = 0, bw = 0, bh = 0;
+        PP_OK_OR_FAIL(pp_body_get_position(w, bodies[i], &p));
+        PP_OK_OR_FAIL(pp_body_get_angle(w, bodies[i], &a));
+        PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &v, &omega));
+        PP_OK_OR_FAIL(pp_body_get_mass(w, bodies[i], &mass[0], &com, &mass[1]));
+        PP_OK_OR_FAIL(pp_body_is_awake(w, bodies[i], &awake));
+        PP_OK_OR_FAIL(pp_body_get_size(w, bodies[i], &bw, &bh));
+        uint8_t *mask = malloc((size_t)bw * bh);
+        PP_OK_OR_FAIL(pp_body_read_mask(w, bodies[i], mask, (int64_t)bw * bh));
+        h = fnv(h, &bodies[i], sizeof bodies[i]);
+        h = fnv(h, &p, sizeof p), h = fnv(h, &a, sizeof a), h = fnv(h, &v, sizeof v), h = fnv(h, &omega, sizeof omega);
+        h = fnv(h, mass, sizeof mass), h = fnv(h, &com, sizeof com), h = fnv(h, &awake, sizeof awake), h = fnv(h, mask, (size_t)bw * bh);
+        free(mask);
+    }
+    pp_contact contacts[64];
+    int32_t nc = 0, ne = 0;
+    PP_OK_OR_FAIL(pp_world_get_contacts(w, contacts, 64, &nc));
+    h = fnv(h, &nc, sizeof nc);
+    h = fnv(h, contacts, (size_t)(nc < 64 ? nc : 64) * sizeof *contacts);
+    PP_OK_OR_FAIL(pp_world_get_scheduled_edits(w, NULL, 0, &ne));
+    double t = 0;
+    PP_OK_OR_FAIL(pp_world_get_time(w, &t));
+    return fnv(fnv(h, &ne, sizeof ne), &t, sizeof t);
+}
+
+static uint64_t script_hash(const script *s) { return world_hash(world_hash(14695981039346656037ull, s->w), s->loaded); }
+
+static int32_t pending_edits(const script *s)
+{
+    int32_t n = 0;
+    if (s->w.id)
+        PP_OK_OR_FAIL(pp_world_get_scheduled_edits(s->w, NULL, 0, &n));
+    return n;
+}
+
+/* ---- running it ---------------------------------------------------------------------------------- */
+
+static void script_open(script *s)
+{
+    *s = (script){0};
+    /* tmpfs where there is one: the snapshot's fsyncs would otherwise dominate the run. */
+    struct stat st;
+    snprintf(s->dir, sizeof s->dir, "%s/pp_oom_XXXXXX", stat("/dev/shm", &st) == 0 && S_ISDIR(st.st_mode) ? "/dev/shm" : "/tmp");
+    cr_assert_not_null(mkdtemp(s->dir));
+    snprintf(s->snapshot, sizeof s->snapshot, "%s/snap", s->dir);
+    snprintf(s->png, sizeof s->png, "%s/crate.png", s->dir);
+    s->terrain_mask = rect_mask(256, 64);
+    s->terrain_weights = malloc(256 * 64);
+    for (int i = 0; i < 256 * 64; i++)
+        s->terrain_weights[i] = (uint8_t)(100 + i % 100);
+    for (int x = 90; x < 110; x++) /* a dip for the timed edit to deepen */
+        for (int y = 0; y < 8; y++)
+            s->terrain_mask[y * 256 + x] = 0;
+    s->crate_rgba = malloc(16 * 16 * 4);
+    for (int i = 0; i < 16 * 16; i++)
+        memcpy(s->crate_rgba + 4 * i, (uint8_t[4]){(uint8_t)i, 80, 40, 255}, 4);
+    s->block_mask = rect_mask(256, 256);
+    s->giant_mask = rect_mask(200, 200);
+    s->shelf_mask = rect_mask(64, 12);
+    int count = 0;
+    s->disc_mask = disc_mask(10, &count);
+}
+
+static void script_close(script *s)
+{
+    if (s->loaded.id)
+        PP_OK_OR_FAIL(pp_world_destroy(s->loaded));
+    if (s->w.id)
+        PP_OK_OR_FAIL(pp_world_destroy(s->w));
+    free(s->terrain_mask), free(s->terrain_weights), free(s->crate_rgba);
+    free(s->block_mask), free(s->giant_mask), free(s->disc_mask), free(s->shelf_mask);
+    remove_tree(s->dir);
+}
+
+/* Run every op with the N-th allocation failing (0: none). Returns the allocations made, and, when
+ * hashes is given, fills hashes[i] with the state after op i. */
+static int64_t run_script(int64_t fail_at, uint64_t *hashes, const uint64_t *expected, int *failed_op)
+{
+    script s;
+    script_open(&s);
+    alloc_count.calls = 0, alloc_count.fail_at = fail_at, alloc_count.failed = false;
+    *failed_op = -1;
+    for (int i = 0; i < OP_COUNT; i++) {
+        /* Only the ops are counted and may fail, never the reads that hash the state. */
+        const bool armed = !alloc_count.failed;
+        const int64_t calls = alloc_count.calls;
+        alloc_count.fail_at = 0;
+        const uint64_t before = armed ? script_hash(&s) : 0;
+        const int32_t edits_before = armed ? pending_edits(&s) : 0;
+        alloc_count.calls = calls;
+        alloc_count.fail_at = armed ? fail_at : 0;
+        pp_status st = ops[i].run(&s);
+        const int64_t after = alloc_count.calls;
+        alloc_count.fail_at = 0;
+        if (armed && alloc_count.failed) {
+            *failed_op = i;
+            cr_assert_eq(st, PP_ERR_OUT_OF_MEMORY, "allocation %lld fails in %s, which returned %s (%s)",
+                         (long long)fail_at, ops[i].name, pp_status_name(st), pp_last_error());
+            /* A step applies its due timed edits first and keeps them: then the edit is the only change. */
+            if (pending_edits(&s) == edits_before)
+                cr_assert_eq(script_hash(&s), before, "allocation %lld failing in %s changed the world",
+                             (long long)fail_at, ops[i].name);
+            st = ops[i].run(&s);
+        }
+        cr_assert_eq(st, PP_OK, "%s with allocation %lld failing -> %s (%s)", ops[i].name, (long long)fail_at,
+                     pp_status_name(st), pp_last_error());
+        alloc_count.calls = after;
+        if (hashes && ops[i].run == op_step) { /* the reference run: the giant pair keeps the pool busy */
+            pp_step_stats stats;
+            PP_OK_OR_FAIL(pp_world_get_stats(s.w, &stats));
+            cr_assert_eq(stats.threads, 2, "the narrowphase ran on %d threads (%d pairs, %lld cells)", (int)stats.threads, (int)stats.pairs, (long long)stats.pixels_tested);
+        }
+        if (hashes)
+            hashes[i] = script_hash(&s);
+        /* Right after the failed call is retried, and at the end. */
+        if (expected && (i == *failed_op || i == OP_COUNT - 1))
+            cr_assert_eq(script_hash(&s), expected[i], "after %s (allocation %lld failed in %s) the state differs",
+                         ops[i].name, (long long)fail_at, *failed_op >= 0 ? ops[*failed_op].name : "none");
+    }
+    const int64_t made = alloc_count.calls;
+    script_close(&s);
+    return made;
+}
+
+Test(out_of_memory, every_allocation_of_a_scene_can_fail_and_changes_nothing, .timeout = 300)
+{
+    const pp_allocator failing = {failing_alloc, failing_realloc, failing_free, NULL};
+    PP_OK_OR_FAIL(pp_set_allocator(&failing));
+    uint64_t reference[OP_COUNT];
+    int failed_op = -1;
+    const int64_t total = run_script(0, reference, NULL, &failed_op);
+    cr_assert_gt(total, 100, "the script made only %lld allocations", (long long)total);
+
+    int per_op[OP_COUNT] = {0};
+    for (int64_t n = 1; n <= total; n++) {
+        const int64_t made = run_script(n, NULL, reference, &failed_op);
+        /* Which worker thread grows its scratch first can vary, so a run may make a few fewer. */
+        cr_assert(failed_op >= 0 || made < n, "allocation %lld of %lld was made but never failed", (long long)n,
+                  (long long)total);
+        if (failed_op >= 0)
+            per_op[failed_op]++;
+    }
+    /* Every kind of call in the script allocates somewhere, or the sweep would not reach it. */
+    static const char *const must_fail[] = {"op_create_world", "op_terrain", "op_crate0", "op_step", "op_paint", "op_cut_shelf",
+                                            "op_save_snapshot", "op_load_snapshot", "op_save_png", "op_load_png"};
+    for (size_t k = 0; k < sizeof must_fail / sizeof *must_fail; k++) {
+        int n = 0;
+        for (int i = 0; i < OP_COUNT; i++)
+            n += strcmp(ops[i].name, must_fail[k]) == 0 ? per_op[i] : 0;
+        cr_assert_gt(n, 0, "no allocation failed inside %s", must_fail[k]);
+    }
+    cr_log_info("out_of_memory: %lld allocations, each failed in turn", (long long)total);
+    PP_OK_OR_FAIL(pp_set_allocator(NULL));
+}
+
+Test(out_of_memory, the_allocator_is_set_only_while_no_world_exists)
+{
+    const pp_allocator failing = {failing_alloc, failing_realloc, failing_free, NULL};
+    const pp_allocator half = {failing_alloc, NULL, failing_free, NULL};
+    EXPECT_ERR(pp_set_allocator(&half), PP_ERR_INVALID_ARGUMENT, "realloc");
+    pp_world w = make_world(0, 0);
+    EXPECT_ERR(pp_set_allocator(&failing), PP_ERR_INVALID_ARGUMENT, "worlds exist");
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    PP_OK_OR_FAIL(pp_set_allocator(&failing));
+    alloc_count.calls = 0, alloc_count.fail_at = 0;
+    w = make_world(0, 0);
+    cr_assert_gt(alloc_count.calls, 0, "the world was not allocated through the allocator");
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    PP_OK_OR_FAIL(pp_set_allocator(NULL));
+}
