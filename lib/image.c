@@ -4,11 +4,17 @@
 #include "alloc.h"
 #include "status.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* One decode or encode in progress; libpng's error handler longjmps back with its message kept here. */
 typedef struct png_session {
@@ -163,6 +169,21 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
     return st;
 }
 
+/* A new file beside path, named path.tmp-<pid>-<n>, created with the process's usual permissions; its
+ * name goes to tmp. Returns the descriptor, or -1. */
+static int create_beside(const char *path, char *tmp, size_t size)
+{
+    static _Atomic unsigned counter;
+    for (int attempt = 0; attempt < 16; attempt++) {
+        if (snprintf(tmp, size, "%s.tmp-%ld-%u", path, (long)getpid(), counter++) >= (int)size)
+            return -1;
+        const int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST)
+            return fd;
+    }
+    return -1;
+}
+
 PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height)
 {
     const char *fn = "pp_image_save";
@@ -173,10 +194,18 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
     if (width > PP_MAX_BITMAP_SIDE || height > PP_MAX_BITMAP_SIDE || (int64_t)width * height > PP_MAX_BITMAP_AREA)
         return pp_fail(PP_ERR_LIMIT, "%s: %dx%d px is over PP_MAX_BITMAP_SIDE (%d) or PP_MAX_BITMAP_AREA (%d)", fn,
                        (int)width, (int)height, PP_MAX_BITMAP_SIDE, PP_MAX_BITMAP_AREA);
+    /* Written beside the file and renamed over it only when whole: a failed save keeps the old file. */
+    char tmp[PATH_MAX];
+    const int fd = create_beside(path, tmp, sizeof tmp);
     png_session wr = {0};
-    wr.file = fopen(path, "wb");
-    if (!wr.file)
+    wr.file = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (!wr.file) {
+        if (fd >= 0) {
+            close(fd);
+            unlink(tmp);
+        }
         return pp_fail(PP_ERR_IO, "%s: cannot create '%s'", fn, path);
+    }
     pp_status st = PP_OK;
     wr.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning, &wr, session_alloc,
                                        session_free);
@@ -198,6 +227,10 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
     if (wr.png)
         png_destroy_write_struct(&wr.png, wr.info ? &wr.info : NULL);
     if (fclose(wr.file) != 0 && st == PP_OK)
-        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s' (disk full?)", fn, path);
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
+    if (st == PP_OK && rename(tmp, path) != 0)
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
+    if (st)
+        unlink(tmp);
     return st;
 }

@@ -4,6 +4,8 @@
 #include "helpers.h"
 
 #include <dirent.h>
+#include <signal.h>
+#include <sys/resource.h>
 
 PP_TEST_SUITE(snapshot);
 
@@ -222,6 +224,81 @@ Test(snapshot, an_edit_on_a_destroyed_body_does_not_break_the_snapshot)
 }
 
 /* Replace the first occurrence of `from` in the snapshot's world.json by `to`. */
+/* Files may grow to `bytes` at most from here on (RLIMIT_FSIZE); a write past it fails with EFBIG. */
+static void limit_file_size(rlim_t bytes)
+{
+    struct rlimit lim;
+    cr_assert_eq(getrlimit(RLIMIT_FSIZE, &lim), 0);
+    lim.rlim_cur = bytes;
+    cr_assert_eq(setrlimit(RLIMIT_FSIZE, &lim), 0);
+}
+
+/* The disk fills while a snapshot is written: the save fails with PP_ERR_IO, the snapshot saved before
+ * is still there and loads to the state it was saved in, and nothing is left beside it. */
+Test(snapshot, a_save_that_fails_part_way_keeps_the_previous_snapshot)
+{
+    signal(SIGXFSZ, SIG_IGN); /* a write past the limit returns EFBIG instead of ending the process */
+    char dir[64], snap[96];
+    temp_dir(dir);
+    snprintf(snap, sizeof snap, "%s/snap", dir);
+    pp_world w = build_scene();
+    step_n(w, DT, 30);
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    const uint64_t saved = world_hash(w, 0);
+    const int files = entries(snap);
+    /* A noisy weight plane makes a body whose PNG cannot fit under the limit. */
+    uint8_t *mask = rect_mask(256, 256), *weights = malloc(256 * 256);
+    uint32_t x = 2463534242u; /* xorshift: noise that deflate cannot shrink */
+    for (int i = 0; i < 256 * 256; i++) {
+        x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+        weights[i] = (uint8_t)(1 + x % 255);
+    }
+    pp_body_def d = body_def(PP_BODY_STATIC, 300, 900, 0);
+    d.width = d.height = 256, d.mask = mask, d.weights = weights;
+    create_body_ok(w, &d);
+    free(mask), free(weights);
+    step_n(w, DT, 10);
+
+    limit_file_size(16 * 1024);
+    EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_IO, "cannot write|File too large");
+    limit_file_size(RLIM_INFINITY);
+    cr_assert_eq(entries(snap), files, "the old snapshot lost or gained files");
+    cr_assert_eq(entries(dir), 1, "the failed save left %d entries beside the snapshot", entries(dir) - 1);
+    pp_world back = {0};
+    PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
+    cr_assert_eq(world_hash(back, 0), saved, "the snapshot no longer loads to the state it was saved in");
+    PP_OK_OR_FAIL(pp_world_destroy(back));
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    remove_tree(dir);
+}
+
+/* The same for one image: a failed pp_image_save keeps the file it would have replaced. */
+Test(snapshot, an_image_save_that_fails_keeps_the_old_file)
+{
+    signal(SIGXFSZ, SIG_IGN);
+    char dir[64], path[96];
+    temp_dir(dir);
+    snprintf(path, sizeof path, "%s/a.png", dir);
+    uint8_t small[4 * 4 * 4], *noise = malloc(512 * 512 * 4), back[4 * 4 * 4];
+    for (int i = 0; i < 4 * 4 * 4; i++)
+        small[i] = (uint8_t)(i * 7);
+    uint32_t x = 2463534242u; /* xorshift: noise that deflate cannot shrink */
+    for (int i = 0; i < 512 * 512 * 4; i++) {
+        x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+        noise[i] = (uint8_t)x;
+    }
+    PP_OK_OR_FAIL(pp_image_save(path, small, 4, 4));
+    limit_file_size(16 * 1024);
+    EXPECT_ERR(pp_image_save(path, noise, 512, 512), PP_ERR_IO, "cannot write");
+    limit_file_size(RLIM_INFINITY);
+    int32_t w = 0, h = 0;
+    PP_OK_OR_FAIL(pp_image_load(path, back, (int64_t)sizeof back, &w, &h));
+    cr_assert(w == 4 && h == 4 && memcmp(back, small, sizeof small) == 0, "the old image changed");
+    cr_assert_eq(entries(dir), 1, "the failed save left its temporary file");
+    free(noise);
+    remove_tree(dir);
+}
+
 static void patch_json(const char *snap, const char *from, const char *to)
 {
     char path[160];
