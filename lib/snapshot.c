@@ -164,7 +164,11 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
         if (edit_body_gone(wd, wd->edits[i].body))
             continue;
-        cJSON *e = edit_to_json(&wd->edits[i]);
+        /* pp_world_schedule_edit takes a time before 0 (due at once), world.json's reader does not (fuzz_api).
+         * At 0 it is as due, and the list's order, which loading keeps among equal times, is unchanged. */
+        pp_timed_edit ed = wd->edits[i];
+        ed.time = ed.time < 0 ? 0 : ed.time;
+        cJSON *e = edit_to_json(&ed);
         ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
     }
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
