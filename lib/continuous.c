@@ -48,8 +48,9 @@ static int64_t overlap_at(const sweep *sw, double t, const body *other)
         const dvec2 l = dv_add(dv_unrot(dv_sub(corner, com), c, s), sw->com_local);
         lx0 = fmin(lx0, l.x), ly0 = fmin(ly0, l.y), lx1 = fmax(lx1, l.x), ly1 = fmax(ly1, l.y);
     }
-    const int32_t x0 = (int32_t)fmax(r->x0, floor(lx0)), x1 = (int32_t)fmin(r->x1, ceil(lx1));
-    const int32_t y0 = (int32_t)fmax(r->y0, floor(ly0)), y1 = (int32_t)fmin(r->y1, ceil(ly1));
+    /* Clamped on both sides: a box far off the bitmap gives bounds past int32 (UBSan, found by fuzz_snapshot). */
+    const int32_t x0 = (int32_t)fmin(fmax(r->x0, floor(lx0)), r->x1), x1 = (int32_t)fmax(fmin(r->x1, ceil(lx1)), r->x0);
+    const int32_t y0 = (int32_t)fmin(fmax(r->y0, floor(ly0)), r->y1), y1 = (int32_t)fmax(fmin(r->y1, ceil(ly1)), r->y0);
     int64_t n = 0;
     for (int32_t y = y0; y < y1; y++) {
         const dvec2 w = dv_add(com, dv_rot(dv_sub(dv(x0 + 0.5, y + 0.5), sw->com_local), c, s));

@@ -201,9 +201,18 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
                 world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, p->children[k]); /* room reserved */
             }
         raster_edit_done(r, e.y0, e.y1);
-        body_update_pose_cache(bd);
-        if (bd->sb.body)
-            edit_update_solver_body(wd, bd);
+        if (bd->type == PP_BODY_DYNAMIC && bd->sums.w <= 0) {
+            /* The largest island, which the parent keeps, can be massless (all weights zero): it goes, as a
+             * body an edit leaves without mass does; ODE aborts on a zero mass (found by fuzz_api). */
+            const pp_body gone = bd->handle;
+            body_remove(wd, bd);
+            if (st == PP_OK)
+                st = world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0});
+        } else {
+            body_update_pose_cache(bd);
+            if (bd->sb.body)
+                edit_update_solver_body(wd, bd);
+        }
     }
     p->count = 0; /* the children stay */
     fracture_cancel(wd, p);

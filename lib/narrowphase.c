@@ -23,8 +23,12 @@ static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, do
     }
     /* A margin of one cell plus one pixel so unit shifts of the other body stay inside. */
     const double margin = stride + 1;
-    const int64_t X0 = (int64_t)fmax(ra->x0, floor(lo_x - margin)), X1 = (int64_t)fmin(ra->x1, ceil(hi_x + margin));
-    const int64_t Y0 = (int64_t)fmax(ra->y0, floor(lo_y - margin)), Y1 = (int64_t)fmin(ra->y1, ceil(hi_y + margin));
+    /* Clamped on both sides: a pair far apart (pp_world_collide takes any pair) gives bounds past int64
+     * (UBSan, found by fuzz_api). */
+    const int64_t X0 = (int64_t)fmin(fmax(ra->x0, floor(lo_x - margin)), ra->x1),
+                  X1 = (int64_t)fmax(fmin(ra->x1, ceil(hi_x + margin)), ra->x0);
+    const int64_t Y0 = (int64_t)fmin(fmax(ra->y0, floor(lo_y - margin)), ra->y1),
+                  Y1 = (int64_t)fmax(fmin(ra->y1, ceil(hi_y + margin)), ra->y0);
     if (X0 >= X1 || Y0 >= Y1)
         return false;
     p->s = stride;

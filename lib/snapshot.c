@@ -11,6 +11,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <float.h>
 #include <inttypes.h>
 #include <limits.h>
 #include <math.h>
@@ -164,7 +165,11 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
         if (edit_body_gone(wd, wd->edits[i].body))
             continue;
-        cJSON *e = edit_to_json(&wd->edits[i]);
+        /* pp_world_schedule_edit takes a time before 0 (due at once), world.json's reader does not (fuzz_api).
+         * At 0 it is as due, and the list's order, which loading keeps among equal times, is unchanged. */
+        pp_timed_edit ed = wd->edits[i];
+        ed.time = ed.time < 0 ? 0 : ed.time;
+        cJSON *e = edit_to_json(&ed);
         ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
     }
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
@@ -312,7 +317,8 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
 
 /* ---- reading ------------------------------------------------------------------------------------ */
 
-/* Exactly n finite doubles. */
+/* Exactly n finite doubles, none larger than a float: the API never sets more, and ODE, handed a velocity
+ * of 1e211, stepped to NaN and aborted the process in dNormalize4 (found by fuzz_snapshot). */
 static pp_status read_doubles(const json_ctx *c, const cJSON *obj, const char *where, const char *key, double *out,
                               int n)
 {
@@ -320,10 +326,10 @@ static pp_status read_doubles(const json_ctx *c, const cJSON *obj, const char *w
     bool ok = cJSON_IsArray(it) && cJSON_GetArraySize(it) == n;
     for (int i = 0; ok && i < n; i++) {
         const cJSON *x = cJSON_GetArrayItem(it, i);
-        ok = cJSON_IsNumber(x) && isfinite(x->valuedouble);
+        ok = cJSON_IsNumber(x) && fabs(x->valuedouble) <= FLT_MAX;
         out[i] = ok ? x->valuedouble : 0;
     }
-    return ok ? PP_OK : json_fail(c, PP_ERR_FORMAT, where, key, "expected %d finite numbers", n);
+    return ok ? PP_OK : json_fail(c, PP_ERR_FORMAT, where, key, "expected %d finite numbers, each within ±%g", n, FLT_MAX);
 }
 
 /* A "0x…" handle; required unless optional, where absent gives 0. */

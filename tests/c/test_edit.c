@@ -267,3 +267,33 @@ Test(edit, painting_adds_weighted_pixels_and_a_static_body_splits_only_when_aske
     }
     pp_world_destroy(w);
 }
+
+/* A split whose largest island is massless (all weights zero): the parent, which keeps that island,
+ * goes as a body left without mass does, and the weighted island falls on as a new body (the fuzzer
+ * found ODE aborting the process on the parent's zero mass). */
+Test(edit, a_split_leaving_the_parent_massless_destroys_it)
+{
+    pp_world w = make_world(0, 980);
+    uint8_t mask[10 * 3], weights[10 * 3], hole[3] = {0, 0, 0};
+    for (int i = 0; i < 30; i++)
+        mask[i] = 1, weights[i] = i % 10 >= 6 ? 255 : 0;
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 100, 100, 0);
+    d.width = 10, d.height = 3, d.mask = mask, d.weights = weights;
+    pp_body b;
+    PP_OK_OR_FAIL(pp_body_create(w, &d, &b));
+    PP_OK_OR_FAIL(pp_body_write_pixels(w, b, 6, 0, 1, 3, hole, NULL));
+    pp_event ev[4];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 4, &n));
+    cr_assert_eq(n, 2, "%d events", (int)n);
+    cr_assert_eq(ev[0].type, PP_EVENT_BODY_SPLIT);
+    cr_assert_eq(ev[1].type, PP_EVENT_BODY_DESTROYED);
+    cr_assert_eq(ev[1].body.id, b.id);
+    pp_vec2 p;
+    cr_assert_eq(pp_body_get_position(w, b, &p), PP_ERR_INVALID_HANDLE);
+    int32_t bw = 0, bh = 0;
+    PP_OK_OR_FAIL(pp_body_get_size(w, ev[0].other, &bw, &bh));
+    cr_assert(bw == 3 && bh == 3, "the weighted island is %d × %d", (int)bw, (int)bh);
+    PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+}

@@ -356,9 +356,10 @@ static void op_write_pixels(reader *r)
     int32_t x = (int8_t)u8(r), y = (int8_t)u8(r);
     int32_t ww = u8(r) % (MAX_SIDE + 1), hh = u8(r) % (MAX_SIDE + 1);
     const uint8_t k = u8(r);
-    if (k >= 250) { /* far out: negative, overflowing */
+    if (k >= 250) { /* far out: any origin, a negative width (a larger one would promise more bytes than the plane) */
         x = (int32_t)u32(r), y = (int32_t)u32(r);
-        ww = k & 1 ? -ww : INT32_MAX;
+        if (k & 1)
+            ww = -ww;
     }
     fill_plane(r, MAX_SIDE, MAX_SIDE);
     const int in_buf = ww >= 0 && hh >= 0 && ww <= MAX_SIDE && hh <= MAX_SIDE;
