@@ -146,6 +146,8 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     pp_status st = check_body_def(def);
     if (st)
         return st;
+    if (wd->free_count == 0 && wd->body_capacity >= PP_MAX_BODIES) /* before anything is allocated */
+        return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
     body *bd = pp_calloc(1, sizeof *bd);
     if (!bd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory");

@@ -176,8 +176,8 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
         pp_free(weights);
         pp_free(sprite);
     }
-    if (st == PP_OK)
-        st = world_reserve_events(wd, *events);
+    if (st == PP_OK) /* and one for the parent, which goes if the island it keeps is massless */
+        st = world_reserve_events(wd, ++*events);
     if (st)
         fracture_cancel(wd, p);
     return st;
@@ -206,8 +206,7 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
              * body an edit leaves without mass does; ODE aborts on a zero mass (found by fuzz_api). */
             const pp_body gone = bd->handle;
             body_remove(wd, bd);
-            if (st == PP_OK)
-                st = world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0});
+            world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0}); /* room reserved */
         } else {
             body_update_pose_cache(bd);
             if (bd->sb.body)

@@ -566,23 +566,32 @@ static void strips_full(const np_core *r, int32_t *strips, const int32_t *f)
     }
 }
 
+pp_status np_scratch_reserve(np_scratch *s, int32_t nx, int32_t ny)
+{
+    const np_pair p = {.nx = nx, .ny = ny};
+    const int64_t leaves_x = (nx + LEAF - 1) / LEAF, leaves_y = (ny + LEAF - 1) / LEAF;
+    const int64_t map_words = (leaves_x + 63) / 64 * (leaves_y + 1); /* the map, and one row of scratch */
+    pp_status st = grow_scratch(s, 4 * np_pair_cells(&p), NP_STRIP_FIELDS * np_pair_max_strips(&p));
+    s->leaves = grow(s->leaves, &s->leaves_cap, map_words, sizeof *s->leaves, &st);
+    s->rects = grow(s->rects, &s->rects_cap, 4 * leaves_x * leaves_y, sizeof *s->rects, &st);
+    return st;
+}
+
 pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out)
 {
     *out = (np_core){0};
     tiling t = {.p = p, .r = out};
     t.leaves_x = (p->nx + LEAF - 1) / LEAF, t.leaves_y = (p->ny + LEAF - 1) / LEAF;
     t.words = (t.leaves_x + 63) / 64;
-    const int64_t cells = np_pair_cells(p), leaves = (int64_t)t.leaves_x * t.leaves_y;
-    const int64_t map_words = (int64_t)t.words * (t.leaves_y + 1); /* the map, and one row of scratch */
-    pp_status st = grow_scratch(scratch, 4 * cells, NP_STRIP_FIELDS * np_pair_max_strips(p));
-    scratch->leaves = grow(scratch->leaves, &scratch->leaves_cap, map_words, sizeof *scratch->leaves, &st);
-    scratch->rects = grow(scratch->rects, &scratch->rects_cap, 4 * leaves, sizeof *scratch->rects, &st);
+    const int64_t map_words = (int64_t)t.words * (t.leaves_y + 1);
+    pp_status st = np_scratch_reserve(scratch, p->nx, p->ny);
     if (st)
         return st;
     t.dense = scratch->leaves, t.full = scratch->rects;
     memset(t.dense, 0, (size_t)map_words * sizeof *t.dense);
     classify(&t, 0, 0, t.leaves_x, t.leaves_y, 0);
 
+    const int64_t cells = np_pair_cells(p);
     uint8_t *sa = scratch->cells, *sb = scratch->cells + cells;
     uint16_t *cb = (uint16_t *)(scratch->cells + 2 * cells);
     sample_dense(&t, t.dense + (int64_t)t.words * t.leaves_y, sa, sb, cb);

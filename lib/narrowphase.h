@@ -126,6 +126,9 @@ pp_status narrow_cpu_collide(const np_settings *set, const np_body *a, const np_
                              np_result *out);
 void np_scratch_free(np_scratch *s);
 
+/* Grow the scratch to what narrow_cpu_core needs for any pair of at most nx × ny cells. */
+pp_status np_scratch_reserve(np_scratch *s, int32_t nx, int32_t ny);
+
 /* A pair's inner grid for debug views: per cell the reference's (bit 0) and the other's (bit 1)
  * solidity, bit 2 on critical intersection cells, and there the 3×3-kernel vector (x, y) in reference
  * axes, pointing from the reference into the other body. */

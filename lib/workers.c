@@ -142,6 +142,16 @@ pp_status workers_run(np_workers **pool, int32_t threads, const np_settings *set
         }
         return PP_OK;
     }
+    /* Worker threads never allocate: every scratch is grown here, on the calling thread, for the
+     * batch's largest pair, so a failure is reported here and the count of allocations is fixed. */
+    int32_t nx = 0, ny = 0;
+    for (int32_t k = 0; k < n; k++)
+        nx = pairs[k].nx > nx ? pairs[k].nx : nx, ny = pairs[k].ny > ny ? pairs[k].ny : ny;
+    pp_status st = np_scratch_reserve(scratch, nx, ny);
+    for (int32_t i = 0; i < w->count && !st; i++)
+        st = np_scratch_reserve(&w->scratch[i], nx, ny);
+    if (st)
+        return st;
     *used = 1 + w->count;
     pthread_mutex_lock(&w->lock);
     w->set = set, w->pairs = pairs, w->cores = cores, w->n = n;
@@ -157,7 +167,7 @@ pp_status workers_run(np_workers **pool, int32_t threads, const np_settings *set
     pthread_mutex_lock(&w->lock);
     while (w->running > 0)
         pthread_cond_wait(&w->done, &w->lock);
-    const pp_status st = w->status;
+    st = w->status;
     pthread_mutex_unlock(&w->lock);
     /* The message was recorded on the thread that failed; repeat it on the caller's. */
     return st ? pp_fail(st, "%s", w->message) : PP_OK;

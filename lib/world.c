@@ -158,6 +158,9 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
     pp_status st = check_world_def(&d);
     if (st)
         return st;
+    /* Refused before anything is allocated; the slot search below stays the check that counts. */
+    if (world_live_count() >= PP_MAX_WORLDS)
+        return pp_fail(PP_ERR_LIMIT, "pp_world_create: already %d live worlds (PP_MAX_WORLDS)", PP_MAX_WORLDS);
     world *wd = pp_calloc(1, sizeof *wd);
     if (!wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory");

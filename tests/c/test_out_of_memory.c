@@ -4,25 +4,32 @@
  * no failure. */
 #include "helpers.h"
 
+#include <pthread.h>
 #include <stdbool.h>
 
 PP_TEST_SUITE(out_of_memory);
 
 /* ---- an allocator that fails once, on a chosen call ---------------------------------------------- */
 
-/* Worker threads allocate too, hence the atomics. */
+/* Only the calling thread may allocate (worker threads get their scratch from it), so the N-th
+ * allocation is the same call in every run. */
 static struct {
     int64_t calls;   /* allocations so far (alloc and realloc) */
     int64_t fail_at; /* the call that fails; 0 never */
     bool failed;
+    bool other_thread; /* an allocation came from a thread other than the test's */
+    pthread_t owner;
 } alloc_count;
 
 static bool fail_now(void)
 {
-    const int64_t n = __atomic_add_fetch(&alloc_count.calls, 1, __ATOMIC_RELAXED);
-    if (n != __atomic_load_n(&alloc_count.fail_at, __ATOMIC_RELAXED))
+    if (!pthread_equal(pthread_self(), alloc_count.owner)) {
+        __atomic_store_n(&alloc_count.other_thread, true, __ATOMIC_RELAXED);
         return false;
-    __atomic_store_n(&alloc_count.failed, true, __ATOMIC_RELAXED);
+    }
+    if (++alloc_count.calls != alloc_count.fail_at)
+        return false;
+    alloc_count.failed = true;
     return true;
 }
 
@@ -36,10 +43,17 @@ enum { MAX_BODIES = 16 };
 
 typedef struct script {
     pp_world w, loaded;            /* the scene, and its snapshot loaded back */
-    pp_body terrain, block, giant, disc, shelf, crates[4], extra;
-    uint8_t *terrain_mask, *terrain_weights, *crate_rgba, *block_mask, *giant_mask, *disc_mask, *shelf_mask;
+    pp_body terrain, block, giant, disc, shelf, bar, crates[4], extra;
+    uint8_t *terrain_mask, *terrain_weights, *crate_rgba, *block_mask, *giant_mask, *disc_mask, *shelf_mask, *bar_mask;
     char dir[64], snapshot[96], scene[96], png[96];
 } script;
+
+static int32_t body_count(pp_world w)
+{
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, NULL, 0, &n));
+    return n;
+}
 
 static pp_body_def crate_def(const script *s, int k)
 {
@@ -72,6 +86,14 @@ static pp_status op_crate1(script *s) { return op_crate(s, 1); }
 static pp_status op_crate2(script *s) { return op_crate(s, 2); }
 static pp_status op_crate3(script *s) { return op_crate(s, 3); }
 
+/* A crate already touching the terrain: a second pair, so the batch is shared out. */
+static pp_status op_low_crate(script *s)
+{
+    pp_body_def d = crate_def(s, 0);
+    d.position = v2(128, 26);
+    return pp_body_create(s->w, &d, &s->extra);
+}
+
 static pp_status op_disc(script *s)
 {
     pp_body_def d = body_def(PP_BODY_DYNAMIC, 160, 10, 0);
@@ -98,7 +120,7 @@ static pp_status op_giant(script *s)
     return pp_body_create(s->w, &d, &s->giant);
 }
 
-/* A static shelf that falls apart into a dynamic piece when cut (fracture). */
+/* A static shelf whose pieces fall as dynamic bodies when cut (fracture). */
 static pp_status op_shelf(script *s)
 {
     pp_body_def d = body_def(PP_BODY_STATIC, 400, 60, 0);
@@ -108,18 +130,34 @@ static pp_status op_shelf(script *s)
     return pp_body_create(s->w, &d, &s->shelf);
 }
 
-static int32_t body_count(pp_world w)
-{
-    int32_t n = 0;
-    PP_OK_OR_FAIL(pp_world_get_bodies(w, NULL, 0, &n));
-    return n;
-}
-
-/* The cut splits the shelf: one more body, or, when memory runs out, none. */
+/* The cut splits the shelf into several pieces (so one piece is made before the next fails), or,
+ * when memory runs out, into none. */
 static pp_status op_cut_shelf(script *s)
 {
     const int32_t before = body_count(s->w);
-    const pp_status st = pp_body_erase_circle(s->w, s->shelf, v2(410, 60), 8, NULL);
+    const pp_status st = pp_body_erase_circle(s->w, s->shelf, v2(400, 54), 14, NULL);
+    if (st == PP_OK)
+        cr_assert_geq(body_count(s->w), before + 3, "the cut made %d bodies", body_count(s->w) - before);
+    else
+        cr_assert_eq(body_count(s->w), before, "a failed cut made %d bodies", body_count(s->w) - before);
+    return st;
+}
+
+/* A dynamic bar cut in two: a split whose mass sums must come back if it fails. */
+static pp_status op_bar(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 40, -60, 0);
+    d.width = 40, d.height = 6;
+    d.mask = s->bar_mask;
+    return pp_body_create(s->w, &d, &s->bar);
+}
+
+static pp_status op_cut_bar(script *s)
+{
+    const int32_t before = body_count(s->w);
+    pp_vec2 p;
+    PP_OK_OR_FAIL(pp_body_get_position(s->w, s->bar, &p));
+    const pp_status st = pp_body_erase_circle(s->w, s->bar, p, 4, NULL);
     cr_assert_eq(body_count(s->w), before + (st == PP_OK), "the cut made %d bodies", body_count(s->w) - before);
     return st;
 }
@@ -216,15 +254,30 @@ typedef struct op {
 } op;
 
 #define OP(f) {#f, f}
-static const op ops[] = {
+/* The scene: set-up, steps, every kind of edit, queries, files. */
+static const op scene_ops[] = {
     OP(op_create_world), OP(op_terrain), OP(op_crate0), OP(op_crate1), OP(op_crate2), OP(op_crate3),
-    OP(op_disc), OP(op_block), OP(op_giant), OP(op_shelf), OP(op_schedule), OP(op_step), OP(op_step), OP(op_step),
-    OP(op_step), OP(op_step), OP(op_erase), OP(op_erase_world), OP(op_paint), OP(op_cut_shelf), OP(op_collide),
-    OP(op_debug_collision), OP(op_destroy_crate), OP(op_extra), OP(op_step), OP(op_step), OP(op_save_png),
-    OP(op_load_png), OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step_loaded),
-    OP(op_step), OP(op_step), OP(op_save_snapshot),
+    OP(op_disc), OP(op_shelf), OP(op_bar), OP(op_schedule), OP(op_step), OP(op_step), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_cut_bar),
+    OP(op_erase), OP(op_erase_world), OP(op_paint), OP(op_cut_shelf), OP(op_collide), OP(op_debug_collision),
+    OP(op_destroy_crate), OP(op_extra), OP(op_step), OP(op_step), OP(op_save_png), OP(op_load_png),
+    OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step_loaded), OP(op_step), OP(op_step),
+    OP(op_save_snapshot),
 };
-enum { OP_COUNT = (int)(sizeof ops / sizeof ops[0]) };
+
+/* A pair big enough for the narrowphase's worker threads, beside a crate. */
+static const op pool_ops[] = {
+    OP(op_create_world), OP(op_terrain), OP(op_low_crate), OP(op_block), OP(op_giant), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_save_snapshot),
+};
+
+typedef struct script_ops {
+    const op *ops;
+    int count;
+    bool pool; /* the reference run checks that the steps ran on the worker threads */
+} script_ops;
+
+enum { MAX_OPS = 64 };
 
 /* ---- the observable state of the script's worlds ---------------------------------------------- */
 
@@ -314,7 +367,11 @@ static void script_open(script *s)
         memcpy(s->crate_rgba + 4 * i, (uint8_t[4]){(uint8_t)i, 80, 40, 255}, 4);
     s->block_mask = rect_mask(256, 256);
     s->giant_mask = rect_mask(200, 200);
-    s->shelf_mask = rect_mask(64, 12);
+    s->shelf_mask = rect_mask(64, 12); /* three blocks held together by their top two rows */
+    for (int y = 2; y < 12; y++)
+        for (int x = 20; x < 44; x += 22)
+            s->shelf_mask[y * 64 + x] = s->shelf_mask[y * 64 + x + 1] = 0;
+    s->bar_mask = rect_mask(40, 6);
     int count = 0;
     s->disc_mask = disc_mask(10, &count);
 }
@@ -326,19 +383,23 @@ static void script_close(script *s)
     if (s->w.id)
         PP_OK_OR_FAIL(pp_world_destroy(s->w));
     free(s->terrain_mask), free(s->terrain_weights), free(s->crate_rgba);
-    free(s->block_mask), free(s->giant_mask), free(s->disc_mask), free(s->shelf_mask);
+    free(s->block_mask), free(s->giant_mask), free(s->disc_mask), free(s->shelf_mask), free(s->bar_mask);
     remove_tree(s->dir);
 }
 
 /* Run every op with the N-th allocation failing (0: none). Returns the allocations made, and, when
- * hashes is given, fills hashes[i] with the state after op i. */
-static int64_t run_script(int64_t fail_at, uint64_t *hashes, const uint64_t *expected, int *failed_op)
+ * hashes is given, fills hashes[i] with the state after op i. The world's last snapshot holds what no
+ * call shows (creation serials, slot generations, the solver's step count, ODE's exact state): the
+ * reference run keeps its world.json in *saved, and every other run must end with the same text. */
+static int64_t run_script(const script_ops *so, int64_t fail_at, uint64_t *hashes, const uint64_t *expected,
+                          int *failed_op, char **saved)
 {
+    const op *ops = so->ops;
     script s;
     script_open(&s);
     alloc_count.calls = 0, alloc_count.fail_at = fail_at, alloc_count.failed = false;
     *failed_op = -1;
-    for (int i = 0; i < OP_COUNT; i++) {
+    for (int i = 0; i < so->count; i++) {
         /* Only the ops are counted and may fail, never the reads that hash the state. */
         const bool armed = !alloc_count.failed;
         const int64_t calls = alloc_count.calls;
@@ -363,52 +424,78 @@ static int64_t run_script(int64_t fail_at, uint64_t *hashes, const uint64_t *exp
         cr_assert_eq(st, PP_OK, "%s with allocation %lld failing -> %s (%s)", ops[i].name, (long long)fail_at,
                      pp_status_name(st), pp_last_error());
         alloc_count.calls = after;
-        if (hashes && ops[i].run == op_step) { /* the reference run: the giant pair keeps the pool busy */
+        if (hashes && so->pool && ops[i].run == op_step) {
             pp_step_stats stats;
             PP_OK_OR_FAIL(pp_world_get_stats(s.w, &stats));
-            cr_assert_eq(stats.threads, 2, "the narrowphase ran on %d threads (%d pairs, %lld cells)", (int)stats.threads, (int)stats.pairs, (long long)stats.pixels_tested);
+            cr_assert_eq(stats.threads, 2, "the narrowphase ran on %d threads", (int)stats.threads);
         }
         if (hashes)
             hashes[i] = script_hash(&s);
         /* Right after the failed call is retried, and at the end. */
-        if (expected && (i == *failed_op || i == OP_COUNT - 1))
+        if (expected && (i == *failed_op || i == so->count - 1))
             cr_assert_eq(script_hash(&s), expected[i], "after %s (allocation %lld failed in %s) the state differs",
                          ops[i].name, (long long)fail_at, *failed_op >= 0 ? ops[*failed_op].name : "none");
+    }
+    char json[160];
+    snprintf(json, sizeof json, "%s/world.json", s.snapshot);
+    char *text = slurp(json);
+    if (!expected)
+        *saved = text;
+    else {
+        cr_assert((!text && !*saved) || (text && *saved && strcmp(text, *saved) == 0),
+                  "allocation %lld failing in %s: the last snapshot differs from the reference run's",
+                  (long long)fail_at, *failed_op >= 0 ? ops[*failed_op].name : "none");
+        free(text);
     }
     const int64_t made = alloc_count.calls;
     script_close(&s);
     return made;
 }
 
-Test(out_of_memory, every_allocation_of_a_scene_can_fail_and_changes_nothing, .timeout = 300)
+/* Fail each allocation of the script in turn; every name in must_fail has an allocation that failed. */
+static void fail_each_allocation(const script_ops *so, const char *const *must_fail, int must_count)
 {
     const pp_allocator failing = {failing_alloc, failing_realloc, failing_free, NULL};
     PP_OK_OR_FAIL(pp_set_allocator(&failing));
-    uint64_t reference[OP_COUNT];
+    alloc_count.owner = pthread_self();
+    uint64_t reference[MAX_OPS];
+    cr_assert_leq(so->count, MAX_OPS);
     int failed_op = -1;
-    const int64_t total = run_script(0, reference, NULL, &failed_op);
-    cr_assert_gt(total, 100, "the script made only %lld allocations", (long long)total);
-
-    int per_op[OP_COUNT] = {0};
+    char *saved = NULL;
+    const int64_t total = run_script(so, 0, reference, NULL, &failed_op, &saved);
+    cr_assert(!alloc_count.other_thread, "a worker thread allocated");
+    int per_op[MAX_OPS] = {0};
     for (int64_t n = 1; n <= total; n++) {
-        const int64_t made = run_script(n, NULL, reference, &failed_op);
-        /* Which worker thread grows its scratch first can vary, so a run may make a few fewer. */
-        cr_assert(failed_op >= 0 || made < n, "allocation %lld of %lld was made but never failed", (long long)n,
-                  (long long)total);
-        if (failed_op >= 0)
-            per_op[failed_op]++;
+        run_script(so, n, NULL, reference, &failed_op, &saved);
+        cr_assert_geq(failed_op, 0, "allocation %lld of %lld was never made", (long long)n, (long long)total);
+        per_op[failed_op]++;
     }
-    /* Every kind of call in the script allocates somewhere, or the sweep would not reach it. */
-    static const char *const must_fail[] = {"op_create_world", "op_terrain", "op_crate0", "op_step", "op_paint", "op_cut_shelf",
-                                            "op_save_snapshot", "op_load_snapshot", "op_save_png", "op_load_png"};
-    for (size_t k = 0; k < sizeof must_fail / sizeof *must_fail; k++) {
+    for (int k = 0; k < must_count; k++) {
         int n = 0;
-        for (int i = 0; i < OP_COUNT; i++)
-            n += strcmp(ops[i].name, must_fail[k]) == 0 ? per_op[i] : 0;
+        for (int i = 0; i < so->count; i++)
+            n += strcmp(so->ops[i].name, must_fail[k]) == 0 ? per_op[i] : 0;
         cr_assert_gt(n, 0, "no allocation failed inside %s", must_fail[k]);
     }
     cr_log_info("out_of_memory: %lld allocations, each failed in turn", (long long)total);
+    free(saved);
     PP_OK_OR_FAIL(pp_set_allocator(NULL));
+}
+
+Test(out_of_memory, every_allocation_of_a_scene_can_fail_and_changes_nothing, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_create_world", "op_terrain", "op_crate0", "op_step",
+                                            "op_paint", "op_cut_shelf", "op_cut_bar", "op_save_snapshot",
+                                            "op_load_snapshot",
+                                            "op_save_png", "op_load_png"};
+    const script_ops so = {scene_ops, (int)(sizeof scene_ops / sizeof *scene_ops), false};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
+}
+
+Test(out_of_memory, every_allocation_of_the_worker_pool_can_fail_and_changes_nothing, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_giant", "op_step"};
+    const script_ops so = {pool_ops, (int)(sizeof pool_ops / sizeof *pool_ops), true};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
 }
 
 Test(out_of_memory, the_allocator_is_set_only_while_no_world_exists)
@@ -420,9 +507,48 @@ Test(out_of_memory, the_allocator_is_set_only_while_no_world_exists)
     EXPECT_ERR(pp_set_allocator(&failing), PP_ERR_INVALID_ARGUMENT, "worlds exist");
     PP_OK_OR_FAIL(pp_world_destroy(w));
     PP_OK_OR_FAIL(pp_set_allocator(&failing));
-    alloc_count.calls = 0, alloc_count.fail_at = 0;
+    alloc_count.calls = 0, alloc_count.fail_at = 0, alloc_count.owner = pthread_self();
     w = make_world(0, 0);
     cr_assert_gt(alloc_count.calls, 0, "the world was not allocated through the allocator");
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    PP_OK_OR_FAIL(pp_set_allocator(NULL));
+}
+
+/* A size over a documented limit is refused with PP_ERR_LIMIT before the library allocates anything. */
+Test(out_of_memory, limits_are_refused_before_anything_is_allocated, .timeout = 120)
+{
+    const pp_allocator counting = {failing_alloc, failing_realloc, failing_free, NULL};
+    PP_OK_OR_FAIL(pp_set_allocator(&counting));
+    alloc_count.owner = pthread_self();
+    alloc_count.fail_at = 0;
+    pp_world w = make_world(0, 0);
+
+    uint8_t tiny[4] = {1, 1, 1, 1};
+    pp_body_def d = body_def(PP_BODY_STATIC, 0, 0, 0);
+    d.mask = tiny;
+    d.width = PP_MAX_BITMAP_SIDE + 1, d.height = 1;
+    pp_body b = {0};
+    alloc_count.calls = 0;
+    EXPECT_ERR(pp_body_create(w, &d, &b), PP_ERR_LIMIT, "PP_MAX_BITMAP_SIDE");
+    d.width = PP_MAX_BITMAP_SIDE, d.height = PP_MAX_BITMAP_AREA / PP_MAX_BITMAP_SIDE + 1;
+    EXPECT_ERR(pp_body_create(w, &d, &b), PP_ERR_LIMIT, "PP_MAX_BITMAP_AREA");
+    cr_assert_eq(alloc_count.calls, 0, "a refused bitmap allocated %lld times", (long long)alloc_count.calls);
+
+    /* PP_MAX_WORLDS: this process holds one world already. */
+    static pp_world worlds[PP_MAX_WORLDS];
+    const pp_world_def def = pp_world_def_default();
+    int32_t n = 0;
+    while (n < PP_MAX_WORLDS - 1 && pp_world_create(&def, &worlds[n]) == PP_OK)
+        n++;
+    cr_assert_eq(n, PP_MAX_WORLDS - 1, "world %d of %d was refused: %s", n + 2, PP_MAX_WORLDS, pp_last_error());
+    pp_world extra = {7};
+    alloc_count.calls = 0;
+    EXPECT_ERR(pp_world_create(&def, &extra), PP_ERR_LIMIT, "PP_MAX_WORLDS");
+    cr_assert_eq(alloc_count.calls, 0, "the refused world allocated %lld times", (long long)alloc_count.calls);
+    cr_assert_eq(extra.id, 7, "a refused create wrote its out handle");
+    for (int32_t i = 0; i < n; i++)
+        PP_OK_OR_FAIL(pp_world_destroy(worlds[i]));
+
     PP_OK_OR_FAIL(pp_world_destroy(w));
     PP_OK_OR_FAIL(pp_set_allocator(NULL));
 }
