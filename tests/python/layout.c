@@ -80,6 +80,9 @@ int main(void)
     F(pp_collision_view, intersection); F(pp_collision_view, critical);
     end();
 
+    S(pp_allocator); F(pp_allocator, alloc); F(pp_allocator, realloc); F(pp_allocator, free); F(pp_allocator, user);
+    end();
+
     /* The enums, whose size ctypes takes on trust. */
     S(pp_status); end();
     S(pp_backend); end();

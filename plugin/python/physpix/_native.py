@@ -144,12 +144,25 @@ class pp_collision_view(ctypes.Structure):
     ]
 
 
+pp_log_fn = ctypes.CFUNCTYPE(None, c_int, c_char_p, c_void_p)
+pp_alloc_fn = ctypes.CFUNCTYPE(c_void_p, c_uint64, c_void_p)
+pp_realloc_fn = ctypes.CFUNCTYPE(c_void_p, c_void_p, c_uint64, c_void_p)
+pp_free_fn = ctypes.CFUNCTYPE(None, c_void_p, c_void_p)
+
+
+class pp_allocator(ctypes.Structure):
+    _fields_ = [
+        ("alloc", pp_alloc_fn),
+        ("realloc", pp_realloc_fn),
+        ("free", pp_free_fn),
+        ("user", c_void_p),
+    ]
+
+
 # Every public struct, by its C name (the layout test walks this).
 STRUCTS = {cls.__name__: cls for cls in
            (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_step_stats,
-            pp_camera, pp_timed_edit, pp_collision_view)}
-
-pp_log_fn = ctypes.CFUNCTYPE(None, c_int, c_char_p, c_void_p)
+            pp_camera, pp_timed_edit, pp_collision_view, pp_allocator)}
 
 STATUS = "status"  # marks a function returning pp_status: its result goes through check()
 P = POINTER
@@ -161,6 +174,7 @@ SIGNATURES = {
     "pp_status_name": (c_char_p, [c_enum]),
     "pp_last_error": (c_char_p, []),
     "pp_set_log_hook": (None, [pp_log_fn, c_void_p]),
+    "pp_set_allocator": (STATUS, [P(pp_allocator)]),
     "pp_world_def_default": (pp_world_def, []),
     "pp_world_def_preset": (pp_world_def, [c_enum]),
     "pp_world_create": (STATUS, [P(pp_world_def), P(pp_world)]),
