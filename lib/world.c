@@ -525,23 +525,41 @@ static bool undo_room(void **items, int32_t *capacity, int32_t n, size_t size)
     return true;
 }
 
-/* Save what a step may change. It allocates first and changes nothing, so a failure here is harmless. */
+/* Save a movable body's part of the step, once a step. */
+static void save_body(step_undo *u, const body *bd)
+{
+    step_saved_body *sv = &u->bodies[bd->index];
+    if (!bd->sb.body || sv->step == u->step)
+        return;
+    sv->step = u->step;
+    solver_body_save(&bd->sb, &sv->ode);
+    sv->pos = bd->pos, sv->angle = bd->angle, sv->cos_a = bd->cos_a, sv->sin_a = bd->sin_a;
+    sv->slow_time = bd->slow_time, sv->aabb = bd->aabb;
+}
+
+/* Save what a step may change. It allocates first and changes nothing, so a failure here is harmless.
+ * A sleeper changes only if a contact joint lets ODE wake it: save_contact_bodies saves it then. */
 static pp_status step_save(world *wd)
 {
     step_undo *u = &wd->undo;
-    if (!undo_room((void **)&u->bodies, &u->body_capacity, wd->body_capacity, sizeof *u->bodies) ||
-        !undo_room((void **)&u->contacts, &u->contact_capacity, wd->contact_count, sizeof *u->contacts) ||
+    if (wd->body_capacity > u->body_capacity) {
+        step_saved_body *p = pp_realloc(u->bodies, (size_t)wd->body_capacity * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
+                           (int)wd->live_count);
+        memset(p + u->body_capacity, 0, (size_t)(wd->body_capacity - u->body_capacity) * sizeof *p); /* step 0: never */
+        u->bodies = p;
+        u->body_capacity = wd->body_capacity;
+    }
+    if (!undo_room((void **)&u->contacts, &u->contact_capacity, wd->contact_count, sizeof *u->contacts) ||
         !undo_room((void **)&u->order, &u->order_capacity, wd->broad.order_count, sizeof *u->order))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
+    u->step++;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
-        if (!bd || !bd->sb.body)
-            continue;
-        step_saved_body *sv = &u->bodies[i];
-        solver_body_save(&bd->sb, &sv->ode);
-        sv->pos = bd->pos, sv->angle = bd->angle, sv->cos_a = bd->cos_a, sv->sin_a = bd->sin_a;
-        sv->slow_time = bd->slow_time, sv->aabb = bd->aabb;
+        if (bd && bd->sb.body && solver_body_is_awake(&bd->sb))
+            save_body(u, bd);
     }
     if (wd->contact_count > 0)
         memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
@@ -554,15 +572,24 @@ static pp_status step_save(world *wd)
     return PP_OK;
 }
 
-/* Put back what step_save saved; the buffers it restores into are at least as large as when saved. */
+/* Before the solver runs: every body a contact joint may wake is saved. */
+static void save_contact_bodies(world *wd)
+{
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].a.id - 1]);
+        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].b.id - 1]);
+    }
+}
+
+/* Put back what the step saved; the buffers it restores into are at least as large as when saved. */
 static void step_restore(world *wd)
 {
     const step_undo *u = &wd->undo;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
-        if (!bd || !bd->sb.body)
-            continue;
         const step_saved_body *sv = &u->bodies[i];
+        if (!bd || sv->step != u->step)
+            continue;
         solver_body_restore(&bd->sb, &sv->ode);
         bd->pos = sv->pos, bd->angle = sv->angle, bd->cos_a = sv->cos_a, bd->sin_a = sv->sin_a;
         bd->slow_time = sv->slow_time, bd->aabb = sv->aabb;
@@ -588,6 +615,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         const double t0 = now_ms();
         if ((st = continuous_begin(wd)))
             return st;
+        save_contact_bodies(wd);
         add_contact_joints(wd);
         if (!solver_step(wd->solver, h, wd->awake_movers > 0))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");

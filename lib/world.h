@@ -47,6 +47,7 @@ typedef struct continuous_pose {
 
 /* A movable body's part of what a step changes, saved so that a step that fails can be undone. */
 typedef struct step_saved_body {
+    uint64_t step;            /* the step that saved it: a body is saved at most once a step */
     solver_exact_state ode;
     dvec2 pos;
     double angle, cos_a, sin_a, slow_time;
@@ -55,8 +56,9 @@ typedef struct step_saved_body {
 
 /* Everything pp_world_step changes after its timed edits, saved before it changes any of it. */
 typedef struct step_undo {
-    step_saved_body *bodies;  /* by slot; only movable bodies' entries are filled */
+    step_saved_body *bodies;  /* by slot: awake movable bodies, and sleepers once a contact may wake them */
     int32_t body_capacity;
+    uint64_t step;            /* counts steps, so a saved entry is known as this step's */
     pp_contact *contacts;
     int32_t contact_count, contact_capacity;
     uint32_t *order;          /* the broadphase's sort order, which the next sweep starts from */

@@ -103,6 +103,54 @@ static pp_status op_disc(script *s)
     return pp_body_create(s->w, &d, &s->disc);
 }
 
+/* ---- sleepers: a resting stack that a falling crate wakes mid-step ---- */
+
+static pp_status op_create_sleepy_world(script *s)
+{
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_CPU;
+    d.sleep_time = 0.04f; /* a crate at rest sleeps after three steps */
+    return pp_world_create(&d, &s->w);
+}
+
+static pp_status op_stack(script *s, int k)
+{
+    pp_body_def d = crate_def(s, 0);
+    d.position = v2(60, 24.0f - 16 * k); /* resting on the terrain's top (y = 32), then on each other */
+    d.angle = 0;
+    return pp_body_create(s->w, &d, &s->crates[k]);
+}
+static pp_status op_stack0(script *s) { return op_stack(s, 0); }
+static pp_status op_stack1(script *s) { return op_stack(s, 1); }
+
+static int32_t is_awake(const script *s, pp_body b)
+{
+    int32_t awake = 0;
+    PP_OK_OR_FAIL(pp_body_is_awake(s->w, b, &awake));
+    return awake;
+}
+
+/* A crate thrown down onto the sleeping stack: the top crate wakes in the first substep, and the
+ * bottom one, which the broadphase then pairs with it, in a later one. */
+static pp_status op_faller(script *s)
+{
+    cr_assert(!is_awake(s, s->crates[0]) && !is_awake(s, s->crates[1]), "the stack is not asleep");
+    pp_body_def d = crate_def(s, 0);
+    d.position = v2(60, -9), d.angle = 0, d.linear_velocity = v2(0, 600);
+    return pp_body_create(s->w, &d, &s->crates[2]);
+}
+
+static pp_status op_step_hit(script *s)
+{
+    const pp_status st = pp_world_step(s->w, 1.0f / 60);
+    if (st == PP_OK)
+        cr_assert(is_awake(s, s->crates[0]) && is_awake(s, s->crates[1]), "the falling crate woke %d of 2",
+                  is_awake(s, s->crates[0]) + is_awake(s, s->crates[1]));
+    else
+        cr_assert(!is_awake(s, s->crates[0]) && !is_awake(s, s->crates[1]), "a failed step left the stack awake");
+    return st;
+}
+
 /* A static block and a dynamic giant sunk into it, far from the rest: a batch over the pool's threshold. */
 static pp_status op_block(script *s)
 {
@@ -269,6 +317,13 @@ static const op scene_ops[] = {
 static const op pool_ops[] = {
     OP(op_create_world), OP(op_terrain), OP(op_low_crate), OP(op_block), OP(op_giant), OP(op_step), OP(op_step),
     OP(op_step), OP(op_save_snapshot),
+};
+
+/* A stack falls asleep; a thrown crate wakes it in the middle of a step. */
+static const op sleeper_ops[] = {
+    OP(op_create_sleepy_world), OP(op_terrain), OP(op_stack0), OP(op_stack1), OP(op_step), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_faller), OP(op_step_hit), OP(op_step), OP(op_save_snapshot),
 };
 
 typedef struct script_ops {
@@ -495,6 +550,13 @@ Test(out_of_memory, every_allocation_of_the_worker_pool_can_fail_and_changes_not
 {
     static const char *const must_fail[] = {"op_giant", "op_step"};
     const script_ops so = {pool_ops, (int)(sizeof pool_ops / sizeof *pool_ops), true};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
+}
+
+Test(out_of_memory, a_step_that_fails_after_waking_sleepers_puts_them_back_to_sleep, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_step_hit"};
+    const script_ops so = {sleeper_ops, (int)(sizeof sleeper_ops / sizeof *sleeper_ops), false};
     fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
 }
 
