@@ -24,7 +24,8 @@ FUZZ_BAD := ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|ERROR: l
 
 # The objects and binaries are kept: pattern rules would delete them as intermediates.
 .PRECIOUS: $(FUZZ_DIR)/obj/%.o $(FUZZ_DIR)/fuzz_%
-.PHONY: fuzz test-fuzz fuzz-seeds $(FUZZ_TARGETS:%=fuzz-run-%) $(FUZZ_TARGETS:%=test-fuzz-run-%)
+# (fuzz-run-% and test-fuzz-run-% are pattern rules, which make skips for .PHONY targets: no such files exist.)
+.PHONY: fuzz test-fuzz fuzz-seeds
 
 $(FUZZ_DIR)/obj/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(@D)
@@ -61,13 +62,13 @@ fuzz-run-%: $(FUZZ_DIR)/%
 
 fuzz: $(FUZZ_BINS)
 	$(MAKE) $(FUZZ_TARGETS:%=fuzz-run-%)
+	@for t in $(FUZZ_TARGETS); do echo "$$t: $$(grep -E '^#[0-9]+.*DONE' $(FUZZ_DIR)/$$t.log | tail -n 1)"; done
 
 # Replay every committed input once (corpus and regressions), then fuzz briefly with a fixed seed on a copy.
 test-fuzz-run-%: $(FUZZ_DIR)/%
 	@rm -rf $(FUZZ_DIR)/corpus-test/$* && mkdir -p $(FUZZ_DIR)/corpus-test/$* && cp tests/fuzz/corpus/$*/* $(FUZZ_DIR)/corpus-test/$*/
 	@$(call fuzz_run,$*,tests/fuzz/corpus/$* $(wildcard tests/fuzz/regressions/$*),-runs=0,$(FUZZ_DIR)/$*.replay.log)
-	@echo "$*: replayed $$(cat tests/fuzz/corpus/$*/* $(wildcard tests/fuzz/regressions/$*/*) /dev/null | wc -c) bytes of \
-	  $$(ls tests/fuzz/corpus/$* $(wildcard tests/fuzz/regressions/$*) | grep -vc ':$$\|^$$') inputs"
+	@echo "$*: replayed $$(find tests/fuzz/corpus/$* $(wildcard tests/fuzz/regressions/$*) -type f | wc -l) inputs"
 	@$(call fuzz_run,$*,$(FUZZ_DIR)/corpus-test/$*,-seed=$(FUZZ_SEED) -max_total_time=$(FUZZ_TEST_SECONDS) -print_final_stats=1,$(FUZZ_DIR)/$*.test.log)
 	@echo "$*: $$(grep -E '^stat::number_of_executed_units' $(FUZZ_DIR)/$*.test.log | sed 's/.*: *//') runs in $(FUZZ_TEST_SECONDS) s, no reports"
 

@@ -113,7 +113,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (st != PP_OK)
         return 0;
     read_results(w);
-    for (int i = 0; i < FUZZ_SCENE_MAX_STEPS; i++) {
+    for (int i = 0; i < FUZZ_SCENE_MAX_STEPS && !fuzz_too_fast(w); i++) {
         /* Two ordinary steps, then long ones towards the next pending edit so the scene's edits run. */
         float dt = 1.0f / 60;
         if (i >= 2) {

@@ -56,7 +56,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(st != PP_ERR_INVALID_HANDLE && st != PP_ERR_ABI, "pp_world_load_snapshot: %d", (int)st);
     if (st != PP_OK)
         return 0;
-    for (int i = 0; i < FUZZ_SNAPSHOT_STEPS; i++) {
+    for (int i = 0; i < FUZZ_SNAPSHOT_STEPS && !fuzz_too_fast(w); i++) {
         const pp_status s = ST(pp_world_step(w, 1.0f / 60));
         FUZZ_CHECK(s == PP_OK || s == PP_ERR_UNSUPPORTED || s == PP_ERR_OUT_OF_MEMORY, "step: %d", (int)s);
         int32_t n = 0;
