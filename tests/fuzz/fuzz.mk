@@ -13,7 +13,8 @@ FUZZ_OBJ          := $(LIB_SRC:lib/%.c=$(FUZZ_DIR)/obj/%.o) $(FUZZ_DIR)/obj/glsl
 FUZZ_SAN          := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 FUZZ_CFLAGS       := $(CFLAGS_) -O1 -g $(FUZZ_SAN)
 FUZZ_HDR          := tests/fuzz/fuzz_common.h tests/fuzz/fuzz_archive.h include/physpix.h
-# Per target: the longest input, and the dictionary of the JSON targets.
+# Per target: the longest input, and the dictionary of the JSON targets. Every target: 10 s and 256 MB in one
+# malloc at most (no legitimate input of the harnesses comes near either).
 FUZZ_OPTS_fuzz_png      := -max_len=16384
 FUZZ_OPTS_fuzz_scene    := -max_len=4096 -dict=tests/fuzz/json.dict
 FUZZ_OPTS_fuzz_snapshot := -max_len=16384 -dict=tests/fuzz/json.dict
@@ -48,7 +49,7 @@ fuzz-seeds: $(FUZZ_DIR)/make_seeds
 
 # $(call fuzz_run,target,corpus dirs,options,log): run one binary, keep its log, fail on any report.
 fuzz_run = mkdir -p $(FUZZ_DIR)/artifacts/$(1) && \
-	$(FUZZ_ENV) $(FUZZ_DIR)/$(1) $(FUZZ_OPTS_$(1)) -timeout=10 -artifact_prefix=$(FUZZ_DIR)/artifacts/$(1)/ \
+	$(FUZZ_ENV) $(FUZZ_DIR)/$(1) $(FUZZ_OPTS_$(1)) -timeout=10 -malloc_limit_mb=256 -artifact_prefix=$(FUZZ_DIR)/artifacts/$(1)/ \
 	  $(3) $(2) > $(4) 2>&1; rc=$$?; \
 	if [ $$rc -ne 0 ] || grep -Eq '$(FUZZ_BAD)' $(4); then \
 	  tail -n 60 $(4); echo "$(1): FAILED (exit $$rc; log $(4), reproducer in $(FUZZ_DIR)/artifacts/$(1)/)"; exit 1; \
