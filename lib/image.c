@@ -83,6 +83,9 @@ static pp_status reader_open(png_session *r, const char *fn, const char *path)
      * length before refusing it: a 115-byte file declaring a 1.7 GB sPLT took 1.7 GB (found by fuzz_png). */
     static const png_byte unused[] = "bKGD\0cHRM\0eXIf\0gAMA\0hIST\0iCCP\0iTXt\0oFFs\0pCAL\0pHYs\0sBIT\0sCAL\0sPLT\0"
                                      "sRGB\0tEXt\0tIME\0zTXt";
+    if (setjmp(png_jmpbuf(r->png))) /* the list is allocated: libpng reports no memory by png_error */
+        return pp_fail(r->out_of_memory ? PP_ERR_OUT_OF_MEMORY : PP_ERR_FORMAT, "%s: cannot set up the decoder for '%s': %s",
+                       fn, path, r->error);
     png_set_keep_unknown_chunks(r->png, PNG_HANDLE_CHUNK_NEVER, unused, (int)(sizeof unused / 5));
     return PP_OK;
 }

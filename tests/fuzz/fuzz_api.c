@@ -3,7 +3,9 @@
  * read-out, pair queries and snapshots — with stale, zero and random handles, NULL out-pointers, NaN and
  * infinite floats, sizes past the limits and capacities that do not match. Every status is checked, and the
  * invariants that hold whatever the arguments (a refused create adds no body, a destroyed handle is refused
- * with PP_ERR_INVALID_HANDLE). Everything is destroyed at the end of each input. */
+ * with PP_ERR_INVALID_HANDLE). An op can make a later allocation fail (pp_set_allocator): the call must then
+ * return PP_ERR_OUT_OF_MEMORY and change nothing the harness can see. Everything is destroyed at the end of each
+ * input. */
 #include "fuzz_common.h"
 
 #include <math.h>
@@ -72,9 +74,41 @@ static int steps, snapshots;
 static char snap_dir[300];
 static uint8_t *plane; /* MAX_SIDE² × 4 bytes of pixels for creates and writes */
 
+/* Allocation failures on demand: op_fail_soon makes the k-th allocation from now fail, once. */
+static int64_t fail_countdown;
+static int injected; /* an allocation failed during the current op */
+
+static void *fail_soon_alloc(uint64_t size, void *user)
+{
+    if (fail_countdown > 0 && --fail_countdown == 0) {
+        injected = 1;
+        return NULL;
+    }
+    return malloc(size);
+}
+
+static void *fail_soon_realloc(void *ptr, uint64_t size, void *user)
+{
+    if (fail_countdown > 0 && --fail_countdown == 0) {
+        injected = 1;
+        return NULL;
+    }
+    return realloc(ptr, size);
+}
+
+static void fail_soon_free(void *ptr, void *user) { free(ptr); }
+
+static void op_fail_soon(reader *r) { fail_countdown = 1 + u8(r) % 64; }
+
+/* The call ran out of memory because op_fail_soon made it. */
+#define INJECTED_OOM(st) (injected && (st) == PP_ERR_OUT_OF_MEMORY)
+
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     fuzz_no_gpu();
+    static const pp_allocator failing = {fail_soon_alloc, fail_soon_realloc, fail_soon_free, NULL};
+    if (pp_set_allocator(&failing) != PP_OK)
+        abort();
     snprintf(snap_dir, sizeof snap_dir, "%s/snap", fuzz_scratch());
     return 0;
 }
@@ -431,12 +465,18 @@ static void op_step(reader *r)
         return;
     steps++;
     const int32_t before = t ? count_bodies(w) : 0;
+    double time_before = 0, time_after = 0;
+    if (t)
+        pp_world_get_time(w, &time_before);
     const pp_status st = ST(pp_world_step(w, dt));
     if (!t)
         FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE, "step of a dead world: %d", (int)st);
     else if (!(dt > 0 && dt <= 1 && isfinite(dt)))
         FUZZ_CHECK(st == PP_ERR_INVALID_ARGUMENT, "step with dt %g: %d", dt, (int)st);
-    else
+    else if (injected && st == PP_ERR_OUT_OF_MEMORY) { /* the step was not taken */
+        pp_world_get_time(w, &time_after);
+        FUZZ_CHECK(time_after == time_before, "a step that ran out of memory moved the clock");
+    } else
         FUZZ_CHECK(st == PP_OK, "step: %d", (int)st);
     if (t && st == PP_OK) {
         pp_step_stats s;
@@ -579,12 +619,16 @@ static void op_snapshot(reader *r)
     if (!t)
         FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE || st == PP_ERR_INVALID_ARGUMENT, "save of a dead world: %d", (int)st);
     else
-        FUZZ_CHECK(st == PP_OK || st == PP_ERR_INVALID_ARGUMENT, "save: %d", (int)st);
+        FUZZ_CHECK(st == PP_OK || st == PP_ERR_INVALID_ARGUMENT || INJECTED_OOM(st), "save: %d", (int)st);
     if (st != PP_OK)
         return;
     pp_world w2 = {0};
     const pp_status ls = ST(pp_world_load_snapshot(snap_dir, &w2));
-    FUZZ_CHECK(ls == PP_OK, "loading a snapshot just saved: %d (%s)", (int)ls, pp_last_error());
+    FUZZ_CHECK(ls == PP_OK || INJECTED_OOM(ls), "loading a snapshot just saved: %d (%s)", (int)ls, pp_last_error());
+    if (ls != PP_OK) {
+        FUZZ_CHECK(w2.id == 0, "a failed load wrote its out handle");
+        return;
+    }
     FUZZ_CHECK(count_bodies(w2) == count_bodies(w), "body counts differ after save and load");
     if (u8(r) & 1) {
         ST(pp_world_step(w, 1.0f / 60));
@@ -603,8 +647,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     reader rd = {data, size}, *r = &rd;
     memset(worlds, 0, sizeof worlds);
     nstale_worlds = 0, steps = 0, snapshots = 0;
+    fail_countdown = 0;
     for (int ops = 0; r->n && ops < 200; ops++) {
-        switch (u8(r) % 22) {
+        injected = 0;
+        switch (u8(r) % 23) {
         case 0: case 1: op_world_create(r); break;
         case 2: op_world_destroy(r); break;
         case 3: case 4: case 5: op_body_create(r); break;
@@ -622,10 +668,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 18: op_body_reads(r); break;
         case 19: op_collide(r, 0); break;
         case 20: op_collide(r, 1); break;
-        default: op_snapshot(r); break;
+        case 21: op_snapshot(r); break;
+        default: op_fail_soon(r); break;
         }
         FUZZ_CHECK(pp_status_name((pp_status)u8(r)) != NULL, "status name");
     }
+    fail_countdown = 0;
     for (int i = 0; i < MAX_WORLDS; i++)
         if (worlds[i].live)
             FUZZ_CHECK(ST(pp_world_destroy(worlds[i].w)) == PP_OK, "final destroy");
