@@ -21,7 +21,7 @@ WARN     := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wno-unused-parameter
 CFLAGS_  := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
 LIBCFLAGS := $(CFLAGS_) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
 LIBS     := -lode -lpng -lcjson -lm -lpthread -ldl
-SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
 
 LIB_SRC  := $(wildcard lib/*.c)
 GLSL_SRC := $(wildcard glsl/*.comp)
