@@ -21,15 +21,21 @@ PP_API pp_body_def pp_body_def_default(void)
     return d;
 }
 
-body *body_lookup(world *wd, pp_body b, const char *fn)
+body *body_find(const world *wd, pp_body b)
 {
     const uint32_t slot = (uint32_t)(b.id & 0xffffffffu) - 1, gen = (uint32_t)(b.id >> 32);
-    if (b.id == 0 || slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || !wd->bodies[slot]) {
+    if (b.id == 0 || slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen)
+        return NULL;
+    return wd->bodies[slot];
+}
+
+body *body_lookup(world *wd, pp_body b, const char *fn)
+{
+    body *bd = body_find(wd, b);
+    if (!bd)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: body handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)b.id);
-        return NULL;
-    }
-    return wd->bodies[slot];
+    return bd;
 }
 
 /* Look up both handles for a body call; returns the status to hand back. */

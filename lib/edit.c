@@ -255,6 +255,11 @@ PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float r
     int32_t hit = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++)
         hit += wd->bodies[i] && boxes_overlap(wd->bodies[i]->aabb, blast);
+    if (hit == 0) {
+        if (changed)
+            *changed = 0;
+        return PP_OK;
+    }
     edit_job *jobs = pp_malloc((size_t)hit * sizeof *jobs);
     if (!jobs)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)hit);

@@ -149,13 +149,6 @@ static bool write_slots(const world *wd, cJSON *root)
     return add(root, "generations", gens) && add(root, "free_slots", free_slots);
 }
 
-/* Whether a pending edit names a body destroyed since it was scheduled (compare body_lookup). */
-static bool edit_body_gone(const world *wd, pp_body b)
-{
-    const uint32_t slot = (uint32_t)(b.id & 0xffffffffu) - 1, gen = (uint32_t)(b.id >> 32);
-    return b.id != 0 && (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || !wd->bodies[slot]);
-}
-
 static bool write_edits_and_events(const world *wd, cJSON *root)
 {
     cJSON *edits = cJSON_CreateArray(), *events = cJSON_CreateArray();
@@ -163,7 +156,7 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
     for (int32_t i = 0; ok && i < wd->edit_count; i++) {
         /* An edit whose body is gone would only be skipped when due, and pp_world_schedule_edit refuses its
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
-        if (edit_body_gone(wd, wd->edits[i].body))
+        if (wd->edits[i].body.id != 0 && !body_find(wd, wd->edits[i].body))
             continue;
         /* pp_world_schedule_edit takes a time before 0 (due at once), world.json's reader does not (fuzz_api).
          * At 0 it is as due, and the list's order, which loading keeps among equal times, is unchanged. */

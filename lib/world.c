@@ -237,17 +237,19 @@ PP_API pp_status pp_world_destroy(pp_world w)
     return PP_OK;
 }
 
-/* Room for one more item in an array that doubles as it fills; false without memory. */
-static bool grow_for_one(void **items, int32_t count, int32_t *capacity, size_t size)
+/* Room for n items in an array that doubles as it fills (from 64); false without memory, the array kept. */
+static bool room_for(void **items, int32_t n, int32_t *capacity, size_t size)
 {
-    if (count < *capacity)
+    if (n <= *capacity)
         return true;
-    const int32_t n = *capacity ? 2 * *capacity : 64;
-    void *p = pp_realloc(*items, (size_t)n * size);
+    int32_t cap = *capacity ? *capacity : 64;
+    while (cap < n)
+        cap *= 2;
+    void *p = pp_realloc(*items, (size_t)cap * size);
     if (!p)
         return false;
     *items = p;
-    *capacity = n;
+    *capacity = cap;
     return true;
 }
 
@@ -265,7 +267,7 @@ pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t pe
 
 static pp_status push_contact(world *wd, const pp_contact *c)
 {
-    if (!grow_for_one((void **)&wd->contacts, wd->contact_count, &wd->contact_capacity, sizeof *c))
+    if (!room_for((void **)&wd->contacts, wd->contact_count + 1, &wd->contact_capacity, sizeof *c))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)wd->contact_count + 1);
     wd->contacts[wd->contact_count++] = *c;
     return PP_OK;
@@ -512,19 +514,6 @@ static pp_status apply_due_edits(world *wd, float dt)
     return PP_OK;
 }
 
-/* Room for n items in an undo array; the old contents need not survive. */
-static bool undo_room(void **items, int32_t *capacity, int32_t n, size_t size)
-{
-    if (n <= *capacity)
-        return true;
-    void *p = pp_realloc(*items, (size_t)n * size);
-    if (!p)
-        return false;
-    *items = p;
-    *capacity = n;
-    return true;
-}
-
 /* Save a movable body's part of the step, once a step. */
 static void save_body(step_undo *u, const body *bd)
 {
@@ -551,8 +540,8 @@ static pp_status step_save(world *wd)
         u->bodies = p;
         u->body_capacity = wd->body_capacity;
     }
-    if (!undo_room((void **)&u->contacts, &u->contact_capacity, wd->contact_count, sizeof *u->contacts) ||
-        !undo_room((void **)&u->order, &u->order_capacity, wd->broad.order_count, sizeof *u->order))
+    if (!room_for((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts) ||
+        !room_for((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
     u->step++;
@@ -661,6 +650,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->time += dt;
     return PP_OK;
 }
+
 PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
 {
     world *wd = world_lookup(w, "pp_world_get_def");
@@ -708,23 +698,16 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
 
 pp_status world_reserve_events(world *wd, int32_t n)
 {
-    if (wd->event_count + n <= wd->event_capacity)
-        return PP_OK;
-    int32_t cap = wd->event_capacity ? wd->event_capacity : 64;
-    while (cap < wd->event_count + n)
-        cap *= 2;
-    pp_event *p = pp_realloc(wd->events, (size_t)cap * sizeof *p);
-    if (!p)
+    if (!room_for((void **)&wd->events, wd->event_count + n, &wd->event_capacity, sizeof *wd->events))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)(wd->event_count + n));
-    wd->events = p;
-    wd->event_capacity = cap;
     return PP_OK;
 }
 
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
 {
-    if (!grow_for_one((void **)&wd->events, wd->event_count, &wd->event_capacity, sizeof *wd->events))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)wd->event_count + 1);
+    pp_status st = world_reserve_events(wd, 1);
+    if (st)
+        return st;
     wd->events[wd->event_count++] = (pp_event){type, 0, b, other};
     return PP_OK;
 }
@@ -825,7 +808,7 @@ PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
     pp_status st = check_timed_edit(wd, edit);
     if (st)
         return st;
-    if (!grow_for_one((void **)&wd->edits, wd->edit_count, &wd->edit_capacity, sizeof *edit))
+    if (!room_for((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *edit))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_schedule_edit: no memory for %d edits", (int)wd->edit_count + 1);
     /* Stable in time: after every edit due no later. */
     int32_t at = wd->edit_count;

@@ -108,6 +108,8 @@ typedef struct world {
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
 body *body_lookup(world *wd, pp_body b, const char *fn);
+/* The same lookup without recording a failure: NULL for a null, destroyed or stale handle. */
+body *body_find(const world *wd, pp_body b);
 
 /* Both lookups at once, as most body calls need them. */
 pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd);
