@@ -129,6 +129,7 @@ typedef struct pp_world_def {
     float max_correction_speed;     ///< fastest that contacts push overlapping bodies apart, px/s, > 0 (default 300)
     int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0 for one per CPU (default 0);
                                     ///< started only when a step's pairs are big enough to need them
+    uint32_t contact_events;        ///< nonzero: PP_EVENT_CONTACT_BEGIN/END are queued for pp_world_get_events (default 0)
 } pp_world_def;
 
 /// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
@@ -159,6 +160,11 @@ typedef struct pp_body_def {
     uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
     uint32_t bullet;          ///< nonzero: when fast, swept against every body it collides with, dynamic ones too,
                               ///< even in a world without `continuous` (default 0)
+    uint32_t is_sensor;       ///< nonzero: overlaps are reported as PP_EVENT_SENSOR_BEGIN/END, nothing collides with it
+                              ///< and rays and queries skip it; static and kinematic sensors need no mass (default 0)
+    uint32_t one_way;         ///< nonzero: a one-way platform; a contact is kept only when the other body arrives from
+                              ///< the `one_way_direction` side, and then for as long as they touch (default 0)
+    pp_vec2 one_way_direction; ///< the side bodies may land from, in bitmap axes, any length > 0 (default (0, −1): up)
 } pp_body_def;
 
 /// One contact point between two bodies.
@@ -169,22 +175,43 @@ typedef struct pp_contact {
     pp_vec2 normal;      ///< unit normal pointing from a to b
     float depth;         ///< penetration along the normal, px
     int32_t pixel_count; ///< intersecting pixels of the pair (shared by a pair's points)
+    float normal_impulse; ///< impulse the solver applied at this point along the normal in the last substep,
+                          ///< mass·px/s, ≥ 0 (force = impulse ÷ substep); 0 from pp_world_collide
+    uint32_t reserved;   ///< zero
 } pp_contact;
 
 /// What an event reports.
 typedef enum pp_event_type {
     PP_EVENT_BODY_SPLIT = 1,     ///< an edit cut `body` apart; `other` is a new body made of one of its islands
     PP_EVENT_BODY_DESTROYED = 2, ///< an edit left `body` without solid pixels; the handle is now stale
+    PP_EVENT_CONTACT_BEGIN = 3,  ///< `body` and `other` started touching (worlds with contact_events only)
+    PP_EVENT_CONTACT_END = 4,    ///< `body` and `other` stopped touching, or one of them was destroyed
+    PP_EVENT_SENSOR_BEGIN = 5,   ///< `other` started overlapping the sensor `body`
+    PP_EVENT_SENSOR_END = 6,     ///< `other` stopped overlapping the sensor `body`, or one of them was destroyed
     PP_EVENT_TYPE_FORCE_U32 = 0x7fffffff
 } pp_event_type;
 
 /// Something that happened to a body, read with pp_world_get_events.
 typedef struct pp_event {
-    pp_event_type type; ///< what happened
-    uint32_t reserved;  ///< zero
-    pp_body body;       ///< the body it happened to (SPLIT: the parent, which keeps the largest island)
-    pp_body other;      ///< SPLIT: the new body; DESTROYED: zero
+    pp_event_type type;   ///< what happened
+    uint32_t reserved;    ///< zero
+    pp_body body;         ///< the body it happened to (SPLIT: the parent, which keeps the largest island; SENSOR: the sensor)
+    pp_body other;        ///< SPLIT: the new body; DESTROYED: zero; CONTACT, SENSOR: the other body of the pair
+    pp_vec2 point;        ///< CONTACT_BEGIN, SENSOR_BEGIN: world point of the first contact, px; else zero
+    pp_vec2 normal;       ///< CONTACT_BEGIN, SENSOR_BEGIN: unit normal from `body` to `other`; else zero
+    float approach_speed; ///< CONTACT_BEGIN, SENSOR_BEGIN: speed at which the bodies closed along the normal
+                          ///< at the point before the solver acted, px/s, ≥ 0; else zero
+    uint32_t reserved2;   ///< zero
 } pp_event;
+
+/// The nearest solid pixel a ray meets, from pp_world_raycast.
+typedef struct pp_raycast_hit {
+    pp_body body;     ///< the body hit
+    pp_vec2 point;    ///< world point where the ray enters the first solid pixel, px
+    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes (the ray's reverse at fraction 0)
+    float fraction;   ///< where along from → to the hit lies, 0..1
+    uint32_t reserved; ///< zero
+} pp_raycast_hit;
 
 /// What the last pp_world_step did and what it cost.
 typedef struct pp_step_stats {
@@ -292,6 +319,22 @@ PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
 PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count);
 /// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
+/// Cast the segment from → to (world px) through the pixel grid of every body whose category_bits meet mask_bits
+/// (sensors are skipped); hit receives 1 and out the nearest solid pixel, or 0. A ray starting inside a solid
+/// pixel hits that body at fraction 0.
+PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
+                                  int32_t *hit);
+/// Write up to capacity bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square
+/// contains the world point (px), in slot order; count receives the total.
+PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_bits, pp_body *out, int32_t capacity,
+                                      int32_t *count);
+/// As pp_world_query_point, for bodies with a solid pixel whose centre lies in the world box [lower, upper] (px).
+PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, uint32_t mask_bits, pp_body *out,
+                                     int32_t capacity, int32_t *count);
+/// As pp_world_query_point, for bodies with a solid pixel whose centre lies within radius (px, ≥ 0) of a world
+/// point (px): the bodies pp_world_erase_circle would change.
+PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius, uint32_t mask_bits, pp_body *out,
+                                       int32_t capacity, int32_t *count);
 /// Run the narrowphase on one pair at the current poses, without stepping; count receives the total.
 PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
                                   int32_t *count);

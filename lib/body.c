@@ -18,6 +18,7 @@ PP_API pp_body_def pp_body_def_default(void)
     d.category_bits = 1;
     d.mask_bits = 0xffffffffu;
     d.alpha_threshold = 128;
+    d.one_way_direction = (pp_vec2){0, -1};
     return d;
 }
 
@@ -106,6 +107,9 @@ static pp_status check_body_def(const pp_body_def *d)
     if (!(d->linear_damping >= 0 && d->angular_damping >= 0) || !isfinite(d->linear_damping) ||
         !isfinite(d->angular_damping))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_damping and angular_damping must be finite and ≥ 0", fn);
+    const double dl = hypot(d->one_way_direction.x, d->one_way_direction.y);
+    if (d->one_way && !(dl > 0 && isfinite(dl)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: one_way_direction must be finite and not zero", fn);
     return raster_check_def(d);
 }
 
