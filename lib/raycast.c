@@ -36,6 +36,9 @@ static bool queried(const body *bd, uint32_t mask_bits)
 #ifndef RAY_EDGE_WINDOW
 #define RAY_EDGE_WINDOW 4 /* px: the window that places the edge along the normal */
 #endif
+#ifndef RAY_MISFIT
+#define RAY_MISFIT 0.08 /* the most of the edge window's weight that may disagree with the edge line */
+#endif
 #ifndef RAY_TAPER
 #define RAY_TAPER 1
 #endif
@@ -199,6 +202,26 @@ static bool window_surface(const pp_raster *r, dvec2 c, double R, dvec2 *n, doub
     return true;
 }
 
+/* How far the mask around c departs from the half-plane n·(p − c) < s: the weight of the pixels on the
+ * wrong side, as a fraction of the window's (radius R, the same taper). A straight edge, even a staircase
+ * one, leaves only pixels within a pixel of the line wrong. */
+static double edge_misfit(const pp_raster *r, dvec2 c, dvec2 n, double s, double R)
+{
+    double wrong = 0, total = 0;
+    const int32_t x0 = (int32_t)ceil(c.x - R - 0.5), x1 = (int32_t)floor(c.x + R - 0.5);
+    const int32_t y0 = (int32_t)ceil(c.y - R - 0.5), y1 = (int32_t)floor(c.y + R - 0.5);
+    for (int32_t y = y0; y <= y1; y++)
+        for (int32_t x = x0; x <= x1; x++) {
+            const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y, q = 1 - (dx * dx + dy * dy) / (R * R);
+            if (q <= 0)
+                continue;
+            total += q;
+            if (raster_solid_clamped(r, x, y) != (n.x * dx + n.y * dy < s))
+                wrong += q;
+        }
+    return wrong / total;
+}
+
 /* Fill a hit on body bd at pixel h of the bitmap-frame segment a + t·d (world from + t·(to − from)). */
 static void ray_result(const body *bd, dvec2 from, dvec2 to, dvec2 a, dvec2 d, const pixel_hit *h,
                        pp_raycast_hit *out)
@@ -229,7 +252,8 @@ static void ray_result(const body *bd, dvec2 from, dvec2 to, dvec2 a, dvec2 d, c
             /* The edge's offset from a smaller window: a curved edge bends away from its tangent line by
              * ρ²/2r, which a wide window would read as the edge lying deeper. */
             dvec2 unused;
-            if (!window_surface(&bd->raster, c, RAY_EDGE_WINDOW, &unused, &s))
+            if (!window_surface(&bd->raster, c, RAY_EDGE_WINDOW, &unused, &s) ||
+                edge_misfit(&bd->raster, c, m, s, RAY_EDGE_WINDOW) > RAY_MISFIT)
                 break;
             if (fabs(s) > 1.0)
                 break;
@@ -258,16 +282,21 @@ static int candidate_order(const void *pa, const void *pb)
     return a->t < b->t ? -1 : a->t > b->t ? 1 : (a->slot > b->slot) - (a->slot < b->slot);
 }
 
-/* Collect the bodies whose world box the segment meets, up to cap of them; returns how many there are. */
+/* Collect the bodies whose world box the segment from + t·d, t ∈ [0, 1], meets, up to cap of them; returns
+ * how many there are. The segment's own box rejects most bodies before the slab test. */
 static int32_t ray_candidates(const world *wd, dvec2 from, dvec2 d, uint32_t mask_bits, ray_candidate *c, int32_t cap)
 {
+    const double sx0 = fmin(from.x, from.x + d.x) - QUERY_SLACK, sx1 = fmax(from.x, from.x + d.x) + QUERY_SLACK;
+    const double sy0 = fmin(from.y, from.y + d.y) - QUERY_SLACK, sy1 = fmax(from.y, from.y + d.y) + QUERY_SLACK;
     int32_t n = 0;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
+        if (!bd || bd->aabb.x0 > sx1 || bd->aabb.x1 < sx0 || bd->aabb.y0 > sy1 || bd->aabb.y1 < sy0 ||
+            !queried(bd, mask_bits))
+            continue;
         double t0 = 0, t1 = 1;
         int face;
-        if (!queried(bd, mask_bits) ||
-            !clip_segment(from, d, bd->aabb.x0 - QUERY_SLACK, bd->aabb.y0 - QUERY_SLACK, bd->aabb.x1 + QUERY_SLACK,
+        if (!clip_segment(from, d, bd->aabb.x0 - QUERY_SLACK, bd->aabb.y0 - QUERY_SLACK, bd->aabb.x1 + QUERY_SLACK,
                           bd->aabb.y1 + QUERY_SLACK, &t0, &t1, &face))
             continue;
         if (n < cap)

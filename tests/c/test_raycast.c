@@ -194,6 +194,74 @@ Test(raycast, disc_1000_rays_point_within_half_a_pixel_normal_within_2_degrees)
     pp_world_destroy(w);
 }
 
+/* The march against a brute force: a 600×300 mask of scattered single pixels and 1 px lines (most tiles
+ * empty, the rest mixed), 2,000 random segments; the first pixel square each segment enters, by testing
+ * every solid pixel. Features this thin hold no straight edge across the 4 px window, so the point stays
+ * where the ray enters the pixel and the fraction must match to 1e-3 px. Rays that only graze the square
+ * they hit (inside it for under 1e-4 of their length) are drawn again. */
+Test(raycast, the_march_finds_the_first_pixel_a_brute_force_finds)
+{
+    enum { MW = 600, MH = 300 };
+    uint8_t *m = calloc(MW * MH, 1);
+    uint64_t seed = 5;
+    for (int k = 0; k < MW * MH / 500; k++)
+        m[(int)(rnd(&seed) * MH) * MW + (int)(rnd(&seed) * MW)] = 1;
+    for (int k = 0; k < 6; k++) {
+        const int y = (int)(rnd(&seed) * MH), x = (int)(rnd(&seed) * MW);
+        for (int i = 0; i < MW / 3; i++)
+            m[y * MW + (x + i) % MW] = 1, m[((y + i) % MH) * MW + x] = 1;
+    }
+    int n = 0;
+    int *px = malloc(sizeof *px * MW * MH), *py = malloc(sizeof *py * MW * MH);
+    for (int y = 0; y < MH; y++)
+        for (int x = 0; x < MW; x++)
+            if (m[y * MW + x])
+                px[n] = x, py[n] = y, n++;
+    pp_world w = make_world(0, 0);
+    pp_body_def d = body_def(PP_BODY_STATIC, 100 + MW / 2, 100 + MH / 2, 0); /* bitmap (x, y) is world (x + 100, y + 100) */
+    d.width = MW, d.height = MH, d.mask = m;
+    create_body_ok(w, &d);
+    int tested = 0, hits = 0;
+    while (tested < 2000) {
+        const pp_vec2 from = v2((float)(50 + 700 * rnd(&seed)), (float)(50 + 400 * rnd(&seed)));
+        const double len = 5 + 400 * rnd(&seed), a = 2 * M_PI * rnd(&seed);
+        const pp_vec2 to = v2((float)(from.x + len * cos(a)), (float)(from.y + len * sin(a)));
+        const double ax = from.x - 100.0, ay = from.y - 100.0, dx = to.x - (double)from.x, dy = to.y - (double)from.y;
+        double best = INFINITY, inside = 0;
+        for (int k = 0; k < n; k++) {
+            double t0 = 0, t1 = 1;
+            const double o[2] = {ax, ay}, v[2] = {dx, dy}, lo[2] = {px[k], py[k]};
+            for (int j = 0; j < 2 && t0 <= t1; j++) {
+                if (v[j] == 0) {
+                    if (o[j] < lo[j] || o[j] >= lo[j] + 1)
+                        t0 = 2;
+                    continue;
+                }
+                const double u = (lo[j] - o[j]) / v[j], e = (lo[j] + 1 - o[j]) / v[j];
+                t0 = fmax(t0, fmin(u, e)), t1 = fmin(t1, fmax(u, e));
+            }
+            if (t0 <= t1 && t0 < best)
+                best = t0, inside = t1 - t0;
+        }
+        if (best < INFINITY && inside < 1e-4)
+            continue;
+        int32_t hit = 0;
+        const pp_raycast_hit h = cast(w, from, to, ALL_BITS, &hit);
+        cr_assert_eq(hit, best < INFINITY, "ray %d: hit %d, the brute force %s", tested, hit,
+                     best < INFINITY ? "hits" : "misses");
+        if (hit) {
+            cr_assert_leq(fabs(h.fraction - best) * hypot(dx, dy), 1e-3, "ray %d (%g, %g)-(%g, %g): fraction %.7f, brute force %.7f", from.x, from.y, to.x, to.y,
+                          tested, h.fraction, best);
+            hits++;
+        }
+        tested++;
+    }
+    cr_assert_gt(hits, 400, "only %d of the rays hit: too few to test", hits);
+    cr_assert_lt(hits, 1900, "%d of the rays hit: too few misses to test", hits);
+    free(px), free(py), free(m);
+    pp_world_destroy(w);
+}
+
 /* ---- holes, starts inside, misses, filters, the nearest body --------------------------------------- */
 
 Test(raycast, rays_pass_through_a_hole_erased_a_step_before)
