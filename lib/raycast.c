@@ -27,21 +27,14 @@ static bool queried(const body *bd, uint32_t mask_bits)
 
 /* ---- rays ---------------------------------------------------------------------------------------- */
 
-/* The normal window: radius R, px, and the taper w = (1 − ρ²/R²)^RAY_TAPER. Picked by measurement on
- * 1,000 rays against a disc of radius 50 and a box drawn turned in its mask (tests/c/test_raycast.c;
- * the README has the figures): the lattice's first moment converges slowly, and R = 5 leaves 5° errors. */
-#ifndef RAY_WINDOW
-#define RAY_WINDOW 8
-#endif
-#ifndef RAY_EDGE_WINDOW
+/* The windows that read the surface from the mask, under the taper w = 1 − ρ²/R² (ρ from the window's
+ * centre). Picked by measurement on 1,000 rays against a disc of radius 50 and a box drawn turned in its
+ * mask (tests/c/test_raycast.c, figures in the README): the lattice's first moment converges slowly, so
+ * the normal needs R = 8 for 2° (R = 5 leaves 5°, and the taper (1 − ρ²/R²)² does worse than this one);
+ * the edge's offset comes from a 4 px window, which a curved edge bends less. */
+#define RAY_WINDOW 8      /* px: the normal's window */
 #define RAY_EDGE_WINDOW 4 /* px: the window that places the edge along the normal */
-#endif
-#ifndef RAY_MISFIT
-#define RAY_MISFIT 0.08 /* the most of the edge window's weight that may disagree with the edge line */
-#endif
-#ifndef RAY_TAPER
-#define RAY_TAPER 1
-#endif
+#define RAY_MISFIT 0.08   /* the most of the edge window's weight that may disagree with the edge line */
 
 /* Which faces of its pixel a ray entered through: bit 0 a vertical edge (x), bit 1 a horizontal one. */
 enum { FACE_X = 1, FACE_Y = 2 };
@@ -127,8 +120,9 @@ static bool ray_march(const pp_raster *r, dvec2 a, dvec2 d, pixel_hit *h)
             return true;
         }
         /* The box to leave: the empty tile, or the pixel. */
-        const int32_t bx0 = st == RASTER_EMPTY ? tx << RASTER_TILE_SHIFT : cx, bx1 = st == RASTER_EMPTY ? bx0 + RASTER_TILE : cx + 1;
-        const int32_t by0 = st == RASTER_EMPTY ? ty << RASTER_TILE_SHIFT : cy, by1 = st == RASTER_EMPTY ? by0 + RASTER_TILE : cy + 1;
+        const int32_t side = st == RASTER_EMPTY ? RASTER_TILE : 1;
+        const int32_t bx0 = st == RASTER_EMPTY ? tx << RASTER_TILE_SHIFT : cx, bx1 = bx0 + side;
+        const int32_t by0 = st == RASTER_EMPTY ? ty << RASTER_TILE_SHIFT : cy, by1 = by0 + side;
         const double tX = cross_at(sx > 0 ? bx1 : bx0, a.x, ix, sx), tY = cross_at(sy > 0 ? by1 : by0, a.y, iy, sy);
         face = (tX <= tY ? FACE_X : 0) | (tY <= tX ? FACE_Y : 0);
         t = fmin(tX, tY);
@@ -158,9 +152,9 @@ static bool body_ray(const body *bd, dvec2 a, dvec2 d, pixel_hit *h)
     return ray_march(r, a, d, h);
 }
 
-/* What the mask shows around a bitmap point c: the unit outward normal n (the area gradient
- * −Σ w·(p − c) over solid pixel centres p, under the taper) and the signed distance s along n from c to
- * the straight edge that would leave the window's weighted solid fraction. False without a gradient. */
+/* What the mask shows within R of a bitmap point c: the unit outward normal n (the area gradient
+ * −Σ w·(p − c) over solid pixel centres p) and the signed distance s along n from c to the straight edge
+ * that would leave the window's weighted solid fraction. False without a gradient. */
 static bool window_surface(const pp_raster *r, dvec2 c, double R, dvec2 *n, double *s)
 {
     double gx = 0, gy = 0, solid = 0, total = 0;
@@ -171,28 +165,21 @@ static bool window_surface(const pp_raster *r, dvec2 c, double R, dvec2 *n, doub
             const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y, q = 1 - (dx * dx + dy * dy) / (R * R);
             if (q <= 0)
                 continue;
-            double w = q;
-            for (int k = 1; k < RAY_TAPER; k++)
-                w *= q;
-            total += w;
+            total += q;
             if (raster_solid_clamped(r, x, y))
-                solid += w, gx -= w * dx, gy -= w * dy;
+                solid += q, gx -= q * dx, gy -= q * dy;
         }
     const double g = hypot(gx, gy);
     if (!(g > 1e-9 * total))
         return false;
     *n = dv(gx / g, gy / g);
-    /* The taper integrated across a chord at v·R is (1 − v²)^(k + 1/2); its weight beyond the edge,
-     * as a fraction, is monotone in v: bisect for the edge. */
+    /* The taper integrated along a chord at v·R from the centre is ∝ (1 − v²)^(3/2); the weight on the
+     * solid side of the edge, as a fraction, rises with v: bisect for the edge. */
     const double f = solid / total;
     double lo = -1, hi = 1;
     for (int k = 0; k < 40; k++) {
         const double v = 0.5 * (lo + hi), u = sqrt(fmax(0.0, 1 - v * v));
-#if RAY_TAPER == 1
-        const double below = 0.5 + (v * (5 - 2 * v * v) * u + 3 * asin(v)) / 8 / (3 * PP_PI / 8);
-#else
-        const double below = 0.5 + (v * (8 * v * v * v * v - 26 * v * v + 33) * u + 15 * asin(v)) / 48 / (5 * PP_PI / 16);
-#endif
+        const double below = 0.5 + (v * (5 - 2 * v * v) * u + 3 * asin(v)) / (3 * PP_PI);
         if (below < f)
             lo = v;
         else

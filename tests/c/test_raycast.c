@@ -127,7 +127,8 @@ static void box_accuracy(bool staircase)
         const pp_raycast_hit h = cast(w, from, to, ALL_BITS, &hit);
         cr_assert_eq(hit, 1, "ray %d missed the box", e.n);
         /* The reported point in the box frame, and its distance from the outline. */
-        const double qx = c * (h.point.x - cx) + s * (h.point.y - cy), qy = -s * (h.point.x - cx) + c * (h.point.y - cy);
+        const double qx = c * (h.point.x - cx) + s * (h.point.y - cy);
+        const double qy = -s * (h.point.x - cx) + c * (h.point.y - cy);
         const double ox = fabs(qx) - W / 2.0, oy = fabs(qy) - H / 2.0;
         const double across = ox < 0 && oy < 0 ? fmin(-ox, -oy) : hypot(fmax(ox, 0), fmax(oy, 0));
         /* The analytic normal is undefined at a corner, and the window straddles two faces within its
@@ -218,7 +219,8 @@ Test(raycast, the_march_finds_the_first_pixel_a_brute_force_finds)
             if (m[y * MW + x])
                 px[n] = x, py[n] = y, n++;
     pp_world w = make_world(0, 0);
-    pp_body_def d = body_def(PP_BODY_STATIC, 100 + MW / 2, 100 + MH / 2, 0); /* bitmap (x, y) is world (x + 100, y + 100) */
+    /* Bitmap (x, y) is world (x + 100, y + 100). */
+    pp_body_def d = body_def(PP_BODY_STATIC, 100 + MW / 2, 100 + MH / 2, 0);
     d.width = MW, d.height = MH, d.mask = m;
     create_body_ok(w, &d);
     int tested = 0, hits = 0;
@@ -250,8 +252,9 @@ Test(raycast, the_march_finds_the_first_pixel_a_brute_force_finds)
         cr_assert_eq(hit, best < INFINITY, "ray %d: hit %d, the brute force %s", tested, hit,
                      best < INFINITY ? "hits" : "misses");
         if (hit) {
-            cr_assert_leq(fabs(h.fraction - best) * hypot(dx, dy), 1e-3, "ray %d (%g, %g)-(%g, %g): fraction %.7f, brute force %.7f", from.x, from.y, to.x, to.y,
-                          tested, h.fraction, best);
+            cr_assert_leq(fabs(h.fraction - best) * hypot(dx, dy), 1e-3,
+                          "ray %d (%g, %g)-(%g, %g): fraction %.7f, brute force %.7f", tested, from.x, from.y, to.x,
+                          to.y, h.fraction, best);
             hits++;
         }
         tested++;
@@ -486,8 +489,10 @@ static int brute(const probe_body *pb, int n, int kind, const double *q, uint32_
                 const double x = p->wx[k], y = p->wy[k];
                 double m;
                 if (kind == Q_BOX) {
-                    in |= x >= q[0] && x <= q[2] && y >= q[1] && y <= q[3];
-                    m = fmin(fmin(fabs(x - q[0]), fabs(x - q[2])), fmin(fabs(y - q[1]), fabs(y - q[3])));
+                    const bool inside = x >= q[0] && x <= q[2] && y >= q[1] && y <= q[3];
+                    in |= inside;
+                    m = inside ? fmin(fmin(x - q[0], q[2] - x), fmin(y - q[1], q[3] - y))
+                               : hypot(fmax(fmax(q[0] - x, x - q[2]), 0), fmax(fmax(q[1] - y, y - q[3]), 0));
                 } else {
                     const double dd = hypot(x - q[0], y - q[1]);
                     in |= dd <= q[2];
