@@ -208,8 +208,8 @@ typedef struct pp_event {
 typedef struct pp_raycast_hit {
     pp_body body;     ///< the body hit
     pp_vec2 point;    ///< world point on the surface, px: where the ray enters the first solid pixel's square, moved
-                      ///< along the ray (≤ 5 px) onto the surface line the mask around it shows; `from` at fraction 0
-    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes: the mask's area gradient in a 5 px
+                      ///< along the ray (≤ 8 px) onto the edge line the mask around it shows; `from` at fraction 0
+    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes: the mask's area gradient in an 8 px
                       ///< window; the ray's reverse when the ray starts inside a solid pixel, (0, 0) if from == to
     float fraction;   ///< where along from → to the point lies, 0..1; 0 when from is in a solid pixel
     uint32_t reserved; ///< zero

@@ -221,12 +221,10 @@ static void ray_result(const body *bd, dvec2 from, dvec2 to, dvec2 a, dvec2 d, c
         if (len > 0)
             n = dv_scale(wd, -1 / len);
     } else {
-        /* The normal is the mask's area gradient under a tapered window (the contact normal's estimator),
-         * centred where the ray enters the pixel; the point then moves along the ray onto the edge line the
-         * window's solid fraction puts across it, and the window, centred there, says both again: the pixel
-         * squares' staircase alone misses a turned edge by up to 0.7 px, far more along a grazing ray. A move
-         * across the surface over 1 px means the window holds no straight edge (a body smaller than it, a
-         * corner): the point stays. Never more than R px along the ray, never outside [0, 1]. */
+        /* Normal: the mask's area gradient in a tapered window at the entry point (the contact normal's
+         * estimator). Point: moved along the ray onto the edge line the 4 px window's solid fraction places,
+         * where that line fits the mask and lies within 1 px (the squares' staircase misses a turned edge by
+         * up to 0.7 px across, far more along a grazing ray); read again there; ≤ R px, within [0, 1]. */
         const double reach = RAY_WINDOW / dv_norm(d), tmin = fmax(0.0, h->t - reach), tmax = fmin(1.0, h->t + reach);
         bool have = false;
         for (int pass = 0; pass < 2; pass++) {
@@ -236,8 +234,7 @@ static void ray_result(const body *bd, dvec2 from, dvec2 to, dvec2 a, dvec2 d, c
             if (!window_surface(&bd->raster, c, RAY_WINDOW, &m, &s) || dv_dot(m, d) >= 0)
                 break;
             n = m, have = true;
-            /* The edge's offset from a smaller window: a curved edge bends away from its tangent line by
-             * ρ²/2r, which a wide window would read as the edge lying deeper. */
+            /* The offset from a smaller window: a curved edge leaves its tangent by ρ²/2r. */
             dvec2 unused;
             if (!window_surface(&bd->raster, c, RAY_EDGE_WINDOW, &unused, &s) ||
                 edge_misfit(&bd->raster, c, m, s, RAY_EDGE_WINDOW) > RAY_MISFIT)

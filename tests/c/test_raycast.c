@@ -404,6 +404,34 @@ Test(raycast, the_nearest_body_wins_even_behind_an_earlier_box)
     pp_world_destroy(w);
 }
 
+/* An allocator that fails on demand: a ray over more boxes than the call's stack holds sorts them on the
+ * heap, and without memory walks them in slot order instead, with the same answer. */
+static bool alloc_fails;
+static void *flaky_alloc(uint64_t size, void *user) { return alloc_fails ? NULL : malloc(size); }
+static void *flaky_realloc(void *p, uint64_t size, void *user) { return alloc_fails ? NULL : realloc(p, size); }
+static void flaky_free(void *p, void *user) { free(p); }
+
+Test(raycast, a_ray_over_many_boxes_needs_no_memory)
+{
+    const pp_allocator a = {flaky_alloc, flaky_realloc, flaky_free, NULL};
+    PP_OK_OR_FAIL(pp_set_allocator(&a));
+    pp_world w = make_world(0, 0);
+    for (int k = 0; k < 400; k++) /* crates along y 600, the nearest to x = 0 made last */
+        add_rect(w, body_def(PP_BODY_DYNAMIC, 1100 - 2.5f * k, 600, 0), 2, 2);
+    pp_raycast_hit with, without;
+    int32_t hit_with = 0, hit_without = 0;
+    PP_OK_OR_FAIL(pp_world_raycast(w, v2(0, 600), v2(1200, 600), ALL_BITS, &with, &hit_with));
+    alloc_fails = true;
+    const pp_status st = pp_world_raycast(w, v2(0, 600), v2(1200, 600), ALL_BITS, &without, &hit_without);
+    alloc_fails = false;
+    cr_assert_eq(st, PP_OK, "%s (%s)", pp_status_name(st), pp_last_error());
+    cr_assert(hit_with && hit_without);
+    cr_assert(!memcmp(&with, &without, sizeof with), "the answers differ");
+    cr_assert_float_eq(with.point.x, 1100 - 2.5f * 399 - 1, 1e-3);
+    pp_world_destroy(w);
+    PP_OK_OR_FAIL(pp_set_allocator(NULL));
+}
+
 /* ---- queries against a brute force --------------------------------------------------------------- */
 
 /* A body as the brute force sees it: its pose, through the public calls, and its solid pixels. */
