@@ -409,7 +409,7 @@ PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_b
     const dvec2 p = dv(point.x, point.y);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
-        if (!queried(bd, mask_bits) || !box_meets(&bd->aabb, p.x, p.y, p.x, p.y))
+        if (!bd || !box_meets(&bd->aabb, p.x, p.y, p.x, p.y) || !queried(bd, mask_bits))
             continue;
         const pp_raster *r = &bd->raster;
         const dvec2 q = body_world_to_local(bd, p);
@@ -492,7 +492,7 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
     const dvec2 lo = dv(lower.x, lower.y), hi = dv(upper.x, upper.y);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
-        if (queried(bd, mask_bits) && box_meets(&bd->aabb, lo.x, lo.y, hi.x, hi.y) && body_meets_box(bd, lo, hi))
+        if (bd && box_meets(&bd->aabb, lo.x, lo.y, hi.x, hi.y) && queried(bd, mask_bits) && body_meets_box(bd, lo, hi))
             list_add(&l, bd);
     }
     *count = l.count;
@@ -537,8 +537,8 @@ PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius,
     const dvec2 c = dv(center.x, center.y);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
-        if (queried(bd, mask_bits) && box_meets(&bd->aabb, c.x - radius, c.y - radius, c.x + radius, c.y + radius) &&
-            body_meets_circle(bd, c, radius))
+        if (bd && box_meets(&bd->aabb, c.x - radius, c.y - radius, c.x + radius, c.y + radius) &&
+            queried(bd, mask_bits) && body_meets_circle(bd, c, radius))
             list_add(&l, bd);
     }
     *count = l.count;
