@@ -1,6 +1,7 @@
-/* Rays and region queries: hit points and normals against analytic shapes (a rotated box, a disc),
- * rays through a hole erased a step before, rays starting inside, filtering, the nearest of several
- * bodies, the point/box/circle queries against a brute force over every solid pixel, and misuse. */
+/* Rays and region queries: hit points and normals against analytic shapes (a turned box, a box drawn
+ * turned, a disc), the march against a brute force, rays through a hole erased a step before, rays
+ * starting inside, filtering, the nearest of several bodies, a ray over many boxes without memory, the
+ * point/box/circle queries against a brute force over every solid pixel, and misuse. */
 #include "helpers.h"
 
 PP_TEST_SUITE(raycast);
