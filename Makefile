@@ -199,6 +199,11 @@ $(BUILD)/bench/bench_features: tests/bench/features/main.c tests/bench/machine.h
 	mkdir -p $(BUILD)/bench
 	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
 
+# Raycasts and queries per second against a large terrain with 1,000 crates.
+$(BUILD)/bench/bench_raycast: tests/bench/raycast/main.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
 $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
@@ -214,8 +219,10 @@ $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/b
 
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
-	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale
+	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
+	  $(BUILD)/bench/bench_raycast
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
+	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_core
