@@ -117,18 +117,18 @@ func test_sensor():
 	var ball = s.add_body_mask(solid_mask(8, 8), 8, 8, Vector2(100, 40))
 	check(is_int(sensor) and is_int(ball), "a sensor made with options {is_sensor: true}: %s" % s.get_last_error())
 	var seen = []
-	var free = true
+	var falls_freely = true
 	for k in range(1, 46):
 		s.step(DT)
 		var vy = s.get_linear_velocity(ball).y
-		free = free and near(vy, 980.0 * k * DT, 0.01 * 980.0 * k * DT)
+		falls_freely = falls_freely and near(vy, 980.0 * k * DT, 0.01 * 980.0 * k * DT)
 		for e in s.get_events():
 			seen.append(e["type"])
 			if e["type"] == "sensor_begin":
 				check(e["body"] == sensor and e["other"] == ball and e["normal"].y < -0.95
 					and near(e["approach_speed"], vy, 980.0 * DT + 1.0),
 					"sensor_begin: the sensor, the ball, normal up, approach %s ≈ %s px/s" % [e["approach_speed"], vy])
-	check(free, "the ball falls freely through the sensor (velocity within 1 %% of g·t every step)")
+	check(falls_freely, "the ball falls freely through the sensor (velocity within 1 % of g·t every step)")
 	check(seen == ["sensor_begin", "sensor_end"], "events sensor_begin then sensor_end: %s" % [seen])
 	check(s.get_position(ball).y > 130, "the ball fell through: y %s" % s.get_position(ball).y)
 
