@@ -197,6 +197,13 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     bd->fixed_rotation = def->fixed_rotation != 0;
     bd->detach_islands = def->detach_islands != 0;
     bd->bullet = def->bullet != 0;
+    bd->is_sensor = def->is_sensor != 0;
+    bd->one_way = def->one_way != 0;
+    if (bd->one_way) /* unit length, so a snapshot writes back the direction it reads */
+        bd->one_way_dir = dv_scale(dv(def->one_way_direction.x, def->one_way_direction.y),
+                                   1.0 / hypot(def->one_way_direction.x, def->one_way_direction.y));
+    else
+        bd->one_way_dir = dv(0, -1);
     bd->user_data = def->user_data;
     bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
     bd->pos = dv(def->position.x, def->position.y);

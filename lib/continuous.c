@@ -94,8 +94,8 @@ static bool aabb_overlap(const pp_aabb *a, const pp_aabb *b)
 
 static bool sweeps(const world *wd, const body *bd)
 {
-    return bd && bd->type == PP_BODY_DYNAMIC && !raster_empty(&bd->raster) && solver_body_is_awake(&bd->sb) &&
-           (wd->def.continuous || bd->bullet);
+    return bd && bd->type == PP_BODY_DYNAMIC && !bd->is_sensor && !raster_empty(&bd->raster) &&
+           solver_body_is_awake(&bd->sb) && (wd->def.continuous || bd->bullet);
 }
 
 pp_status continuous_begin(world *wd)
@@ -111,6 +111,18 @@ pp_status continuous_begin(world *wd)
             wd->sweep_from[i].com = body_com_world(bd), wd->sweep_from[i].angle = bd->angle;
     }
     return PP_OK;
+}
+
+/* Whether a swept body can hit `o` at all: not a sensor, and a one-way platform only when the body moves
+ * against its direction (onto it) and is not already in it, passing or standing. */
+static bool stops(const world *wd, const body *bd, const body *o, dvec2 dcom)
+{
+    if (o->is_sensor)
+        return false;
+    if (!o->one_way)
+        return true;
+    const dvec2 d = dv_rot(o->one_way_dir, o->cos_a, o->sin_a);
+    return dv_dot(dcom, d) < 0 && !touch_find(wd, bd->handle.id, o->handle.id);
 }
 
 /* Sweep one body from its recorded pose to where the substep left it; stop it at its first hit. */
@@ -137,7 +149,8 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
         const body *o = wd->bodies[j];
         if (!o || o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet))
             continue;
-        if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !aabb_overlap(&swept, &o->aabb))
+        if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) ||
+            !aabb_overlap(&swept, &o->aabb) || !stops(wd, bd, o, sw.dcom))
             continue;
         t = fmin(t, first_hit(&sw, o, thin, samples, travel, t));
     }

@@ -81,7 +81,8 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     d.linear_damping = (float)parent->linear_damping, d.angular_damping = (float)parent->angular_damping;
     d.category_bits = parent->category_bits, d.mask_bits = parent->mask_bits;
     d.fixed_rotation = parent->fixed_rotation, d.detach_islands = parent->detach_islands;
-    d.bullet = parent->bullet;
+    d.bullet = parent->bullet, d.is_sensor = parent->is_sensor, d.one_way = parent->one_way;
+    d.one_way_direction = (pp_vec2){(float)parent->one_way_dir.x, (float)parent->one_way_dir.y};
     d.user_data = parent->user_data;
     pp_status st = pp_body_create(wd->handle, &d, out);
     if (st)

@@ -212,6 +212,7 @@ const field world_fields[] = {
     F_BOOL(pp_world_def, continuous),
     F_FLOAT(pp_world_def, max_correction_speed, NUM_POSITIVE),
     F_INT(pp_world_def, worker_threads, 0, 16),
+    F_BOOL(pp_world_def, contact_events),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 
@@ -234,6 +235,9 @@ const field body_fields[] = {
     F_INT(pp_body_def, alpha_threshold, 1, 255),
     F_BOOL(pp_body_def, detach_islands),
     F_BOOL(pp_body_def, bullet),
+    F_BOOL(pp_body_def, is_sensor),
+    F_BOOL(pp_body_def, one_way),
+    F_VEC2(pp_body_def, one_way_direction),
     F_INT(pp_body_def, user_data, 0, JSON_MAX_EXACT_INT),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };

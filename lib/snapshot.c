@@ -24,7 +24,8 @@
 #define SNAPSHOT_FORMAT "physpix-snapshot"
 #define SNAPSHOT_VERSION 1
 
-static const char *const event_names[] = {"", "split", "destroyed", NULL};
+static const char *const event_names[] = {"",           "split",        "destroyed",  "contact_begin",
+                                          "contact_end", "sensor_begin", "sensor_end", NULL};
 
 /* ---- writing ------------------------------------------------------------------------------------ */
 
@@ -104,7 +105,8 @@ static pp_status write_body(const char *dir, const body *bd, cJSON *arr)
     d.linear_damping = (float)bd->linear_damping, d.angular_damping = (float)bd->angular_damping;
     d.category_bits = bd->category_bits, d.mask_bits = bd->mask_bits;
     d.fixed_rotation = bd->fixed_rotation, d.detach_islands = bd->detach_islands;
-    d.bullet = bd->bullet;
+    d.bullet = bd->bullet, d.is_sensor = bd->is_sensor, d.one_way = bd->one_way;
+    d.one_way_direction = (pp_vec2){(float)bd->one_way_dir.x, (float)bd->one_way_dir.y};
     cJSON *obj = body_settings_to_json(&d);
     if (!obj || !cJSON_AddItemToArray(arr, obj)) {
         cJSON_Delete(obj);
@@ -170,6 +172,11 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
              add(e, "body", json_handle(ev->body.id)) && add(e, "other", json_handle(ev->other.id));
+        if (ok && (ev->type == PP_EVENT_CONTACT_BEGIN || ev->type == PP_EVENT_SENSOR_BEGIN)) {
+            const double point[2] = {ev->point.x, ev->point.y}, normal[2] = {ev->normal.x, ev->normal.y};
+            ok = add(e, "point", json_doubles(point, 2)) && add(e, "normal", json_doubles(normal, 2)) &&
+                 add(e, "approach_speed", json_number(ev->approach_speed, true));
+        }
     }
     if (!ok)
         cJSON_Delete(edits);
@@ -178,6 +185,22 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         return false;
     }
     return add(root, "events", events);
+}
+
+/* The pairs touching at the last substep, which the next one's events and one-way platforms compare with. */
+static bool write_touching(const world *wd, cJSON *root)
+{
+    cJSON *arr = cJSON_CreateArray();
+    bool ok = arr != NULL;
+    for (int32_t i = 0; ok && i < wd->touch_count; i++) {
+        const touch *t = &wd->touching[i];
+        cJSON *e = cJSON_CreateObject();
+        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(t->a)) && add(e, "b", json_handle(t->b)) &&
+             add(e, "flags", json_number(t->flags, false));
+    }
+    if (!ok)
+        cJSON_Delete(arr);
+    return ok && add(root, "touching", arr);
 }
 
 /* world.json's top level, then every body in creation order. */
@@ -190,7 +213,7 @@ static pp_status write_world(const char *dir, const world *wd, cJSON *root)
               add(root, "time", json_number(wd->time, false)) &&
               add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
-              write_edits_and_events(wd, root);
+              write_edits_and_events(wd, root) && write_touching(wd, root);
     body **live = ok ? pp_malloc(((size_t)wd->live_count + 1) * sizeof *live) : NULL;
     cJSON *arr = live ? cJSON_CreateArray() : NULL;
     if (!live || !add(root, "bodies", arr)) {
@@ -516,9 +539,24 @@ static pp_status restore_edits(const json_ctx *c, const cJSON *root, world *wd)
     return st;
 }
 
+/* A BEGIN event's point, normal and approach speed (other events have none). */
+static pp_status restore_event_contact(const json_ctx *c, const cJSON *obj, const char *where, pp_event *ev)
+{
+    if (ev->type != PP_EVENT_CONTACT_BEGIN && ev->type != PP_EVENT_SENSOR_BEGIN)
+        return PP_OK;
+    double point[2], normal[2];
+    pp_status st = read_doubles(c, obj, where, "point", point, 2);
+    if (st || (st = read_doubles(c, obj, where, "normal", normal, 2)) ||
+        (st = read_float(c, obj, where, "approach_speed", NUM_NONNEG, &ev->approach_speed)))
+        return st;
+    ev->point = (pp_vec2){(float)point[0], (float)point[1]};
+    ev->normal = (pp_vec2){(float)normal[0], (float)normal[1]};
+    return PP_OK;
+}
+
 static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
 {
-    static const char *const keys[] = {"type", "body", "other", NULL};
+    static const char *const keys[] = {"type", "body", "other", "point", "normal", "approach_speed", NULL};
     const cJSON *arr;
     pp_status st = read_section(c, root, "", "events", true, &arr);
     int32_t i = 0;
@@ -526,13 +564,50 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
     for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {
         snprintf(where, sizeof where, "events[%d]", (int)i);
         int32_t type = 0;
-        pp_body b = {0}, o = {0};
+        pp_event ev = {0};
         if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
-            !(st = read_handle(c, it, where, "body", false, &b.id)) && !(st = read_handle(c, it, where, "other", false, &o.id)))
-            st = type ? world_push_event(wd, (pp_event_type)type, b, o)
-                      : json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
+            !(st = read_handle(c, it, where, "body", false, &ev.body.id)) &&
+            !(st = read_handle(c, it, where, "other", false, &ev.other.id))) {
+            ev.type = (pp_event_type)type;
+            if (!type)
+                st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
+            else if (!(st = restore_event_contact(c, it, where, &ev)) && !(st = world_reserve_events(wd, 1)))
+                world_queue_event(wd, ev);
+        }
     }
     return st;
+}
+
+/* The touching pairs; absent in snapshots from before contact events. */
+static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *wd)
+{
+    static const char *const keys[] = {"a", "b", "flags", NULL};
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "touching", true, &arr);
+    const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
+    if (st || n == 0)
+        return st;
+    if (!world_room((void **)&wd->touching, n, &wd->touch_capacity, sizeof *wd->touching))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", c->fn, (int)n);
+    char where[32];
+    int32_t i = 0;
+    for (const cJSON *it = arr->child; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "touching[%d]", (int)i);
+        touch *t = &wd->touching[i];
+        int64_t flags = 0;
+        if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_handle(c, it, where, "a", false, &t->a)) &&
+            !(st = read_handle(c, it, where, "b", false, &t->b)))
+            st = read_required_int(c, it, where, "flags", 0, TOUCH_SENSOR | TOUCH_SENSOR_B | TOUCH_PASSING, &flags);
+        t->flags = (uint32_t)flags, t->reserved = 0;
+        /* touch_find expects a in the lower slot */
+        if (!st && (uint32_t)t->a - 1 > (uint32_t)t->b - 1)
+            st = json_fail(c, PP_ERR_FORMAT, where, "a", "must be in a lower slot than b");
+    }
+    if (st)
+        return st;
+    wd->touch_count = n;
+    touch_sort(wd->touching, n);
+    return PP_OK;
 }
 
 /* The world's own state: settings, camera, clock, solver steps, slots, bodies, edits, events. */
@@ -551,7 +626,7 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
         (st = read_required_int(c, root, "", "solver_steps", 0, JSON_MAX_EXACT_INT, &steps)) ||
         (st = read_required_int(c, root, "", "next_serial", 0, JSON_MAX_EXACT_INT, &serial)) ||
         (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = restore_free_list(c, root, wd)) ||
-        (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)))
+        (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)) || (st = restore_touching(c, root, wd)))
         return st;
     solver_set_steps(wd->solver, (uint64_t)steps);
     wd->next_serial = (uint64_t)serial;
@@ -561,7 +636,7 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
 static pp_status build_snapshot(const json_ctx *c, const cJSON *root, pp_world *out)
 {
     static const char *const top_keys[] = {"format", "version", "world", "camera", "time", "solver_steps", "next_serial",
-                                           "generations", "free_slots", "edits", "events", "bodies", NULL};
+                                           "generations", "free_slots", "edits", "events", "touching", "bodies", NULL};
     if (!cJSON_IsObject(root))
         return json_fail(c, PP_ERR_FORMAT, "(root)", NULL, "expected an object");
     const char *format = NULL;

@@ -6,8 +6,10 @@
 #include "status.h"
 
 #include <ode/ode.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct pp_solver {
     dWorldID world;
@@ -16,6 +18,8 @@ struct pp_solver {
     double erp, cfm, bounce_vel;  /* bounce_vel in m/s */
     bool exact;
     uint64_t steps;               /* seeds QuickStep's constraint shuffle */
+    dJointFeedback *feedback;     /* by contact: the forces ODE's step applied */
+    int32_t feedback_capacity;
 };
 
 static pthread_once_t ode_once = PTHREAD_ONCE_INIT;
@@ -85,6 +89,7 @@ void solver_destroy(pp_solver *s)
         return;
     dJointGroupDestroy(s->contacts);
     dWorldDestroy(s->world);
+    pp_free(s->feedback);
     pp_free(s);
 }
 
@@ -188,7 +193,27 @@ void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_bod
     out->awake = dBodyIsEnabled(b) != 0;
 }
 
-void solver_add_contact(pp_solver *s, const solver_contact *c)
+pp_status solver_reserve_feedback(pp_solver *s, int32_t n)
+{
+    if (n > s->feedback_capacity) {
+        dJointFeedback *f = pp_realloc(s->feedback, (size_t)n * sizeof *f);
+        if (!f)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contact impulses", (int)n);
+        s->feedback = f, s->feedback_capacity = n;
+    }
+    if (n > 0) /* a joint ODE leaves out of its step (all its bodies asleep) applied nothing */
+        memset(s->feedback, 0, (size_t)n * sizeof *s->feedback);
+    return PP_OK;
+}
+
+double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h)
+{
+    /* f1 is the force on the joint's first body; along the normal it is the contact's push alone. */
+    const dReal *f = s->feedback[k].f1;
+    return fabs(f[0] * normal.x + f[1] * normal.y) * h * s->ppm;
+}
+
+void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
 {
     dContact ct = {0};
     ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
@@ -210,6 +235,7 @@ void solver_add_contact(pp_solver *s, const solver_contact *c)
     ct.geom.depth = c->depth * s->inv_ppm;
     dJointID j = dJointCreateContact(s->world, s->contacts, &ct);
     dJointAttach(j, c->a ? (dBodyID)c->a->body : 0, c->b ? (dBodyID)c->b->body : 0);
+    dJointSetFeedback(j, &s->feedback[k]);
 }
 
 /* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;

@@ -64,8 +64,12 @@ bool solver_body_is_awake(const solver_body *sb);
 void solver_body_flatten(solver_body *sb);
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
 
-/* Add a contact joint for the next step. */
-void solver_add_contact(pp_solver *s, const solver_contact *c);
+/* Room for n contacts' impulses in the next step, zeroed; call before adding their joints. */
+pp_status solver_reserve_feedback(pp_solver *s, int32_t n);
+/* Add a contact joint for the next step; its impulse is read back as contact k. */
+void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k);
+/* Impulse the last step of h s applied at contact k along the unit normal, mass·px/s (≥ 0). */
+double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h);
 
 /* The exact ODE state of a body, in ODE's units, for snapshots. */
 typedef struct solver_exact_state {

@@ -233,12 +233,15 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->undo.bodies);
     pp_free(wd->undo.contacts);
     pp_free(wd->undo.order);
+    pp_free(wd->undo.touching);
+    pp_free(wd->touching);
+    pp_free(wd->touch_next);
     pp_free(wd);
     return PP_OK;
 }
 
 /* Room for n items in an array that doubles as it fills (from 64); false without memory, the array kept. */
-static bool room_for(void **items, int32_t n, int32_t *capacity, size_t size)
+bool world_room(void **items, int32_t n, int32_t *capacity, size_t size)
 {
     if (n <= *capacity)
         return true;
@@ -267,7 +270,7 @@ pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t pe
 
 static pp_status push_contact(world *wd, const pp_contact *c)
 {
-    if (!room_for((void **)&wd->contacts, wd->contact_count + 1, &wd->contact_capacity, sizeof *c))
+    if (!world_room((void **)&wd->contacts, wd->contact_count + 1, &wd->contact_capacity, sizeof *c))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)wd->contact_count + 1);
     wd->contacts[wd->contact_count++] = *c;
     return PP_OK;
@@ -341,6 +344,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     if (st)
         return st;
     wd->awake_movers = 0;
+    int32_t special = 0; /* sensors and one-way platforms */
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
@@ -349,6 +353,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                                          true}
                             : (bp_proxy){.live = false};
         wd->awake_movers += bd && wd->proxies[i].awake;
+        special += bd && (bd->is_sensor || bd->one_way);
     }
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     if (wd->awake_movers > 0)
@@ -375,18 +380,25 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     if ((st = world_run_cores(wd, fn, n, cells, &wd->stats.backend, &wd->stats.threads)))
         return st;
     wd->contact_count = 0;
+    const bool track = touch_needed(wd, special);
+    touch_begin(wd);
     for (int32_t k = 0; k < n; k++) {
         const body *a = wd->bodies[wd->pair_bodies[2 * k]], *b = wd->bodies[wd->pair_bodies[2 * k + 1]];
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
         np_pair_finish(&set, &va, &vb, &wd->pairs[k], &wd->cores[k], &r);
-        for (int32_t c = 0; c < r.count; c++) {
+        bool keep = true;
+        if (track && r.count > 0 && (st = touch_pair(wd, a, b, &r, &keep)))
+            return st;
+        for (int32_t c = 0; keep && c < r.count; c++) {
             r.contacts[c].a = a->handle;
             r.contacts[c].b = b->handle;
             if ((st = push_contact(wd, &r.contacts[c])))
                 return st;
         }
     }
+    if (track && (st = touch_end(wd)))
+        return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
     wd->stats.contacts = wd->contact_count;
@@ -410,7 +422,7 @@ static void add_contact_joints(world *wd)
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
             sqrt(a->friction * b->friction), fmax(a->restitution, b->restitution),
         };
-        solver_add_contact(wd->solver, &sc);
+        solver_add_contact(wd->solver, &sc, i);
     }
 }
 
@@ -540,8 +552,9 @@ static pp_status step_save(world *wd)
         u->bodies = p;
         u->body_capacity = wd->body_capacity;
     }
-    if (!room_for((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts) ||
-        !room_for((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order))
+    if (!world_room((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts) ||
+        !world_room((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order) ||
+        !world_room((void **)&u->touching, wd->touch_count, &u->touch_capacity, sizeof *u->touching))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
     u->step++;
@@ -556,6 +569,10 @@ static pp_status step_save(world *wd)
     if (wd->broad.order_count > 0)
         memcpy(u->order, wd->broad.order, (size_t)wd->broad.order_count * sizeof *u->order);
     u->order_count = wd->broad.order_count;
+    if (wd->touch_count > 0)
+        memcpy(u->touching, wd->touching, (size_t)wd->touch_count * sizeof *u->touching);
+    u->touch_count = wd->touch_count;
+    u->event_count = wd->event_count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
     return PP_OK;
@@ -573,7 +590,7 @@ static void save_contact_bodies(world *wd)
 /* Put back what the step saved; the buffers it restores into are at least as large as when saved. */
 static void step_restore(world *wd)
 {
-    const step_undo *u = &wd->undo;
+    step_undo *u = &wd->undo;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
@@ -591,6 +608,12 @@ static void step_restore(world *wd)
     wd->broad.order_count = u->order_count;
     wd->stats = u->stats;
     solver_set_steps(wd->solver, u->solver_steps);
+    /* The saved pairs become the world's, its buffer the next save's: nothing to allocate. */
+    touch *list = wd->touching;
+    const int32_t cap = wd->touch_capacity;
+    wd->touching = u->touching, wd->touch_count = u->touch_count, wd->touch_capacity = u->touch_capacity;
+    u->touching = list, u->touch_capacity = cap;
+    wd->event_count = u->event_count;
 }
 
 /* The substeps of one step; on failure the caller undoes them. */
@@ -604,10 +627,16 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         const double t0 = now_ms();
         if ((st = continuous_begin(wd)))
             return st;
+        if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
+            return st;
         save_contact_bodies(wd);
         add_contact_joints(wd);
         if (!solver_step(wd->solver, h, wd->awake_movers > 0))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+        for (int32_t c = 0; c < wd->contact_count; c++) {
+            pp_contact *ct = &wd->contacts[c];
+            ct->normal_impulse = (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h);
+        }
         sync_bodies(wd);
         continuous_end(wd);
         if ((st = update_sleep(wd, h)))
@@ -698,17 +727,19 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
 
 pp_status world_reserve_events(world *wd, int32_t n)
 {
-    if (!room_for((void **)&wd->events, wd->event_count + n, &wd->event_capacity, sizeof *wd->events))
+    if (!world_room((void **)&wd->events, wd->event_count + n, &wd->event_capacity, sizeof *wd->events))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)(wd->event_count + n));
     return PP_OK;
 }
+
+void world_queue_event(world *wd, pp_event ev) { wd->events[wd->event_count++] = ev; }
 
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
 {
     pp_status st = world_reserve_events(wd, 1);
     if (st)
         return st;
-    wd->events[wd->event_count++] = (pp_event){type, 0, b, other};
+    world_queue_event(wd, (pp_event){.type = type, .body = b, .other = other});
     return PP_OK;
 }
 
@@ -808,7 +839,7 @@ PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
     pp_status st = check_timed_edit(wd, edit);
     if (st)
         return st;
-    if (!room_for((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *edit))
+    if (!world_room((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *edit))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_schedule_edit: no memory for %d edits", (int)wd->edit_count + 1);
     /* Stable in time: after every edit due no later. */
     int32_t at = wd->edit_count;

@@ -9,6 +9,7 @@
 #include "narrowphase.h"
 #include "raster.h"
 #include "solver_ode.h"
+#include "touch.h"
 #include "workers.h"
 
 #include <stdbool.h>
@@ -36,6 +37,9 @@ typedef struct body {
     double slow_time;        /* s the body has stayed under the sleep speeds, at most sleep_time while awake;
                               * sleep_time + 1 while asleep */
     bool bullet;             /* swept against dynamic bodies too */
+    bool is_sensor;          /* overlaps make events, never contacts */
+    bool one_way;            /* a one-way platform: contacts only from the one_way_dir side */
+    dvec2 one_way_dir;       /* unit, bitmap axes */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -65,6 +69,9 @@ typedef struct step_undo {
     int32_t order_count, order_capacity;
     pp_step_stats stats;
     uint64_t solver_steps;
+    touch *touching;          /* the touching pairs; swapped back, not copied, so a restore cannot fail */
+    int32_t touch_count, touch_capacity;
+    int32_t event_count;      /* events queued before the step */
 } step_undo;
 
 typedef struct world {
@@ -102,6 +109,10 @@ typedef struct world {
     int32_t sweep_capacity;
     int32_t *group;          /* two per slot: union-find parents, then restless flags (bodies in contact sleep together) */
     int32_t group_capacity;
+    touch *touching;         /* pairs touching at the last substep, sorted (touch.c) */
+    int32_t touch_count, touch_capacity;
+    touch *touch_next;       /* the substep's list being built */
+    int32_t touch_next_count, touch_next_capacity;
     step_undo undo;
 } world;
 
@@ -128,6 +139,11 @@ dvec2 body_com_world(const body *bd);
 /* Queue an event for pp_world_get_events; never fails for n events after world_reserve_events(wd, n). */
 pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other);
 pp_status world_reserve_events(world *wd, int32_t n);
+/* Queue a whole event into room reserved by world_reserve_events. */
+void world_queue_event(world *wd, pp_event ev);
+
+/* Grow an array of `size`-byte items to hold n, doubling; false (nothing changed) when out of memory. */
+bool world_room(void **items, int32_t n, int32_t *capacity, size_t size);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

@@ -1,0 +1,161 @@
+/* Touching pairs across substeps. Each substep builds a new list from the narrowphase's pairs, then
+ * compares it with the last one: a pair only in the new list began, one only in the old list ended.
+ * Both lists are sorted by handle ids so that a pair is found by binary search. */
+#include "status.h"
+#include "world.h"
+
+#include <stdlib.h>
+
+/* A one-way platform keeps a contact whose normal (platform to other body) is within 60° of its
+ * direction: a body landing on it from above, not one entering from below or the side. */
+#define ONE_WAY_COS 0.5
+
+static uint32_t slot_of(uint64_t id) { return (uint32_t)id - 1; }
+
+static int touch_cmp(const void *x, const void *y)
+{
+    const touch *p = x, *q = y;
+    if (p->a != q->a)
+        return p->a < q->a ? -1 : 1;
+    return p->b < q->b ? -1 : p->b > q->b;
+}
+
+void touch_sort(touch *list, int32_t n)
+{
+    if (n > 1)
+        qsort(list, (size_t)n, sizeof *list, touch_cmp);
+}
+
+const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
+{
+    if (wd->touch_count == 0)
+        return NULL;
+    const touch key = slot_of(x) < slot_of(y) ? (touch){x, y, 0, 0} : (touch){y, x, 0, 0};
+    return bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp);
+}
+
+bool touch_needed(const world *wd, int32_t special_bodies)
+{
+    return wd->def.contact_events || special_bodies > 0 || wd->touch_count > 0;
+}
+
+void touch_begin(world *wd) { wd->touch_next_count = 0; }
+
+/* Velocity of a body's material point at a world point, px/s; static bodies do not move. */
+static dvec2 point_velocity(const world *wd, const body *bd, dvec2 p)
+{
+    if (!bd->sb.body)
+        return dv(0, 0);
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    const dvec2 r = dv_sub(p, s.com_world);
+    return dv(s.velocity.x - s.angular_velocity * r.y, s.velocity.y + s.angular_velocity * r.x);
+}
+
+/* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */
+static pp_event begin_event(const world *wd, pp_event_type type, const body *from, const body *to, const body *a,
+                            const np_result *r)
+{
+    const pp_contact *c = &r->contacts[0];
+    const double sign = from == a ? 1.0 : -1.0;
+    const dvec2 p = dv(c->point.x, c->point.y), n = dv_scale(dv(c->normal.x, c->normal.y), sign);
+    /* `to` closes on `from` when its velocity relative to `from` points against the normal. */
+    const dvec2 rel = dv_sub(point_velocity(wd, to, p), point_velocity(wd, from, p));
+    const double closing = -dv_dot(rel, n);
+    return (pp_event){type, 0, from->handle, to->handle, c->point, {(float)n.x, (float)n.y},
+                      (float)(closing > 0 ? closing : 0), 0};
+}
+
+/* A new pair with a one-way platform: let the other body through unless it comes from the allowed side. */
+static bool one_way_passes(const body *a, const body *b, const np_result *r)
+{
+    const body *plat = a->one_way ? a : b;
+    const dvec2 n = dv_scale(dv(r->contacts[0].normal.x, r->contacts[0].normal.y), plat == a ? 1.0 : -1.0);
+    const dvec2 d = dv_rot(plat->one_way_dir, plat->cos_a, plat->sin_a);
+    return dv_dot(n, d) < ONE_WAY_COS;
+}
+
+pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r, bool *keep)
+{
+    *keep = true;
+    if (a->is_sensor && b->is_sensor) {
+        *keep = false; /* sensors sense bodies, not each other */
+        return PP_OK;
+    }
+    const bool sensor = a->is_sensor || b->is_sensor, one_way = a->one_way || b->one_way;
+    if (!sensor && !one_way && !wd->def.contact_events)
+        return PP_OK;
+    const touch *old = touch_find(wd, a->handle.id, b->handle.id);
+    touch t = {a->handle.id, b->handle.id, sensor ? TOUCH_SENSOR | (a->is_sensor ? 0 : TOUCH_SENSOR_B) : 0, 0};
+    if (old)
+        t.flags = old->flags;
+    else if (!sensor && one_way && one_way_passes(a, b, r))
+        t.flags |= TOUCH_PASSING;
+    *keep = !(t.flags & (TOUCH_SENSOR | TOUCH_PASSING));
+    /* Room for the record and its event first: a failure changes nothing. */
+    pp_status st = world_reserve_events(wd, 1);
+    if (st || !world_room((void **)&wd->touch_next, wd->touch_next_count + 1, &wd->touch_next_capacity, sizeof t))
+        return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs",
+                                 (int)wd->touch_next_count + 1);
+    wd->touch_next[wd->touch_next_count++] = t;
+    if (old || (t.flags & TOUCH_PASSING))
+        return PP_OK;
+    if (sensor) /* the sensor is the event's body */
+        world_queue_event(wd, a->is_sensor ? begin_event(wd, PP_EVENT_SENSOR_BEGIN, a, b, a, r)
+                                           : begin_event(wd, PP_EVENT_SENSOR_BEGIN, b, a, a, r));
+    else if (wd->def.contact_events)
+        world_queue_event(wd, begin_event(wd, PP_EVENT_CONTACT_BEGIN, a, b, a, r));
+    return PP_OK;
+}
+
+/* An old pair not found this substep: still touching if neither body was awake to be tested. */
+static bool untested(const world *wd, const touch *t)
+{
+    const body *a = body_find(wd, (pp_body){t->a}), *b = body_find(wd, (pp_body){t->b});
+    return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
+}
+
+pp_status touch_end(world *wd)
+{
+    touch_sort(wd->touch_next, wd->touch_next_count);
+    /* The old pairs kept untested and the END events, counted before anything changes. */
+    int32_t kept = 0, ends = 0;
+    for (int32_t i = 0; i < wd->touch_count; i++) {
+        const touch *t = &wd->touching[i];
+        if (bsearch(t, wd->touch_next, (size_t)wd->touch_next_count, sizeof *t, touch_cmp))
+            continue;
+        if (untested(wd, t))
+            kept++;
+        else
+            ends += !(t->flags & TOUCH_PASSING);
+    }
+    const int32_t n = wd->touch_next_count + kept;
+    pp_status st = world_reserve_events(wd, ends);
+    if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next))
+        return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
+    const int32_t found = wd->touch_next_count;
+    for (int32_t i = 0; i < wd->touch_count; i++) {
+        const touch *t = &wd->touching[i];
+        if (bsearch(t, wd->touch_next, (size_t)found, sizeof *t, touch_cmp))
+            continue;
+        if (untested(wd, t)) {
+            wd->touch_next[wd->touch_next_count++] = *t;
+            continue;
+        }
+        if (t->flags & TOUCH_PASSING)
+            continue; /* a body that went through a one-way platform never touched it */
+        const bool b_first = (t->flags & TOUCH_SENSOR_B) != 0; /* the sensor is the event's body */
+        const pp_body first = {b_first ? t->b : t->a}, second = {b_first ? t->a : t->b};
+        if (t->flags & TOUCH_SENSOR)
+            world_queue_event(wd, (pp_event){PP_EVENT_SENSOR_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
+        else if (wd->def.contact_events)
+            world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
+    }
+    touch_sort(wd->touch_next, wd->touch_next_count);
+    /* The new list becomes current; the old one's buffer is reused for the next substep. */
+    touch *list = wd->touching;
+    const int32_t cap = wd->touch_capacity;
+    wd->touching = wd->touch_next, wd->touch_count = wd->touch_next_count, wd->touch_capacity = wd->touch_next_capacity;
+    wd->touch_next = list, wd->touch_next_count = 0, wd->touch_next_capacity = cap;
+    return PP_OK;
+}

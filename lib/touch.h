@@ -1,0 +1,49 @@
+/* Pairs that touch from one substep to the next: what contact and sensor events report, and what
+ * a one-way platform remembers of a body passing through it. */
+#ifndef PP_TOUCH_H
+#define PP_TOUCH_H
+
+#include "narrowphase.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct world;
+struct body;
+
+/* What a pair is to the world while it touches. */
+enum {
+    TOUCH_SENSOR = 1,   /* one body is a sensor: events, no contacts */
+    TOUCH_SENSOR_B = 2, /* with TOUCH_SENSOR: the sensor is b */
+    TOUCH_PASSING = 4,  /* a one-way platform let the other body in from the wrong side: no contacts until they part */
+};
+
+/* One touching pair: a is the body in the lower slot (the broadphase's order). */
+typedef struct touch {
+    uint64_t a, b;   /* body handle ids */
+    uint32_t flags;  /* TOUCH_* */
+    uint32_t reserved;
+} touch;
+
+/* Whether this substep's pairs must be tracked: contact events asked for, a sensor or a one-way body
+ * present (`special_bodies`), or pairs still recorded whose end must be reported. */
+bool touch_needed(const struct world *wd, int32_t special_bodies);
+
+/* Start a substep's list. */
+void touch_begin(struct world *wd);
+
+/* A pair the narrowphase found touching (r->count > 0): record it, queue its BEGIN event if it is new,
+ * and say whether its contacts go to the solver (not for sensors or a passing one-way pair). */
+pp_status touch_pair(struct world *wd, const struct body *a, const struct body *b, const np_result *r, bool *keep);
+
+/* After every pair: queue the END of each recorded pair that no longer touches, unless neither body
+ * was awake to be tested (a sleeping stack still touches), and make the substep's list current. */
+pp_status touch_end(struct world *wd);
+
+/* The recorded pair of two bodies (either order), or NULL. */
+const touch *touch_find(const struct world *wd, uint64_t x, uint64_t y);
+
+/* Sort a list into the order touch_find searches (for a snapshot's list). */
+void touch_sort(touch *list, int32_t n);
+
+#endif
