@@ -107,7 +107,7 @@ def _check_range(value, low, high, what):
     return int(value)
 
 
-def _mask(bits):
+def _mask_bits(bits):
     """Collision filter bits as the uint32 the library takes, where ctypes would wrap a wider value."""
     return _check_range(bits, 0, 2**32 - 1, "mask_bits")
 
@@ -354,7 +354,7 @@ class World:
         """The nearest solid pixel on the segment from → to (world px) of a body whose category_bits meet
         mask_bits (sensors skipped), as a RaycastHit, or None; a ray starting inside a solid pixel hits at 0."""
         hit, out = c_int32(0), N.pp_raycast_hit()
-        lib.pp_world_raycast(self._handle, vec2(from_, "from_"), vec2(to, "to"), _mask(mask_bits), byref(out),
+        lib.pp_world_raycast(self._handle, vec2(from_, "from_"), vec2(to, "to"), _mask_bits(mask_bits), byref(out),
                              byref(hit))
         if not hit.value:
             return None
@@ -367,16 +367,16 @@ class World:
     def query_point(self, point, mask_bits=0xffffffff):
         """Bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square contains
         the world point (px), in slot order."""
-        return self._query(lib.pp_world_query_point, vec2(point, "point"), _mask(mask_bits))
+        return self._query(lib.pp_world_query_point, vec2(point, "point"), _mask_bits(mask_bits))
 
     def query_aabb(self, lower, upper, mask_bits=0xffffffff):
         """Bodies with a solid pixel whose centre lies in the world box [lower, upper] (px), as query_point."""
-        return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"), _mask(mask_bits))
+        return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"), _mask_bits(mask_bits))
 
     def query_circle(self, center, radius, mask_bits=0xffffffff):
         """Bodies with a solid pixel whose centre lies within radius px of a world point (px), as query_point:
         the bodies erase_circle would change."""
-        return self._query(lib.pp_world_query_circle, vec2(center, "center"), radius, _mask(mask_bits))
+        return self._query(lib.pp_world_query_circle, vec2(center, "center"), radius, _mask_bits(mask_bits))
 
     def stats(self):
         """Statistics of the last step."""
