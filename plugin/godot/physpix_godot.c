@@ -297,7 +297,9 @@ static bool read_body_options(call *c, const godot_variant *var, pp_body_def *de
         godot_variant key = gdn->godot_array_get(&keys, k);
         char name[32] = "";
         const body_option *opt = NULL;
-        if (gdn->godot_variant_get_type(&key) == GDN_STRING && gdn_string_to_utf8(&key, name, sizeof name) < sizeof name)
+        const bool named = gdn->godot_variant_get_type(&key) == GDN_STRING &&
+                           gdn_string_to_utf8(&key, name, sizeof name) < sizeof name;
+        if (named)
             for (size_t i = 0; i < sizeof BODY_OPTIONS / sizeof BODY_OPTIONS[0]; i++)
                 if (strcmp(name, BODY_OPTIONS[i].name) == 0)
                     opt = &BODY_OPTIONS[i];

@@ -103,7 +103,8 @@ func test_rays_and_queries():
 	check(q.raycast(Vector2(), Vector2(1, 1), -1) == null and q.get_last_error().find("0..0xffffffff") >= 0,
 		"mask -1 refused: %s" % q.get_last_error())
 	var box = q.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(40, 50))  # 30..50 × 40..60
-	check(q.query_point(Vector2(45.5, 55.5)) == [box], "query_point finds the box: %s" % [q.query_point(Vector2(45.5, 55.5))])
+	var at = q.query_point(Vector2(45.5, 55.5))
+	check(at == [box], "query_point finds the box: %s" % [at])
 	check(q.query_aabb(Vector2(0, 0), Vector2(300, 300)) == [ground, box], "query_aabb finds both in slot order")
 	check(q.query_circle(Vector2(100, 80), 10.0) == [], "query_circle above the ground finds nothing")
 	check(q.query_circle(Vector2(100, 95), 10.0, 1) == [ground], "query_circle reaching the ground finds it")

@@ -371,7 +371,8 @@ class World:
 
     def query_aabb(self, lower, upper, mask_bits=0xffffffff):
         """Bodies with a solid pixel whose centre lies in the world box [lower, upper] (px), as query_point."""
-        return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"), _mask_bits(mask_bits))
+        return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"),
+                           _mask_bits(mask_bits))
 
     def query_circle(self, center, radius, mask_bits=0xffffffff):
         """Bodies with a solid pixel whose centre lies within radius px of a world point (px), as query_point:
