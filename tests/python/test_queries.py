@@ -62,6 +62,7 @@ def test_a_ray_starting_inside_a_solid_pixel_hits_at_fraction_0(space):
     hit = space.raycast((100, 100), (300, 100))
     assert hit.body == box and hit.fraction == 0.0
     assert hit.point == pytest.approx((100.0, 100.0), abs=0.5)
+    assert angle_between_deg(hit.normal, (-1, 0)) < 1.0  # the ray's reverse
 
 
 def test_raycast_refuses_a_mask_wider_than_32_bits(space):
