@@ -20,6 +20,12 @@ static int touch_cmp(const void *x, const void *y)
     return p->b < q->b ? -1 : p->b > q->b;
 }
 
+/* Whether a pair is in a sorted list; an empty list may have no buffer (bsearch must not see NULL, fuzz_api). */
+static bool listed(const touch *t, const touch *list, int32_t n)
+{
+    return n > 0 && bsearch(t, list, (size_t)n, sizeof *t, touch_cmp) != NULL;
+}
+
 void touch_sort(touch *list, int32_t n)
 {
     if (n > 1)
@@ -122,7 +128,7 @@ pp_status touch_end(world *wd)
     int32_t kept = 0, ends = 0;
     for (int32_t i = 0; i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
-        if (bsearch(t, wd->touch_next, (size_t)wd->touch_next_count, sizeof *t, touch_cmp))
+        if (listed(t, wd->touch_next, wd->touch_next_count))
             continue;
         if (untested(wd, t))
             kept++;
@@ -136,7 +142,7 @@ pp_status touch_end(world *wd)
     const int32_t found = wd->touch_next_count;
     for (int32_t i = 0; i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
-        if (bsearch(t, wd->touch_next, (size_t)found, sizeof *t, touch_cmp))
+        if (listed(t, wd->touch_next, found))
             continue;
         if (untested(wd, t)) {
             wd->touch_next[wd->touch_next_count++] = *t;

@@ -151,6 +151,55 @@ static pp_status op_step_hit(script *s)
     return st;
 }
 
+/* ---- gameplay: contact events, a sensor and a one-way platform that a crate jumps through ---- */
+
+static pp_status op_create_events_world(script *s)
+{
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_CPU;
+    d.contact_events = 1;
+    return pp_world_create(&d, &s->w);
+}
+
+/* A thin one-way platform above the terrain, and a sensor zone the crates fall through. */
+static pp_status op_platform(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_STATIC, 60, -40, 0);
+    d.width = 64, d.height = 6;
+    d.mask = s->block_mask;
+    d.one_way = 1;
+    return pp_body_create(s->w, &d, &s->block);
+}
+
+static pp_status op_sensor(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_STATIC, 100, 0, 0);
+    d.width = 80, d.height = 40;
+    d.mask = s->block_mask;
+    d.is_sensor = 1;
+    return pp_body_create(s->w, &d, &s->giant);
+}
+
+/* A crate thrown up through the platform, which it lands on later. */
+static pp_status op_jumper(script *s)
+{
+    pp_body_def d = crate_def(s, 0);
+    d.position = v2(30, 20), d.angle = 0, d.linear_velocity = v2(0, -500);
+    return pp_body_create(s->w, &d, &s->crates[2]);
+}
+
+/* The script did what it is for: the jumper went up into the platform, and events were queued. */
+static pp_status op_check_gameplay(script *s)
+{
+    int32_t events = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(s->w, NULL, 0, &events));
+    cr_assert_geq(events, 3, "sensor and contact events: %d", events);
+    pp_vec2 p;
+    PP_OK_OR_FAIL(pp_body_get_position(s->w, s->crates[2], &p));
+    cr_assert_lt(p.y, -40.0f, "the jumper is past the platform's middle (y %g)", p.y);
+    return PP_OK;
+}
+
 /* A static block and a dynamic giant sunk into it, far from the rest: a batch over the pool's threshold. */
 static pp_status op_block(script *s)
 {
@@ -326,6 +375,14 @@ static const op sleeper_ops[] = {
     OP(op_step), OP(op_faller), OP(op_step_hit), OP(op_step), OP(op_save_snapshot),
 };
 
+/* Contact and sensor events begin and end, a crate passes through a one-way platform mid-script. */
+static const op gameplay_ops[] = {
+    OP(op_create_events_world), OP(op_terrain), OP(op_platform), OP(op_sensor), OP(op_crate0), OP(op_crate1),
+    OP(op_jumper), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step), OP(op_step),
+    OP(op_step), OP(op_step), OP(op_check_gameplay), OP(op_save_snapshot),
+};
+
 typedef struct script_ops {
     const op *ops;
     int count;
@@ -384,6 +441,9 @@ static uint64_t world_hash(uint64_t h, pp_world w)
     h = fnv(h, &nc, sizeof nc);
     h = fnv(h, contacts, (size_t)(nc < 64 ? nc : 64) * sizeof *contacts);
     PP_OK_OR_FAIL(pp_world_get_scheduled_edits(w, NULL, 0, &ne));
+    int32_t events = 0; /* counted, not read: reading would forget them */
+    PP_OK_OR_FAIL(pp_world_get_events(w, NULL, 0, &events));
+    h = fnv(h, &events, sizeof events);
     double t = 0;
     PP_OK_OR_FAIL(pp_world_get_time(w, &t));
     return fnv(fnv(h, &ne, sizeof ne), &t, sizeof t);
@@ -557,6 +617,13 @@ Test(out_of_memory, a_step_that_fails_after_waking_sleepers_puts_them_back_to_sl
 {
     static const char *const must_fail[] = {"op_step_hit"};
     const script_ops so = {sleeper_ops, (int)(sizeof sleeper_ops / sizeof *sleeper_ops), false};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
+}
+
+Test(out_of_memory, every_allocation_of_contact_events_sensors_and_one_way_platforms_can_fail, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_step", "op_load_snapshot"};
+    const script_ops so = {gameplay_ops, (int)(sizeof gameplay_ops / sizeof *gameplay_ops), false};
     fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
 }
 

@@ -180,6 +180,7 @@ static void op_world_create(reader *r)
     const uint8_t k = u8(r);
     if (k < 20)
         d = pp_world_def_preset((pp_preset)(k % 5));
+    d.contact_events = k & 1;
     if (u8(r) < 40) { /* one field set to a fuzzed value */
         switch (u8(r) % 12) {
         case 0: d.substeps = (int32_t)(int8_t)u8(r); break;
@@ -273,6 +274,10 @@ static void op_body_create(reader *r)
     d.bullet = (extra >> 6) & 1;
     d.detach_islands = extra >> 7;
     d.alpha_threshold = u8(r);
+    const uint8_t play = u8(r); /* sensors and one-way platforms */
+    d.is_sensor = play & 1, d.one_way = (play >> 1) & 1;
+    if (play & 4)
+        d.one_way_direction = (pp_vec2){f32(r, 2), f32(r, 2)};
     const uint8_t planes = u8(r);
     uint8_t *buf = NULL;
     if (in_range) {

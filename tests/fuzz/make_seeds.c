@@ -204,6 +204,31 @@ static void snapshots(void)
     pp_world_step(w, 1.0f / 60);
     save(w, "slots_events");
 
+    /* Contact events unread, a sensor overlapped, a box passing up through a one-way platform: touching pairs. */
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU, wd.worker_threads = 1, wd.substeps = 2, wd.contact_events = 1;
+    if (pp_world_create(&wd, &w) != PP_OK)
+        fail("world");
+    uint8_t solid[64 * 8];
+    memset(solid, 1, sizeof solid);
+    pp_body_def d = pp_body_def_default();
+    d.mask = solid, d.type = PP_BODY_STATIC;
+    d.position = (pp_vec2){40, 60}, d.width = 64, d.height = 8;
+    pp_body b;
+    pp_body_create(w, &d, &b);
+    d.position = (pp_vec2){40, 30}, d.width = 20, d.height = 4, d.one_way = 1;
+    pp_body_create(w, &d, &b);
+    d.position = (pp_vec2){70, 45}, d.width = 10, d.height = 10, d.one_way = 0, d.is_sensor = 1;
+    pp_body_create(w, &d, &b);
+    d.type = PP_BODY_DYNAMIC, d.is_sensor = 0, d.width = d.height = 6;
+    d.position = (pp_vec2){40, 40}, d.linear_velocity = (pp_vec2){0, -150};
+    pp_body_create(w, &d, &b);
+    d.position = (pp_vec2){70, 50}, d.linear_velocity = (pp_vec2){0, 0};
+    pp_body_create(w, &d, &b);
+    for (int i = 0; i < 4; i++)
+        pp_world_step(w, 1.0f / 60);
+    save(w, "touching");
+
     /* An empty world with another camera. */
     w = small_world();
     pp_camera cam = {{10, 10}, 2, 64, 48};

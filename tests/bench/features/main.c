@@ -2,6 +2,7 @@
  * sleep off so every step does the same work) runs as the base and with one feature available
  * but idle, or its reading switched on: weight planes of uniform weight, an armed fracture
  * (detach_islands) with no edits, reading events or contacts every step, an idle kinematic body,
+ * an idle sensor or one-way platform (either makes the step track touching pairs), contact events,
  * continuous collision off, one thread, the AUTO backend. Variants alternate within each run, and
  * the minimum over runs of each median ms/step is kept. It also says whether the CPU-backend worlds
  * loaded EGL into the process (they must not) and fails if they did.
@@ -20,14 +21,16 @@
 enum { TW = 1400, TH = 200, CRATE = 24, COLS = 14, ROWS = 10 };
 
 typedef enum variant {
-    V_BASE, V_WEIGHTS, V_FRACTURE, V_EVENTS, V_CONTACTS, V_KINEMATIC, V_NO_CONTINUOUS, V_ONE_THREAD,
+    V_BASE, V_WEIGHTS, V_FRACTURE, V_EVENTS, V_CONTACTS, V_KINEMATIC, V_SENSOR, V_ONE_WAY, V_CONTACT_EVENTS,
+    V_NO_CONTINUOUS, V_ONE_THREAD,
     V_AUTO, /* last: AUTO may open EGL to look for a GPU, which the CPU variants must not */
     V_COUNT
 } variant;
 
 static const char *const variant_names[V_COUNT] = {
     "base (CPU backend)", "uniform weight planes", "fracture armed, no edits", "events read each step",
-    "contacts read each step", "idle kinematic body", "continuous off", "worker_threads 1",
+    "contacts read each step", "idle kinematic body", "idle sensor", "idle one-way platform",
+    "contact events, read", "continuous off", "worker_threads 1",
     "AUTO backend",
 };
 
@@ -47,6 +50,7 @@ static pp_world build(variant v, const uint8_t *solid, const uint8_t *heavy)
     wd.allow_sleep = 0;
     wd.continuous = v != V_NO_CONTINUOUS;
     wd.worker_threads = v == V_ONE_THREAD ? 1 : 0;
+    wd.contact_events = v == V_CONTACT_EVENTS;
     pp_world w;
     check(pp_world_create(&wd, &w), "pp_world_create");
 
@@ -76,6 +80,15 @@ static pp_world build(variant v, const uint8_t *solid, const uint8_t *heavy)
         k.linear_velocity = (pp_vec2){10.0f, 0.0f};
         check(pp_body_create(w, &k, &b), "kinematic");
     }
+    if (v == V_SENSOR || v == V_ONE_WAY) { /* far from the crates: it only makes the step track touching pairs */
+        pp_body_def k = pp_body_def_default();
+        k.type = PP_BODY_STATIC;
+        k.width = k.height = CRATE;
+        k.mask = solid;
+        k.position = (pp_vec2){-5000.0f, 0.0f};
+        k.is_sensor = v == V_SENSOR, k.one_way = v == V_ONE_WAY;
+        check(pp_body_create(w, &k, &b), "sensor or platform");
+    }
     return w;
 }
 
@@ -86,7 +99,7 @@ static double run(variant v, int steps, const uint8_t *solid, const uint8_t *hea
     pp_world w = build(v, solid, heavy);
     double *ms = malloc((size_t)steps * sizeof *ms), *nms = malloc((size_t)steps * sizeof *nms);
     static pp_contact buf[4096];
-    static pp_event events[64];
+    static pp_event events[4096];
     if (!ms || !nms)
         exit(1);
     double sum_contacts = 0;
@@ -94,8 +107,8 @@ static double run(variant v, int steps, const uint8_t *solid, const uint8_t *hea
         const double t0 = bench_clock_ms();
         check(pp_world_step(w, 1.0f / 60.0f), "pp_world_step");
         int32_t n;
-        if (v == V_EVENTS)
-            check(pp_world_get_events(w, events, 64, &n), "pp_world_get_events");
+        if (v == V_EVENTS || v == V_CONTACT_EVENTS)
+            check(pp_world_get_events(w, events, 4096, &n), "pp_world_get_events");
         if (v == V_CONTACTS)
             check(pp_world_get_contacts(w, buf, 4096, &n), "pp_world_get_contacts");
         if (s >= 60) {
