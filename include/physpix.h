@@ -207,9 +207,11 @@ typedef struct pp_event {
 /// The nearest solid pixel a ray meets, from pp_world_raycast.
 typedef struct pp_raycast_hit {
     pp_body body;     ///< the body hit
-    pp_vec2 point;    ///< world point where the ray enters the first solid pixel, px
-    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes (the ray's reverse at fraction 0)
-    float fraction;   ///< where along from → to the hit lies, 0..1
+    pp_vec2 point;    ///< world point on the surface, px: where the ray enters the first solid pixel's square, moved
+                      ///< along the ray (≤ 5 px) onto the surface line the mask around it shows; `from` at fraction 0
+    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes: the mask's area gradient in a 5 px
+                      ///< window; the ray's reverse when the ray starts inside a solid pixel, (0, 0) if from == to
+    float fraction;   ///< where along from → to the point lies, 0..1; 0 when from is in a solid pixel
     uint32_t reserved; ///< zero
 } pp_raycast_hit;
 
@@ -320,8 +322,8 @@ PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity
 /// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
 /// Cast the segment from → to (world px) through the pixel grid of every body whose category_bits meet mask_bits
-/// (sensors are skipped); hit receives 1 and out the nearest solid pixel, or 0. A ray starting inside a solid
-/// pixel hits that body at fraction 0.
+/// (sensors are skipped); hit receives 1 and out the nearest solid pixel, or 0 and out zeroed. A ray starting inside
+/// a solid pixel hits that body at fraction 0; a zero-length ray (from == to) is such a point test.
 PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
                                   int32_t *hit);
 /// Write up to capacity bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square

@@ -3,6 +3,7 @@
  * moves to the new centre of mass with the velocity its material already had; the GPU mirror
  * rewrites only the dirty rows; bodies nearby wake; a body cut apart splits (fracture.c). */
 #include "alloc.h"
+#include "cover.h"
 #include "edit.h"
 #include "status.h"
 
@@ -182,28 +183,23 @@ static pp_status check_circle(const char *fn, pp_vec2 c, float radius)
     return PP_OK;
 }
 
-/* Set every pixel of [x0, x1) × [y0, y1) whose centre is within r of the body-local point c. */
+/* Set every pixel of [x0, x1) × [y0, y1) whose centre is within r of the body-local point c (cover.h). */
 static void circle_write(body *bd, edit_span *e, dvec2 c, double r, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
                          bool solid, uint32_t weight)
 {
     /* Clamped on both sides: a circle far off the bitmap gives bounds past int32 (UBSan, found by fuzz_api). */
     const double top = fmin(fmax(y0, floor(c.y - r)), y1), bottom = fmax(fmin(y1, ceil(c.y + r)), y0);
     for (int32_t y = (int32_t)top; y < (int32_t)bottom; y++) {
-        const double dy = y + 0.5 - c.y, h2 = r * r - dy * dy;
-        if (h2 < 0)
+        double a, b;
+        if (!circle_row_span(c, r, y, &a, &b))
             continue;
-        const double h = sqrt(h2);
-        const int32_t xa = (int32_t)fmin(fmax(x0, ceil(c.x - h - 0.5)), x1),
-                      xb = (int32_t)fmax(fmin(x1 - 1, floor(c.x + h - 0.5)), x0 - 1);
+        const int32_t xa = (int32_t)fmin(fmax(x0, a), x1), xb = (int32_t)fmax(fmin(x1 - 1, b), x0 - 1);
         for (int32_t x = xa; x <= xb; x++)
             edit_pixel(bd, e, x, y, solid, weight);
     }
 }
 
-static dvec2 world_to_local(const body *bd, pp_vec2 p)
-{
-    return dv_add(bd->pivot, dv_unrot(dv_sub(dv(p.x, p.y), bd->pos), bd->cos_a, bd->sin_a));
-}
+static dvec2 world_to_local(const body *bd, pp_vec2 p) { return body_world_to_local(bd, dv(p.x, p.y)); }
 
 /* Erase a circle from one body, up to the commit. */
 static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, edit_job *j, int32_t *events)
