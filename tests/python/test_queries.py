@@ -93,7 +93,7 @@ def test_queries_leave_out_a_body_whose_pixels_there_were_erased(space):
     assert a.erase_circle((100, 100), 6) > 100
     assert space.query_point((100.5, 100.5)) == []
     assert space.query_circle((100, 100), 3) == []
-    assert space.query_aabb((95, 95), (105, 105)) == []
+    assert space.query_aabb((97, 97), (103, 103)) == []  # every centre in it lies within 6 px of (100, 100)
     assert space.query_aabb((80, 80), (120, 120)) == [a]  # its other pixels are still there
     assert space.query_circle((110, 100), 12) == [a, b]
 
