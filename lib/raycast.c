@@ -32,6 +32,9 @@ static bool queried(const body *bd, uint32_t mask_bits)
 #ifndef RAY_WINDOW
 #define RAY_WINDOW 8
 #endif
+#ifndef RAY_EDGE_WINDOW
+#define RAY_EDGE_WINDOW 4 /* px: the window that places the edge along the normal */
+#endif
 #ifndef RAY_TAPER
 #define RAY_TAPER 1
 #endif
@@ -154,9 +157,8 @@ static bool body_ray(const body *bd, dvec2 a, dvec2 d, pixel_hit *h)
 /* What the mask shows around a bitmap point c: the unit outward normal n (the area gradient
  * −Σ w·(p − c) over solid pixel centres p, under the taper) and the signed distance s along n from c to
  * the straight edge that would leave the window's weighted solid fraction. False without a gradient. */
-static bool window_surface(const pp_raster *r, dvec2 c, dvec2 *n, double *s)
+static bool window_surface(const pp_raster *r, dvec2 c, double R, dvec2 *n, double *s)
 {
-    const double R = RAY_WINDOW;
     double gx = 0, gy = 0, solid = 0, total = 0;
     const int32_t x0 = (int32_t)ceil(c.x - R - 0.5), x1 = (int32_t)floor(c.x + R - 0.5);
     const int32_t y0 = (int32_t)ceil(c.y - R - 0.5), y1 = (int32_t)floor(c.y + R - 0.5);
@@ -219,9 +221,15 @@ static void ray_result(const body *bd, dvec2 from, dvec2 to, dvec2 a, dvec2 d, c
         for (int pass = 0; pass < 2; pass++) {
             dvec2 m;
             double s;
-            if (!window_surface(&bd->raster, dv_add(a, dv_scale(d, t)), &m, &s) || dv_dot(m, d) >= 0)
+            const dvec2 c = dv_add(a, dv_scale(d, t));
+            if (!window_surface(&bd->raster, c, RAY_WINDOW, &m, &s) || dv_dot(m, d) >= 0)
                 break;
             n = m, have = true;
+            /* The edge's offset from a smaller window: a curved edge bends away from its tangent line by
+             * ρ²/2r, which a wide window would read as the edge lying deeper. */
+            dvec2 unused;
+            if (!window_surface(&bd->raster, c, RAY_EDGE_WINDOW, &unused, &s))
+                break;
             if (fabs(s) > 1.0)
                 break;
             t = fmin(fmax(t + s / dv_dot(m, d), tmin), tmax);
