@@ -9,11 +9,10 @@
 
 #include <stdlib.h>
 
-/* Rays and queries pass sensors by. TODO(sensors): return bd->is_sensor once struct body has it. */
+/* Rays and queries pass sensors by. */
 static bool ray_skips(const body *bd)
 {
-    (void)bd;
-    return false;
+    return bd->is_sensor;
 }
 
 static bool queried(const body *bd, uint32_t mask_bits)

@@ -96,6 +96,9 @@ static void add_body(plugin_object *self, pp_body_def *d, const pp_variant *pos,
 {
     pp_body b;
     d->position = pos->as.vec2;
+    d->is_sensor = self->cache->is_sensor;
+    d->one_way = self->cache->one_way;
+    d->one_way_direction = self->cache->one_way_direction;
     if (body_type_named(type, m, &d->type, ret) && ret_ok(ret, pp_body_create(self->world, d, &b), m))
         ret_body(self, b, ret);
 }
@@ -208,6 +211,13 @@ static void world_get_contact_depth(plugin_object *self, const pp_variant *a, pp
         ret_float(ret, c->depth);
 }
 
+static void world_get_contact_normal_impulse(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_normal_impulse", ret);
+    if (c)
+        ret_float(ret, c->normal_impulse);
+}
+
 static void world_get_contact_body_a(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     const pp_contact *c = contact_at(self, &a[0], "PhysPixWorld.get_contact_body_a", ret);
@@ -240,9 +250,32 @@ static const pp_event *event_at(plugin_object *self, const pp_variant *a, const 
 
 static void world_get_event_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
+    static const char *names[] = {"unknown",       "split",       "destroyed",   "contact_begin",
+                                  "contact_end",   "sensor_begin", "sensor_end"}; /* in pp_event_type order */
     const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_type", ret);
     if (e)
-        ret_string(ret, e->type == PP_EVENT_BODY_SPLIT ? "split" : "destroyed");
+        ret_string(ret, (uint32_t)e->type < sizeof names / sizeof names[0] ? names[e->type] : "unknown");
+}
+
+static void world_get_event_point(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_point", ret);
+    if (e)
+        ret_vec2(ret, e->point);
+}
+
+static void world_get_event_normal(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_normal", ret);
+    if (e)
+        ret_vec2(ret, e->normal);
+}
+
+static void world_get_event_approach_speed(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_approach_speed", ret);
+    if (e)
+        ret_float(ret, e->approach_speed);
 }
 
 static void world_get_event_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
@@ -293,6 +326,120 @@ static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *
     ret_int(ret, n);
 }
 
+/* ---- raycasts and queries ---- */
+
+/* A collision filter argument: the 32 bits pp_world_raycast and the queries take. */
+static int mask_bits(const pp_variant *a, const char *m, uint32_t *out, pp_variant *ret)
+{
+    if (a->as.integer < 0 || a->as.integer > UINT32_MAX) {
+        ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: mask must be in 0..%u, got %lld", m, UINT32_MAX,
+                  (long long)a->as.integer);
+        return 0;
+    }
+    *out = (uint32_t)a->as.integer;
+    return 1;
+}
+
+static void world_raycast(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.raycast";
+    world_cache *c = self->cache;
+    uint32_t mask;
+    int32_t hit = 0;
+    c->ray = (pp_raycast_hit){0};
+    if (mask_bits(&a[2], m, &mask, ret) &&
+        ret_ok(ret, pp_world_raycast(self->world, a[0].as.vec2, a[1].as.vec2, mask, &c->ray, &hit), m)) {
+        if (!hit)
+            c->ray = (pp_raycast_hit){0};
+        ret_bool(ret, hit);
+    }
+}
+
+static void world_get_ray_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_body(self, self->cache->ray.body, ret);
+}
+
+static void world_get_ray_point(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->ray.point);
+}
+
+static void world_get_ray_normal(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->ray.normal);
+}
+
+static void world_get_ray_fraction(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_float(ret, self->cache->ray.fraction);
+}
+
+/* The three queries share one shape once their region is bound; these adapt it. */
+typedef pp_status (*query_fn)(pp_world w, const pp_variant *a, uint32_t mask, pp_body *out, int32_t capacity,
+                              int32_t *count);
+static pp_status query_point(pp_world w, const pp_variant *a, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_point(w, a[0].as.vec2, mask, out, cap, n);
+}
+
+static pp_status query_aabb(pp_world w, const pp_variant *a, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_aabb(w, a[0].as.vec2, a[1].as.vec2, mask, out, cap, n);
+}
+
+static pp_status query_circle(pp_world w, const pp_variant *a, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_circle(w, a[0].as.vec2, (float)a[1].as.real, mask, out, cap, n);
+}
+
+/* Run a query into the cache (its mask is argument mask_arg) and answer how many bodies it found. */
+static void run_query(plugin_object *self, const pp_variant *a, int mask_arg, query_fn fn, const char *m,
+                      pp_variant *ret)
+{
+    world_cache *c = self->cache;
+    uint32_t mask;
+    int32_t n = 0;
+    c->found_count = 0;
+    if (mask_bits(&a[mask_arg], m, &mask, ret) && ret_ok(ret, fn(self->world, a, mask, NULL, 0, &n), m) &&
+        reserve((void **)&c->found, &c->found_capacity, n, sizeof *c->found, ret) &&
+        ret_ok(ret, fn(self->world, a, mask, c->found, n, &c->found_count), m)) {
+        if (c->found_count > n)
+            c->found_count = n;
+        ret_int(ret, c->found_count);
+    }
+}
+
+static void world_query_point(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    run_query(self, a, 1, query_point, "PhysPixWorld.query_point", ret);
+}
+
+static void world_query_aabb(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    run_query(self, a, 2, query_aabb, "PhysPixWorld.query_aabb", ret);
+}
+
+static void world_query_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    run_query(self, a, 2, query_circle, "PhysPixWorld.query_circle", ret);
+}
+
+static void world_get_query_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    if (index_in(&a[0], self->cache->found_count, "PhysPixWorld.get_query_body", "bodies a query found", ret))
+        ret_body(self, self->cache->found[a[0].as.integer], ret);
+}
+
+/* The sensor and one-way settings of the bodies add_body* make from now on; checked when one is made. */
+static void world_set_body_options(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    world_cache *c = self->cache;
+    c->is_sensor = a[0].as.boolean != 0;
+    c->one_way = a[1].as.boolean != 0;
+    c->one_way_direction = a[2].as.vec2;
+}
+
 static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_step_stats s;
@@ -309,8 +456,9 @@ static void world_replace(plugin_object *self, pp_world loaded)
         object_free(c->body_objects[i]);
     pp_world_destroy(self->world);
     self->world = loaded;
-    c->contact_count = c->event_count = c->body_count = c->edit_count = 0;
+    c->contact_count = c->event_count = c->body_count = c->edit_count = c->found_count = 0;
     c->debug_view = (pp_collision_view){0};
+    c->ray = (pp_raycast_hit){0};
 }
 
 static void world_load_scene(plugin_object *self, const pp_variant *a, pp_variant *ret)
@@ -514,17 +662,60 @@ static const method_def world_methods[] = {
            ARGS(ARG("index", INT))),
     METHOD(world_get_contact_depth, "get_contact_depth", FLOAT, "penetration along the normal, px",
            ARGS(ARG("index", INT))),
+    METHOD(world_get_contact_normal_impulse, "get_contact_normal_impulse", FLOAT,
+           "impulse the solver applied along the normal in the last substep, mass*px/s (0 after collide)",
+           ARGS(ARG("index", INT))),
     METHOD(world_get_contact_body_a, "get_contact_body_a", OBJECT, "first body of a contact", ARGS(ARG("index", INT)),
            RETURNS_BODY),
     METHOD(world_get_contact_body_b, "get_contact_body_b", OBJECT, "second body of a contact",
            ARGS(ARG("index", INT)), RETURNS_BODY),
     METHOD(world_get_event_count, "get_event_count", INT, "read (and forget) the pending events; returns how many",
            .arg_count = 0),
-    METHOD(world_get_event_type, "get_event_type", STRING, "\"split\" or \"destroyed\"", ARGS(ARG("index", INT))),
-    METHOD(world_get_event_body, "get_event_body", OBJECT, "the body an event happened to (split: the parent)",
+    METHOD(world_get_event_type, "get_event_type", STRING,
+           "\"split\", \"destroyed\", \"contact_begin\", \"contact_end\", \"sensor_begin\" or \"sensor_end\"",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_event_body, "get_event_body", OBJECT,
+           "the body an event happened to (split: the parent; sensor_*: the sensor)", ARGS(ARG("index", INT)),
+           RETURNS_BODY),
+    METHOD(world_get_event_other, "get_event_other", OBJECT,
+           "split: the new body; destroyed: nil; contact_*, sensor_*: the other body of the pair",
            ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_get_event_other, "get_event_other", OBJECT, "split: the new body; destroyed: nil",
+    METHOD(world_get_event_point, "get_event_point", VEC2,
+           "contact_begin, sensor_begin: world point of the first contact, px; else zero", ARGS(ARG("index", INT))),
+    METHOD(world_get_event_normal, "get_event_normal", VEC2,
+           "contact_begin, sensor_begin: unit normal from the event's body to its other; else zero",
+           ARGS(ARG("index", INT))),
+    METHOD(world_get_event_approach_speed, "get_event_approach_speed", FLOAT,
+           "contact_begin, sensor_begin: speed at which the pair closed along the normal, px/s; else zero",
+           ARGS(ARG("index", INT))),
+    METHOD(world_raycast, "raycast", BOOL,
+           "cast a segment between world points (px) against bodies whose category meets mask (0..2^32-1; "
+           "sensors skipped); whether it met a solid pixel, which get_ray_* describe",
+           ARGS(ARG("from", VEC2), ARG("to", VEC2), ARG("mask", INT))),
+    METHOD(world_get_ray_body, "get_ray_body", OBJECT, "the body the last raycast hit; nil if it missed",
+           .arg_count = 0, RETURNS_BODY),
+    METHOD(world_get_ray_point, "get_ray_point", VEC2,
+           "world point where the last ray entered the first solid pixel, px; zero if it missed", .arg_count = 0),
+    METHOD(world_get_ray_normal, "get_ray_normal", VEC2,
+           "unit surface normal at the last ray's hit, out of the body; zero if it missed", .arg_count = 0),
+    METHOD(world_get_ray_fraction, "get_ray_fraction", FLOAT,
+           "where along from -> to the last ray's hit lies, 0..1; zero if it missed", .arg_count = 0),
+    METHOD(world_query_point, "query_point", INT,
+           "find the bodies (category meeting mask, sensors skipped) with a solid pixel whose square contains a "
+           "world point (px); returns how many, read with get_query_body",
+           ARGS(ARG("point", VEC2), ARG("mask", INT))),
+    METHOD(world_query_aabb, "query_aabb", INT,
+           "as query_point, for solid pixel centres in the world box [lower, upper], px",
+           ARGS(ARG("lower", VEC2), ARG("upper", VEC2), ARG("mask", INT))),
+    METHOD(world_query_circle, "query_circle", INT,
+           "as query_point, for solid pixel centres within radius (px) of a world point (px)",
+           ARGS(ARG("center", VEC2), ARG("radius", FLOAT), ARG("mask", INT))),
+    METHOD(world_get_query_body, "get_query_body", OBJECT, "the index-th body the last query_* found, in slot order",
            ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_set_body_options, "set_body_options", NIL,
+           "make later add_body* bodies sensors and/or one-way platforms that bodies land on from one_way_direction "
+           "(bitmap axes, length > 0; default false, false, (0, -1): from above)",
+           ARGS(ARG("is_sensor", BOOL), ARG("one_way", BOOL), ARG("one_way_direction", VEC2))),
     METHOD(world_collide, "collide", INT,
            "run the narrowphase on two bodies at their current poses; returns how many contacts, which replace "
            "the list get_contact_* read",

@@ -139,6 +139,7 @@ static void world_cache_free(world_cache *c)
     free(c->body_objects);
     free(c->edits);
     free(c->debug_normals);
+    free(c->found);
     free(c);
 }
 
@@ -268,6 +269,7 @@ static void create_world(pp_variant *ret)
         ret_error(ret, PP_ERR_OUT_OF_MEMORY, "object_create: out of memory");
         return;
     }
+    cache->one_way_direction = pp_body_def_default().one_way_direction;
     o->cache = cache;
     o->world_object = id;
     const pp_world_def def = pp_world_def_default();

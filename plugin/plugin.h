@@ -22,6 +22,11 @@ typedef struct world_cache {
     pp_collision_view debug_view; /* of the last debug_collision */
     pp_vec2 *debug_normals;       /* its local normals, one per cell */
     int64_t debug_capacity;
+    pp_raycast_hit ray; /* of the last raycast; all zero when it met nothing */
+    pp_body *found;     /* bodies of the last query_* */
+    int32_t found_count, found_capacity;
+    uint32_t is_sensor, one_way; /* set_body_options: what add_body* give the bodies they make */
+    pp_vec2 one_way_direction;
 } world_cache;
 
 /* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */

@@ -42,6 +42,7 @@ enum {
     GDN_STRING = 4,
     GDN_VECTOR2 = 5,
     GDN_OBJECT = 17,
+    GDN_DICTIONARY = 18,
     GDN_POOL_BYTE_ARRAY = 20,
 };
 

@@ -11,7 +11,7 @@
 #include "physpix.h"
 
 #define CLASS_NAME "PhysPixWorld"
-#define MAX_ARGS 5
+#define MAX_ARGS 6
 #define PATH_SIZE 4096 /* a path argument's UTF-8 bytes, with the terminating NUL */
 
 typedef struct world_inst {
@@ -63,13 +63,23 @@ typedef godot_variant (*method_fn)(call *c);
 /* A GDScript-facing method. spec has one letter an argument, those after '|' optional:
  * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
  * "static" or "kinematic"), M PoolByteArray, I Image, p path (String; res:// and user://
- * become filesystem paths through ProjectSettings.globalize_path, others are used as given). */
+ * become filesystem paths through ProjectSettings.globalize_path, others are used as given),
+ * m collision mask bits (int, 0..0xffffffff), o body options (Dictionary, see read_body_options). */
 typedef struct method_def {
     const char *name;
     const char *spec;
     method_fn fn;
     const char *usage; /* quoted in error messages */
 } method_def;
+
+static const char *const EVENT_TYPE_NAMES[] = {
+    [PP_EVENT_BODY_SPLIT] = "split",
+    [PP_EVENT_BODY_DESTROYED] = "destroyed",
+    [PP_EVENT_CONTACT_BEGIN] = "contact_begin",
+    [PP_EVENT_CONTACT_END] = "contact_end",
+    [PP_EVENT_SENSOR_BEGIN] = "sensor_begin",
+    [PP_EVENT_SENSOR_END] = "sensor_end",
+};
 
 static const char *const BODY_TYPE_NAMES[] = {
     [PP_BODY_DYNAMIC] = "dynamic",
@@ -191,6 +201,14 @@ static bool read_arg(call *c, int i, char letter)
                         i + 1, (long long)a->i);
         a->body.id = (uint64_t)a->i & ~EPOCH_MASK;
         return true;
+    case 'm':
+        if (t != GDN_INT)
+            return wrong_type(c, i, "int (mask bits)");
+        a->i = gdn->godot_variant_as_int(a->var);
+        return (a->i >= 0 && a->i <= UINT32_MAX) ||
+               fail(c, "argument %d, mask bits %lld, is outside 0..0xffffffff", i + 1, (long long)a->i);
+    case 'o':
+        return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (body options)");
     case 'f':
         if (t != GDN_REAL && t != GDN_INT)
             return wrong_type(c, i, "float");
@@ -255,13 +273,66 @@ static bool read_args(call *c, godot_variant **args)
 
 /* ---- bodies ---------------------------------------------------------------------------- */
 
-/* A default def at args[first] (position) and args[first + 1] (type, default dynamic). */
-static pp_body_def body_def(const call *c, int first)
+/* One body option: the variant type its value must have and where it goes in the def. */
+typedef struct body_option {
+    const char *name;
+    int32_t type; /* GDN_BOOL or GDN_VECTOR2 */
+    size_t offset;
+} body_option;
+
+static const body_option BODY_OPTIONS[] = {
+    {"is_sensor", GDN_BOOL, offsetof(pp_body_def, is_sensor)},
+    {"one_way", GDN_BOOL, offsetof(pp_body_def, one_way)},
+    {"one_way_direction", GDN_VECTOR2, offsetof(pp_body_def, one_way_direction)},
+};
+
+/* Sets the def fields an options Dictionary names (keys as in pp_body_def); an unknown key or a value of
+ * the wrong type is refused, so a typo is not silently a default. */
+static bool read_body_options(call *c, const godot_variant *var, pp_body_def *def)
 {
-    pp_body_def def = pp_body_def_default();
-    def.position = c->a[first].v;
-    def.type = c->argc > first + 1 ? c->a[first + 1].type : PP_BODY_DYNAMIC;
-    return def;
+    godot_dictionary dict = gdn->godot_variant_as_dictionary(var);
+    godot_array keys = gdn->godot_dictionary_keys(&dict);
+    bool good = true;
+    for (int32_t k = 0, n = gdn->godot_array_size(&keys); good && k < n; k++) {
+        godot_variant key = gdn->godot_array_get(&keys, k);
+        char name[32] = "";
+        const body_option *opt = NULL;
+        const bool named = gdn->godot_variant_get_type(&key) == GDN_STRING &&
+                           gdn_string_to_utf8(&key, name, sizeof name) < sizeof name;
+        if (named)
+            for (size_t i = 0; i < sizeof BODY_OPTIONS / sizeof BODY_OPTIONS[0]; i++)
+                if (strcmp(name, BODY_OPTIONS[i].name) == 0)
+                    opt = &BODY_OPTIONS[i];
+        godot_variant value = gdn->godot_dictionary_get(&dict, &key);
+        const int32_t t = gdn->godot_variant_get_type(&value);
+        if (!opt) {
+            good = fail(c, "options has the key \"%s\"; known keys are \"is_sensor\" (bool), \"one_way\" (bool) and "
+                           "\"one_way_direction\" (Vector2)", name[0] ? name : gdn_type_name(&key));
+        } else if (t != opt->type) {
+            good = fail(c, "options[\"%s\"] is %s, expected %s", opt->name, gdn_type_name(&value),
+                        opt->type == GDN_BOOL ? "bool" : "Vector2");
+        } else if (opt->type == GDN_BOOL) {
+            *(uint32_t *)((char *)def + opt->offset) = gdn->godot_variant_as_bool(&value) ? 1 : 0;
+        } else {
+            pp_vec2 *v = (pp_vec2 *)((char *)def + opt->offset);
+            gdn_vector2_read(&value, &v->x, &v->y);
+        }
+        gdn->godot_variant_destroy(&value);
+        gdn->godot_variant_destroy(&key);
+    }
+    gdn->godot_array_destroy(&keys);
+    gdn->godot_dictionary_destroy(&dict);
+    return good;
+}
+
+/* A default def at args[first] (position), args[first + 1] (type, default dynamic) and args[first + 2]
+ * (options, default none); false if the options were refused. */
+static bool body_def(call *c, int first, pp_body_def *def)
+{
+    *def = pp_body_def_default();
+    def->position = c->a[first].v;
+    def->type = c->argc > first + 1 ? c->a[first + 1].type : PP_BODY_DYNAMIC;
+    return c->argc <= first + 2 || read_body_options(c, c->a[first + 2].var, def);
 }
 
 /* A body's int for GDScript (0 stays 0: "no body" in events). */
@@ -312,7 +383,9 @@ static godot_variant add_body_mask(call *c)
 {
     if (!bitmap_size_ok(c, c->a[1].i, c->a[2].i))
         return gdn_nil();
-    pp_body_def def = body_def(c, 3);
+    pp_body_def def;
+    if (!body_def(c, 3, &def))
+        return gdn_nil();
     def.width = (int32_t)c->a[1].i;
     def.height = (int32_t)c->a[2].i;
     return create_body_from_pool(c, &def, c->a[0].var, false);
@@ -359,7 +432,9 @@ static godot_variant add_body_image(call *c)
         fail(c, "Image.get_data() failed");
         goto done;
     }
-    pp_body_def def = body_def(c, 1);
+    pp_body_def def;
+    if (!body_def(c, 1, &def))
+        goto done;
     def.width = (int32_t)w;
     def.height = (int32_t)h;
     r = create_body_from_pool(c, &def, &data, true);
@@ -535,6 +610,7 @@ static godot_variant get_contacts(call *c)
         gdn_dict_put(&d, "normal", gdn_vector2(cs[i].normal.x, cs[i].normal.y));
         gdn_dict_put(&d, "depth", gdn_real(cs[i].depth));
         gdn_dict_put(&d, "pixel_count", gdn_int(cs[i].pixel_count));
+        gdn_dict_put(&d, "normal_impulse", gdn_real(cs[i].normal_impulse));
         gdn_array_put(&out, gdn_dict_variant(&d));
     }
     free(cs);
@@ -550,18 +626,102 @@ static godot_variant get_events(call *c)
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < n; i++) {
-        const pp_event_type t = es[i].type;
+        const uint32_t t = (uint32_t)es[i].type;
         godot_dictionary d;
         gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "type", gdn_string(t == PP_EVENT_BODY_SPLIT       ? "split"
-                                            : t == PP_EVENT_BODY_DESTROYED ? "destroyed"
-                                                                           : "unknown"));
+        gdn_dict_put(&d, "type", gdn_string(t < sizeof EVENT_TYPE_NAMES / sizeof EVENT_TYPE_NAMES[0] &&
+                                                    EVENT_TYPE_NAMES[t]
+                                                ? EVENT_TYPE_NAMES[t]
+                                                : "unknown"));
         gdn_dict_put(&d, "body", body_int(c->self, es[i].body));
         gdn_dict_put(&d, "other", body_int(c->self, es[i].other));
+        gdn_dict_put(&d, "point", gdn_vector2(es[i].point.x, es[i].point.y));
+        gdn_dict_put(&d, "normal", gdn_vector2(es[i].normal.x, es[i].normal.y));
+        gdn_dict_put(&d, "approach_speed", gdn_real(es[i].approach_speed));
         gdn_array_put(&out, gdn_dict_variant(&d));
     }
     free(es);
     return gdn_array_variant(&out);
+}
+
+/* ---- raycasts and queries ------------------------------------------------------------- */
+
+/* The optional mask argument at index i: all bits when it is left out. */
+static uint32_t mask_arg(const call *c, int i)
+{
+    return c->argc > i ? (uint32_t)c->a[i].i : 0xffffffffu;
+}
+
+/* {body, point, normal, fraction} of the nearest solid pixel on the segment, or nil (a miss or an error). */
+static godot_variant raycast(call *c)
+{
+    pp_raycast_hit h;
+    int32_t hit = 0;
+    if (!ok(c, pp_world_raycast(c->self->world, c->a[0].v, c->a[1].v, mask_arg(c, 2), &h, &hit)) || !hit)
+        return gdn_nil();
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "body", body_int(c->self, h.body));
+    gdn_dict_put(&d, "point", gdn_vector2(h.point.x, h.point.y));
+    gdn_dict_put(&d, "normal", gdn_vector2(h.normal.x, h.normal.y));
+    gdn_dict_put(&d, "fraction", gdn_real(h.fraction));
+    return gdn_dict_variant(&d);
+}
+
+/* A query's region once its arguments are bound; the three adapt the pp calls to it. */
+typedef pp_status (*query_fn)(const call *c, uint32_t mask, pp_body *out, int32_t capacity, int32_t *count);
+static pp_status query_point_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_point(c->self->world, c->a[0].v, mask, out, cap, n);
+}
+
+static pp_status query_aabb_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_aabb(c->self->world, c->a[0].v, c->a[1].v, mask, out, cap, n);
+}
+
+static pp_status query_circle_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_circle(c->self->world, c->a[0].v, c->a[1].f, mask, out, cap, n);
+}
+
+/* The bodies a query finds as an Array of body ints (in slot order), or nil on failure. */
+static godot_variant run_query(call *c, query_fn fn, uint32_t mask)
+{
+    int32_t total = 0;
+    if (!ok(c, fn(c, mask, NULL, 0, &total)))
+        return gdn_nil();
+    pp_body *found = total > 0 ? malloc(sizeof *found * (size_t)total) : NULL;
+    if (total > 0 && !found) {
+        fail(c, "out of memory for %d bodies", (int)total);
+        return gdn_nil();
+    }
+    const int32_t capacity = total;
+    if (total > 0 && !ok(c, fn(c, mask, found, capacity, &total))) {
+        free(found);
+        return gdn_nil();
+    }
+    godot_array out;
+    gdn->godot_array_new(&out);
+    for (int32_t i = 0; i < total && i < capacity; i++)
+        gdn_array_put(&out, body_int(c->self, found[i]));
+    free(found);
+    return gdn_array_variant(&out);
+}
+
+static godot_variant query_point(call *c)
+{
+    return run_query(c, query_point_fn, mask_arg(c, 1));
+}
+
+static godot_variant query_aabb(call *c)
+{
+    return run_query(c, query_aabb_fn, mask_arg(c, 2));
+}
+
+static godot_variant query_circle(call *c)
+{
+    return run_query(c, query_circle_fn, mask_arg(c, 2));
 }
 
 /* ---- scenes, snapshots, clock and camera ---------------------------------------------- */
@@ -621,11 +781,11 @@ static godot_variant get_last_error(call *c)
 /* ---- the class ------------------------------------------------------------------------- */
 
 static const method_def METHODS[] = {
-    {"add_body_mask", "Miiv|t", add_body_mask,
-     "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\")"
-     " -> int"},
-    {"add_body_image", "Iv|t", add_body_image,
-     "add_body_image(image: Image, position: Vector2, type: String = \"dynamic\") -> int"},
+    {"add_body_mask", "Miiv|to", add_body_mask,
+     "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\","
+     " options: Dictionary = {}) -> int"},
+    {"add_body_image", "Iv|to", add_body_image,
+     "add_body_image(image: Image, position: Vector2, type: String = \"dynamic\", options: Dictionary = {}) -> int"},
     {"destroy_body", "b", destroy_body, "destroy_body(body: int)"},
     {"step", "f", step, "step(dt: float)"},
     {"get_transform", "b", get_transform, "get_transform(body: int) -> Transform2D"},
@@ -643,6 +803,11 @@ static const method_def METHODS[] = {
     {"get_bodies", "", get_bodies, "get_bodies() -> Array"},
     {"get_contacts", "", get_contacts, "get_contacts() -> Array"},
     {"get_events", "", get_events, "get_events() -> Array"},
+    {"raycast", "vv|m", raycast, "raycast(from: Vector2, to: Vector2, mask: int = 0xffffffff) -> Dictionary or null"},
+    {"query_point", "v|m", query_point, "query_point(point: Vector2, mask: int = 0xffffffff) -> Array"},
+    {"query_aabb", "vv|m", query_aabb, "query_aabb(lower: Vector2, upper: Vector2, mask: int = 0xffffffff) -> Array"},
+    {"query_circle", "vf|m", query_circle,
+     "query_circle(center: Vector2, radius: float, mask: int = 0xffffffff) -> Array"},
     {"load_scene", "p", load_scene, "load_scene(path: String) -> bool"},
     {"save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"},
     {"load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"},

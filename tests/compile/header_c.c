@@ -5,9 +5,10 @@
 
 _Static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
 _Static_assert(sizeof(pp_world) == 8 && sizeof(pp_body) == 8, "handle layout");
-_Static_assert(sizeof(pp_contact) == 40, "pp_contact layout");
-_Static_assert(sizeof(pp_event) == 24, "pp_event layout");
-_Static_assert(sizeof(pp_body_def) == 136, "pp_body_def layout");
+_Static_assert(sizeof(pp_contact) == 48, "pp_contact layout");
+_Static_assert(sizeof(pp_event) == 48, "pp_event layout");
+_Static_assert(sizeof(pp_raycast_hit) == 32, "pp_raycast_hit layout");
+_Static_assert(sizeof(pp_body_def) == 152, "pp_body_def layout");
 _Static_assert(sizeof(pp_status) == 4 && sizeof(pp_body_type) == 4, "enums are 32-bit");
 _Static_assert(offsetof(pp_world_def, struct_size) == 0, "struct_size first");
 _Static_assert(sizeof(pp_variant) == 24 && offsetof(pp_variant, as) == 8, "pp_variant layout");

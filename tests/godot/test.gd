@@ -2,7 +2,10 @@ extends SceneTree
 # PhysPix inside a real Godot 3.2 through PhysPixWorld: a crate falls onto terrain and rests,
 # the terrain under it is erased and it falls again, a cut bar splits, bad calls are refused;
 # a scene file loads (user:// and plain paths), a malformed one is refused with its JSON path,
-# and a snapshot loaded into a second object continues exactly as the original.
+# and a snapshot loaded into a second object continues exactly as the original; rays and queries
+# find what is there, a sensor reports a ball falling freely through it, a landing reports its
+# speed and the resting contacts' impulses carry the weight, and a one-way platform is passed
+# from below and landed on from above.
 # Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
 
 const PhysPixWorld = preload("res://physpix_world.gdns")
@@ -73,6 +76,108 @@ func body_of_mass(world, mass):
 		if world.get_mass(b) == mass:
 			return b
 	return null
+
+
+# Issue 10: a box dropped 60 px (bottom 40 → ground top 100) onto a ground, in a world that reports
+# contact events and never sleeps.
+const LANDING_SCENE = """{"world": {"contact_events": true, "allow_sleep": false, "backend": "cpu"},
+ "bodies": [{"type": "static", "box": [200, 40], "position": [100, 120]},
+            {"box": [20, 20], "position": [100, 30], "restitution": 0}]}"""
+
+
+func near(a, b, tol):
+	return abs(a - b) <= tol
+
+
+func test_rays_and_queries():
+	var q = PhysPixWorld.new()
+	var ground = q.add_body_mask(solid_mask(200, 40), 200, 40, Vector2(100, 120), "static")  # top y = 100
+	var hit = q.raycast(Vector2(105, 0), Vector2(105, 200))
+	check(typeof(hit) == TYPE_DICTIONARY and hit["body"] == ground and near(hit["point"].x, 105, 0.5)
+		and near(hit["point"].y, 100, 0.5) and hit["normal"].distance_to(Vector2(0, -1)) < 1e-3
+		and near(hit["fraction"], 0.5, 0.5 / 200), "raycast down meets the top face at (105, 100), normal (0, -1): %s %s"
+		% [hit, q.get_last_error()])
+	check(q.raycast(Vector2(0, 0), Vector2(300, 0)) == null and q.get_last_error() == "", "a ray above it misses: null")
+	check(q.raycast(Vector2(105, 0), Vector2(105, 200), 2) == null and q.get_last_error() == "",
+		"a mask without the ground's category misses")
+	check(q.raycast(Vector2(), Vector2(1, 1), -1) == null and q.get_last_error().find("0..0xffffffff") >= 0,
+		"mask -1 refused: %s" % q.get_last_error())
+	var box = q.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(40, 50))  # 30..50 × 40..60
+	var at = q.query_point(Vector2(45.5, 55.5))
+	check(at == [box], "query_point finds the box: %s" % [at])
+	check(q.query_aabb(Vector2(0, 0), Vector2(300, 300)) == [ground, box], "query_aabb finds both in slot order")
+	check(q.query_circle(Vector2(100, 80), 10.0) == [], "query_circle above the ground finds nothing")
+	check(q.query_circle(Vector2(100, 95), 10.0, 1) == [ground], "query_circle reaching the ground finds it")
+	q.erase_circle(box, Vector2(45, 55), 4.0)
+	check(q.query_point(Vector2(45.5, 55.5)) == [], "erased pixels are not found")
+
+
+func test_sensor():
+	var s = PhysPixWorld.new()
+	var sensor = s.add_body_mask(solid_mask(200, 20), 200, 20, Vector2(100, 100), "static", {"is_sensor": true})
+	var ball = s.add_body_mask(solid_mask(8, 8), 8, 8, Vector2(100, 40))
+	check(is_int(sensor) and is_int(ball), "a sensor made with options {is_sensor: true}: %s" % s.get_last_error())
+	var seen = []
+	var falls_freely = true
+	for k in range(1, 46):
+		s.step(DT)
+		var vy = s.get_linear_velocity(ball).y
+		falls_freely = falls_freely and near(vy, 980.0 * k * DT, 0.01 * 980.0 * k * DT)
+		for e in s.get_events():
+			seen.append(e["type"])
+			if e["type"] == "sensor_begin":
+				check(e["body"] == sensor and e["other"] == ball and e["normal"].y < -0.95
+					and near(e["approach_speed"], vy, 980.0 * DT + 1.0),
+					"sensor_begin: the sensor, the ball, normal up, approach %s ≈ %s px/s" % [e["approach_speed"], vy])
+	check(falls_freely, "the ball falls freely through the sensor (velocity within 1 % of g·t every step)")
+	check(seen == ["sensor_begin", "sensor_end"], "events sensor_begin then sensor_end: %s" % [seen])
+	check(s.get_position(ball).y > 130, "the ball fell through: y %s" % s.get_position(ball).y)
+
+
+func test_landing_and_impulses():
+	var path = OS.get_user_data_dir() + "/physpix_landing_%d.json" % OS.get_process_id()
+	var l = PhysPixWorld.new()
+	var loaded = write_text(path, LANDING_SCENE) == OK and l.load_scene(path) == true
+	Directory.new().remove(path)
+	check(loaded, "a scene with contact_events loads: %s" % l.get_last_error())
+	var box = body_of_mass(l, 400.0)
+	var begins = []
+	for k in range(180):
+		l.step(DT)
+		for e in l.get_events():
+			if e["type"] == "contact_begin":
+				begins.append(e)
+	var expected = sqrt(2.0 * 980.0 * 60.0)
+	check(begins.size() == 1 and near(begins[0]["approach_speed"], expected, 0.05 * expected),
+		"one contact_begin at sqrt(2 g h) = %.1f px/s: %s" % [expected, begins])
+	var total = 0.0
+	for k in range(30):
+		l.step(DT)
+		for c in l.get_contacts():
+			total += c["normal_impulse"]
+	var weight = 400.0 * 980.0 / 240.0  # mass · g · substep (1/60 s over 4 substeps)
+	check(box != null and near(total / 30.0, weight, 0.02 * weight),
+		"resting contacts' normal_impulse sum %.1f ≈ m·g·h = %.1f" % [total / 30.0, weight])
+
+
+func test_one_way():
+	var o = PhysPixWorld.new()
+	var platform = o.add_body_mask(solid_mask(200, 10), 200, 10, Vector2(100, 100), "static", {"one_way": true})
+	var box = o.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(100, 200))
+	o.set_velocity(box, Vector2(0, -sqrt(2.0 * 980.0 * 200.0)), 0.0)
+	var top = 200.0
+	for k in range(300):
+		o.step(DT)
+		top = min(top, o.get_position(box).y)
+	var y = o.get_position(box).y
+	check(is_int(platform) and top < 95 - 8 - 50, "the box rose through the one-way platform to y %.1f" % top)
+	check(near(y, 95 - 8, 1.5), "and came to rest on its top: y %.2f ≈ 87" % y)
+	check(o.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "static", {"one_wya": true}) == null
+		and o.get_last_error().find("one_wya") >= 0, "an unknown option refused: %s" % o.get_last_error())
+	check(o.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "static", {"one_way": 1}) == null
+		and o.get_last_error().find("expected bool") >= 0, "an option of the wrong type refused: %s" % o.get_last_error())
+	check(o.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "static", {"one_way": true, "one_way_direction": Vector2()})
+		== null and o.get_last_error().find("one_way_direction") >= 0, "a zero direction refused: %s" % o.get_last_error())
 
 
 func _init():
@@ -280,6 +385,11 @@ func _init():
 		"the loaded crate's position, angle and velocity == the original's")
 	check(pa != at_save, "and it moved after the snapshot (%s -> %s), so the comparison means something" % [at_save, pa])
 	check(remove_tree(tmp), "removed %s" % tmp)
+
+	test_rays_and_queries()
+	test_sensor()
+	test_landing_and_impulses()
+	test_one_way()
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.

@@ -22,6 +22,8 @@ static void leak_check(void) { __lsan_do_recoverable_leak_check(); }
 static void leak_check(void) {}
 #endif
 
+#define V_BOOL(x) ((pp_variant){.type = PP_VARIANT_BOOL, .as.boolean = (x)})
+
 static const char *const MANIFEST = "plugin/physpix.plugin";
 static char last_log[1024];
 
@@ -302,12 +304,26 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_contact_point", {V_INT(0)}},
         {"get_contact_normal", {V_INT(0)}},
         {"get_contact_depth", {V_INT(0)}},
+        {"get_contact_normal_impulse", {V_INT(0)}},
         {"get_contact_body_a", {V_INT(0)}},
         {"get_contact_body_b", {V_INT(0)}},
         {"get_event_count", {{0}}},
         {"get_event_type", {V_INT(0)}},
         {"get_event_body", {V_INT(0)}},
         {"get_event_other", {V_INT(0)}},
+        {"get_event_point", {V_INT(0)}},
+        {"get_event_normal", {V_INT(0)}},
+        {"get_event_approach_speed", {V_INT(0)}},
+        {"raycast", {V_VEC2(100, 0), V_VEC2(100, 200), V_INT(0xffffffff)}},
+        {"get_ray_body", {{0}}},
+        {"get_ray_point", {{0}}},
+        {"get_ray_normal", {{0}}},
+        {"get_ray_fraction", {{0}}},
+        {"query_point", {V_VEC2(50, 91), V_INT(0xffffffff)}},
+        {"query_aabb", {V_VEC2(0, 0), V_VEC2(200, 200), V_INT(1)}},
+        {"query_circle", {V_VEC2(50, 91), V_FLOAT(5), V_INT(1)}},
+        {"get_query_body", {V_INT(0)}},
+        {"set_body_options", {V_BOOL(0), V_BOOL(0), V_VEC2(0, -1)}},
         {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
         {"load_scene", {V_STR(scene)}}, /* on a scratch world: it replaces the world's bodies */
@@ -630,4 +646,196 @@ Test(methods, a_scene_loads_through_the_plugin_with_its_camera_edits_sprites_and
               "the sum of the steps' dt, s");
     cr_assert_eq(call(world, "get_scheduled_edit_count", NULL, 0).as.integer, 0, "the edit applied");
     cr_assert(call(crate, "get_position", NULL, 0).as.vec2.y - y0 > 5, "the crate fell into the crater");
+}
+
+/* ---- issue 10: raycasts, queries, sensors, contact events and impulses, one-way platforms ---- */
+
+static uint64_t new_world(void)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    return ok_object(made);
+}
+
+static uint64_t add_rect(uint64_t world, int w, int h, pp_vec2 position, const char *type)
+{
+    static uint8_t solid[200 * 40];
+    memset(solid, 1, sizeof solid);
+    cr_assert_leq(w * h, (int)sizeof solid);
+    return ok_object(call(world, "add_body",
+                          (pp_variant[]){V_BYTES(solid, w * h), V_INT(w), V_INT(h), V_VEC2(position.x, position.y),
+                                         V_STR(type)},
+                          5));
+}
+
+static void step_n(uint64_t world, int n)
+{
+    for (int i = 0; i < n; i++) {
+        pp_variant ret = call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+        cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    }
+}
+
+/* The type name of the index-th event read by the last get_event_count, in buf. */
+static const char *event_type(uint64_t world, int64_t i, char *buf, size_t size)
+{
+    pp_variant t = call(world, "get_event_type", (pp_variant[]){V_INT(i)}, 1);
+    cr_assert_eq(t.type, PP_VARIANT_STRING);
+    snprintf(buf, size, "%s", t.as.string.data);
+    plugin.api.variant_clear(&t);
+    return buf;
+}
+
+Test(methods, a_ray_meets_the_top_face_of_a_static_box_and_queries_find_it)
+{
+    const uint64_t world = new_world();
+    const uint64_t ground = add_rect(world, 200, 40, (pp_vec2){100, 120}, "static"); /* top y = 100 */
+    pp_variant hit = call(world, "raycast", (pp_variant[]){V_VEC2(105, 0), V_VEC2(105, 200), V_INT(0xffffffff)}, 3);
+    cr_assert(hit.type == PP_VARIANT_BOOL && hit.as.boolean == 1, "%s",
+              hit.type == PP_VARIANT_ERROR ? hit.as.error.message : "a miss");
+    const pp_vec2 p = call(world, "get_ray_point", NULL, 0).as.vec2, n = call(world, "get_ray_normal", NULL, 0).as.vec2;
+    cr_assert(fabs(p.x - 105) <= 0.5 && fabs(p.y - 100) <= 0.5, "point (%g, %g), the face is y = 100", p.x, p.y);
+    cr_assert(fabs(n.x) < 1e-3 && fabs(n.y + 1) < 1e-3, "normal (%g, %g), expected (0, -1)", n.x, n.y);
+    cr_assert(fabs(call(world, "get_ray_fraction", NULL, 0).as.real - 0.5) <= 0.5 / 200);
+    cr_assert_eq(call(world, "get_ray_body", NULL, 0).as.object, ground);
+
+    /* A miss, and a mask that excludes the ground's category (1): nil body, zero point. */
+    hit = call(world, "raycast", (pp_variant[]){V_VEC2(0, 0), V_VEC2(300, 0), V_INT(0xffffffff)}, 3);
+    cr_assert(hit.type == PP_VARIANT_BOOL && hit.as.boolean == 0);
+    cr_assert_eq(call(world, "get_ray_body", NULL, 0).type, PP_VARIANT_NIL);
+    hit = call(world, "raycast", (pp_variant[]){V_VEC2(105, 0), V_VEC2(105, 200), V_INT(2)}, 3);
+    cr_assert(hit.type == PP_VARIANT_BOOL && hit.as.boolean == 0);
+    pp_variant ret = call(world, "raycast", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_INT(-1)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.raycast: mask must be in 0..4294967295, got -1");
+
+    const uint64_t box = add_rect(world, 20, 20, (pp_vec2){40, 50}, "dynamic"); /* 30..50, 40..60 */
+    cr_assert_eq(call(world, "query_point", (pp_variant[]){V_VEC2(45.5, 55.5), V_INT(0xffffffff)}, 2).as.integer, 1);
+    cr_assert_eq(call(world, "get_query_body", (pp_variant[]){V_INT(0)}, 1).as.object, box);
+    cr_assert_eq(call(world, "query_aabb", (pp_variant[]){V_VEC2(0, 0), V_VEC2(300, 300), V_INT(1)}, 3).as.integer, 2);
+    cr_assert_eq(call(world, "query_circle", (pp_variant[]){V_VEC2(100, 80), V_FLOAT(10), V_INT(1)}, 3).as.integer, 0);
+    cr_assert_eq(call(world, "query_circle", (pp_variant[]){V_VEC2(100, 95), V_FLOAT(10), V_INT(1)}, 3).as.integer, 1);
+    cr_assert_eq(call(world, "get_query_body", (pp_variant[]){V_INT(0)}, 1).as.object, ground);
+    ret = call(world, "get_query_body", (pp_variant[]){V_INT(1)}, 1);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "index 1 is outside the 1 bodies a query found");
+    /* Erased pixels are not found. */
+    cr_assert_gt(call(box, "erase_circle", (pp_variant[]){V_VEC2(45, 55), V_FLOAT(4)}, 2).as.integer, 0);
+    cr_assert_eq(call(world, "query_point", (pp_variant[]){V_VEC2(45.5, 55.5), V_INT(1)}, 2).as.integer, 0);
+    plugin.api.object_destroy(world, &ret);
+}
+
+Test(methods, a_ball_falls_freely_through_a_sensor_that_reports_begin_then_end)
+{
+    const uint64_t world = new_world();
+    cr_assert_eq(call(world, "set_body_options", (pp_variant[]){V_BOOL(1), V_BOOL(0), V_VEC2(0, -1)}, 3).type,
+                 PP_VARIANT_NIL);
+    const uint64_t sensor = add_rect(world, 200, 20, (pp_vec2){100, 100}, "static"); /* y 90..110 */
+    call(world, "set_body_options", (pp_variant[]){V_BOOL(0), V_BOOL(0), V_VEC2(0, -1)}, 3);
+    const uint64_t ball = add_rect(world, 8, 8, (pp_vec2){100, 40}, "dynamic");
+    char seen[8][16];
+    int n_seen = 0;
+    for (int k = 1; k <= 45; k++) {
+        step_n(world, 1);
+        const double vy = call(ball, "get_velocity", NULL, 0).as.vec2.y, free_fall = 980.0 * k / 60;
+        cr_assert(fabs(vy - free_fall) <= 0.01 * free_fall, "step %d: vy %g, free fall %g", k, vy, free_fall);
+        const int64_t n = call(world, "get_event_count", NULL, 0).as.integer;
+        for (int64_t i = 0; i < n && n_seen < 8; i++) {
+            event_type(world, i, seen[n_seen], sizeof seen[0]);
+            cr_assert_eq(call(world, "get_event_body", (pp_variant[]){V_INT(i)}, 1).as.object, sensor);
+            cr_assert_eq(call(world, "get_event_other", (pp_variant[]){V_INT(i)}, 1).as.object, ball);
+            if (strcmp(seen[n_seen], "sensor_begin") == 0) {
+                const double speed = call(world, "get_event_approach_speed", (pp_variant[]){V_INT(i)}, 1).as.real;
+                cr_assert(fabs(speed - vy) <= 980.0 / 60 + 1, "approach %g px/s, the ball falls at %g", speed, vy);
+                const pp_vec2 nrm = call(world, "get_event_normal", (pp_variant[]){V_INT(i)}, 1).as.vec2;
+                cr_assert(nrm.y < -0.95, "normal (%g, %g): from the sensor up to the ball", nrm.x, nrm.y);
+            }
+            n_seen++;
+        }
+    }
+    cr_assert_gt(call(ball, "get_position", NULL, 0).as.vec2.y, 130, "the ball fell through");
+    cr_assert_eq(n_seen, 2, "%d events", n_seen);
+    cr_assert_str_eq(seen[0], "sensor_begin");
+    cr_assert_str_eq(seen[1], "sensor_end");
+    pp_variant ret;
+    plugin.api.object_destroy(world, &ret);
+}
+
+/* A scene file in /tmp from its JSON text; path receives its name. */
+static void write_scene(char *path, size_t size, const char *json)
+{
+    snprintf(path, size, "/tmp/pp_plugin_scene_%d.json", (int)getpid());
+    FILE *f = fopen(path, "w");
+    cr_assert(f);
+    fputs(json, f);
+    fclose(f);
+}
+
+Test(methods, a_scene_with_contact_events_reports_the_landing_and_its_impulses_carry_the_weight)
+{
+    /* The box's bottom starts 60 px above the ground's top (y = 100). */
+    char path[64];
+    write_scene(path, sizeof path,
+                "{ \"world\": { \"contact_events\": true, \"allow_sleep\": false, \"backend\": \"cpu\" },\n"
+                "  \"bodies\": [ { \"type\": \"static\", \"box\": [200, 40], \"position\": [100, 120] },\n"
+                "              { \"type\": \"dynamic\", \"box\": [20, 20], \"position\": [100, 30],\n"
+                "                \"restitution\": 0, \"user_data\": 1 } ] }\n");
+    const uint64_t world = new_world();
+    pp_variant ret = call(world, "load_scene", (pp_variant[]){V_STR(path)}, 1);
+    unlink(path);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    const uint64_t box = body_tagged(world, 1);
+    double begin_speed = -1;
+    for (int k = 0; k < 180; k++) {
+        step_n(world, 1);
+        const int64_t n = call(world, "get_event_count", NULL, 0).as.integer;
+        for (int64_t i = 0; i < n; i++) {
+            char t[16];
+            if (strcmp(event_type(world, i, t, sizeof t), "contact_begin") == 0) {
+                cr_assert_lt(begin_speed, 0, "one contact_begin");
+                begin_speed = call(world, "get_event_approach_speed", (pp_variant[]){V_INT(i)}, 1).as.real;
+            }
+        }
+    }
+    const double expected = sqrt(2 * 980.0 * 60);
+    cr_assert(fabs(begin_speed - expected) <= 0.05 * expected, "approach %g px/s, sqrt(2 g h) = %g", begin_speed,
+              expected);
+
+    /* At rest the contacts of the last substep hold the box's weight over one substep (1/240 s). */
+    double sum = 0;
+    const int steps = 30;
+    for (int k = 0; k < steps; k++) {
+        step_n(world, 1);
+        const int64_t n = call(world, "get_contact_count", NULL, 0).as.integer;
+        cr_assert_gt(n, 0);
+        for (int64_t i = 0; i < n; i++)
+            sum += call(world, "get_contact_normal_impulse", (pp_variant[]){V_INT(i)}, 1).as.real;
+    }
+    const double weight = call(box, "get_mass", NULL, 0).as.real * 980.0 / 240;
+    cr_assert(fabs(sum / steps - weight) <= 0.02 * weight, "mean impulse %g, m g h = %g", sum / steps, weight);
+    plugin.api.object_destroy(world, &ret);
+}
+
+Test(methods, a_body_launched_from_below_passes_through_a_one_way_platform_and_lands_on_it)
+{
+    const uint64_t world = new_world();
+    call(world, "set_body_options", (pp_variant[]){V_BOOL(0), V_BOOL(1), V_VEC2(0, -1)}, 3);
+    add_rect(world, 200, 10, (pp_vec2){100, 100}, "static"); /* top y = 95 */
+    call(world, "set_body_options", (pp_variant[]){V_BOOL(0), V_BOOL(0), V_VEC2(0, -1)}, 3);
+    const uint64_t box = add_rect(world, 16, 16, (pp_vec2){100, 200}, "dynamic");
+    call(box, "set_velocity", (pp_variant[]){V_VEC2(0, -sqrt(2 * 980.0 * 200)), V_FLOAT(0)}, 2);
+    double top = 200;
+    for (int k = 0; k < 300; k++) {
+        step_n(world, 1);
+        top = fmin(top, call(box, "get_position", NULL, 0).as.vec2.y);
+    }
+    const pp_vec2 p = call(box, "get_position", NULL, 0).as.vec2;
+    cr_assert_lt(top, 95 - 8 - 50, "rose to y = %g: it must pass up through the platform", top);
+    cr_assert(fabs(p.y - (95 - 8)) <= 1.5, "ended at y = %g, resting on the platform is %d", p.y, 95 - 8);
+
+    /* A zero direction is refused when the body is made. */
+    call(world, "set_body_options", (pp_variant[]){V_BOOL(0), V_BOOL(1), V_VEC2(0, 0)}, 3);
+    static uint8_t one = 1;
+    pp_variant ret = call(world, "add_body", (pp_variant[]){V_BYTES(&one, 1), V_INT(1), V_INT(1), V_VEC2(0, 0),
+                                                           V_STR("static")}, 5);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "one_way_direction");
+    plugin.api.object_destroy(world, &ret);
 }

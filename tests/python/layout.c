@@ -39,7 +39,7 @@ int main(void)
     F(pp_world_def, contact_cfm); F(pp_world_def, bounce_threshold); F(pp_world_def, allow_sleep);
     F(pp_world_def, sleep_linear_speed); F(pp_world_def, sleep_angular_speed); F(pp_world_def, sleep_time);
     F(pp_world_def, continuous); F(pp_world_def, max_correction_speed);
-    F(pp_world_def, worker_threads);
+    F(pp_world_def, worker_threads); F(pp_world_def, contact_events);
     end();
 
     S(pp_body_def);
@@ -50,15 +50,24 @@ int main(void)
     F(pp_body_def, category_bits); F(pp_body_def, mask_bits); F(pp_body_def, fixed_rotation);
     F(pp_body_def, width); F(pp_body_def, height); F(pp_body_def, rgba); F(pp_body_def, mask);
     F(pp_body_def, weights); F(pp_body_def, alpha_threshold); F(pp_body_def, detach_islands);
-    F(pp_body_def, user_data); F(pp_body_def, bullet);
+    F(pp_body_def, user_data); F(pp_body_def, bullet); F(pp_body_def, is_sensor); F(pp_body_def, one_way);
+    F(pp_body_def, one_way_direction);
     end();
 
     S(pp_contact);
     F(pp_contact, a); F(pp_contact, b); F(pp_contact, point); F(pp_contact, normal); F(pp_contact, depth);
-    F(pp_contact, pixel_count);
+    F(pp_contact, pixel_count); F(pp_contact, normal_impulse); F(pp_contact, reserved);
     end();
 
-    S(pp_event); F(pp_event, type); F(pp_event, reserved); F(pp_event, body); F(pp_event, other); end();
+    S(pp_event);
+    F(pp_event, type); F(pp_event, reserved); F(pp_event, body); F(pp_event, other); F(pp_event, point);
+    F(pp_event, normal); F(pp_event, approach_speed); F(pp_event, reserved2);
+    end();
+
+    S(pp_raycast_hit);
+    F(pp_raycast_hit, body); F(pp_raycast_hit, point); F(pp_raycast_hit, normal); F(pp_raycast_hit, fraction);
+    F(pp_raycast_hit, reserved);
+    end();
 
     S(pp_step_stats);
     F(pp_step_stats, broadphase_ms); F(pp_step_stats, narrowphase_ms); F(pp_step_stats, solver_ms);

@@ -11,7 +11,7 @@ from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMod
 from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleError, LimitError, OutOfMemoryError,
                      PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
-from .world import Body, Camera, CollisionView, Contact, Event, ScheduledEdit, StepStats, World
+from .world import Body, Camera, CollisionView, Contact, Event, RaycastHit, ScheduledEdit, StepStats, World
 
 __version__ = "0.1.0"
 
@@ -35,7 +35,7 @@ def set_log_hook(fn):
 
 
 __all__ = [
-    "World", "Body", "Contact", "Event", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
+    "World", "Body", "Contact", "Event", "RaycastHit", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
     "load_png", "save_png", "image_info", "set_log_hook",
     "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Preset", "Status",
     "CELL_A", "CELL_B", "CELL_CRITICAL",

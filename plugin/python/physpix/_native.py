@@ -50,6 +50,7 @@ class pp_world_def(ctypes.Structure):
         ("continuous", c_uint32),
         ("max_correction_speed", c_float),
         ("worker_threads", c_int32),
+        ("contact_events", c_uint32),
     ]
 
 
@@ -80,6 +81,9 @@ class pp_body_def(ctypes.Structure):
         ("detach_islands", c_uint32),
         ("user_data", c_uint64),
         ("bullet", c_uint32),
+        ("is_sensor", c_uint32),
+        ("one_way", c_uint32),
+        ("one_way_direction", pp_vec2),
     ]
 
 
@@ -91,11 +95,32 @@ class pp_contact(ctypes.Structure):
         ("normal", pp_vec2),
         ("depth", c_float),
         ("pixel_count", c_int32),
+        ("normal_impulse", c_float),
+        ("reserved", c_uint32),
     ]
 
 
 class pp_event(ctypes.Structure):
-    _fields_ = [("type", c_enum), ("reserved", c_uint32), ("body", pp_body), ("other", pp_body)]
+    _fields_ = [
+        ("type", c_enum),
+        ("reserved", c_uint32),
+        ("body", pp_body),
+        ("other", pp_body),
+        ("point", pp_vec2),
+        ("normal", pp_vec2),
+        ("approach_speed", c_float),
+        ("reserved2", c_uint32),
+    ]
+
+
+class pp_raycast_hit(ctypes.Structure):
+    _fields_ = [
+        ("body", pp_body),
+        ("point", pp_vec2),
+        ("normal", pp_vec2),
+        ("fraction", c_float),
+        ("reserved", c_uint32),
+    ]
 
 
 class pp_step_stats(ctypes.Structure):
@@ -161,8 +186,8 @@ class pp_allocator(ctypes.Structure):
 
 # Every public struct, by its C name (the layout test walks this).
 STRUCTS = {cls.__name__: cls for cls in
-           (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_step_stats,
-            pp_camera, pp_timed_edit, pp_collision_view, pp_allocator)}
+           (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_raycast_hit,
+            pp_step_stats, pp_camera, pp_timed_edit, pp_collision_view, pp_allocator)}
 
 STATUS = "status"  # marks a function returning pp_status: its result goes through check()
 P = POINTER
@@ -186,6 +211,10 @@ SIGNATURES = {
     "pp_world_get_stats": (STATUS, [pp_world, P(pp_step_stats)]),
     "pp_world_get_events": (STATUS, [pp_world, P(pp_event), c_int32, P(c_int32)]),
     "pp_world_erase_circle": (STATUS, [pp_world, pp_vec2, c_float, P(c_int32)]),
+    "pp_world_raycast": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_raycast_hit), P(c_int32)]),
+    "pp_world_query_point": (STATUS, [pp_world, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
+    "pp_world_query_aabb": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
+    "pp_world_query_circle": (STATUS, [pp_world, pp_vec2, c_float, c_uint32, P(pp_body), c_int32, P(c_int32)]),
     "pp_world_collide": (STATUS, [pp_world, pp_body, pp_body, P(pp_contact), c_int32, P(c_int32)]),
     "pp_body_def_default": (pp_body_def, []),
     "pp_body_create": (STATUS, [pp_world, P(pp_body_def), P(pp_body)]),

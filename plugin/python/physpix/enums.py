@@ -52,6 +52,10 @@ class EventType(IntEnum):
     """pp_event_type: what an event reports."""
     BODY_SPLIT = 1
     BODY_DESTROYED = 2
+    CONTACT_BEGIN = 3
+    CONTACT_END = 4
+    SENSOR_BEGIN = 5
+    SENSOR_END = 6
 
 
 class EditType(IntEnum):

@@ -107,6 +107,11 @@ def _check_range(value, low, high, what):
     return int(value)
 
 
+def _mask_bits(bits):
+    """Collision filter bits as the uint32 the library takes, where ctypes would wrap a wider value."""
+    return _check_range(bits, 0, 2**32 - 1, "mask_bits")
+
+
 def _u8_ptr(array):
     return None if array is None else array.ctypes.data_as(N.u8p)
 
@@ -132,21 +137,39 @@ def _planes(mask, rgba, weights):
 
 @dataclass(frozen=True)
 class Contact:
-    """One contact point: normal points from a to b; point in world px, depth in px."""
+    """One contact point: normal points from a to b; point in world px, depth in px; normal_impulse, mass·px/s,
+    is what the solver applied along the normal in the last substep (0 from collide)."""
     a: "Body"
     b: "Body"
     point: tuple
     normal: tuple
     depth: float
     pixel_count: int
+    normal_impulse: float
 
 
 @dataclass(frozen=True)
 class Event:
-    """Something that happened to a body (SPLIT: other is the new body; DESTROYED: other is None)."""
+    """Something that happened to a body (SPLIT: other is the new body; DESTROYED: other is None; CONTACT_*:
+    other is the body touched; SENSOR_*: body is the sensor, other the body overlapping it). CONTACT_BEGIN and
+    SENSOR_BEGIN also give the first contact's world point (px), the unit normal from body to other, and the
+    speed at which they closed along it (px/s); other events give zeros."""
     type: EventType
     body: "Body"
     other: "Body | None"
+    point: tuple
+    normal: tuple
+    approach_speed: float
+
+
+@dataclass(frozen=True)
+class RaycastHit:
+    """The nearest solid pixel a ray meets: the body, the world point where the ray enters it (px), the unit
+    surface normal there (out of the body), and where along from → to it lies (0..1)."""
+    body: "Body"
+    point: tuple
+    normal: tuple
+    fraction: float
 
 
 @dataclass(frozen=True)
@@ -300,7 +323,7 @@ class World:
 
     def _contacts(self, raw):
         return [Contact(Body(self, c.a.id), Body(self, c.b.id), (c.point.x, c.point.y), (c.normal.x, c.normal.y),
-                        c.depth, c.pixel_count) for c in raw]
+                        c.depth, c.pixel_count, c.normal_impulse) for c in raw]
 
     def contacts(self):
         """The contacts of the last substep."""
@@ -322,9 +345,39 @@ class World:
             buf = (N.pp_event * count.value)()
             lib.pp_world_get_events(self._handle, buf, count.value, byref(count))
             written = min(count.value, len(buf))
-            out += [Event(EventType(e.type), Body(self, e.body.id), self._body(e.other)) for e in buf[:written]]
+            out += [Event(EventType(e.type), Body(self, e.body.id), self._body(e.other), (e.point.x, e.point.y),
+                          (e.normal.x, e.normal.y), e.approach_speed) for e in buf[:written]]
             count.value -= written
         return out
+
+    def raycast(self, from_, to, mask_bits=0xffffffff):
+        """The nearest solid pixel on the segment from → to (world px) of a body whose category_bits meet
+        mask_bits (sensors skipped), as a RaycastHit, or None; a ray starting inside a solid pixel hits at 0."""
+        hit, out = c_int32(0), N.pp_raycast_hit()
+        lib.pp_world_raycast(self._handle, vec2(from_, "from_"), vec2(to, "to"), _mask_bits(mask_bits), byref(out),
+                             byref(hit))
+        if not hit.value:
+            return None
+        return RaycastHit(Body(self, out.body.id), (out.point.x, out.point.y), (out.normal.x, out.normal.y),
+                          out.fraction)
+
+    def _query(self, fn, *args):
+        return [Body(self, h.id) for h in _read_list(fn, N.pp_body, self._handle, *args)]
+
+    def query_point(self, point, mask_bits=0xffffffff):
+        """Bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square contains
+        the world point (px), in slot order."""
+        return self._query(lib.pp_world_query_point, vec2(point, "point"), _mask_bits(mask_bits))
+
+    def query_aabb(self, lower, upper, mask_bits=0xffffffff):
+        """Bodies with a solid pixel whose centre lies in the world box [lower, upper] (px), as query_point."""
+        return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"),
+                           _mask_bits(mask_bits))
+
+    def query_circle(self, center, radius, mask_bits=0xffffffff):
+        """Bodies with a solid pixel whose centre lies within radius px of a world point (px), as query_point:
+        the bodies erase_circle would change."""
+        return self._query(lib.pp_world_query_circle, vec2(center, "center"), radius, _mask_bits(mask_bits))
 
     def stats(self):
         """Statistics of the last step."""
