@@ -645,6 +645,46 @@ static void op_snapshot(reader *r)
     FUZZ_CHECK(ST(pp_world_load_snapshot(snap_dir, &w2)) == PP_ERR_IO, "load of a missing folder");
 }
 
+/* A ray or a point, box or circle query: a hit lies on the segment and names a live body. */
+static void op_query(reader *r)
+{
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    const uint8_t k = u8(r);
+    const uint32_t mask = k & 8 ? u32(r) : 0xffffffffu;
+    const pp_vec2 p = {f32(r, 400), f32(r, 400)}, q = {f32(r, 400), f32(r, 400)};
+    static pp_body bodies[8];
+    int32_t cap = (int32_t)(int8_t)u8(r) % 8, n = -1, hit = -1;
+    pp_raycast_hit h;
+    pp_status st;
+    switch (k % 4) {
+    case 0: st = ST(pp_world_raycast(w, p, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit)); break;
+    case 1: st = ST(pp_world_query_point(w, p, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
+    case 2: st = ST(pp_world_query_aabb(w, p, q, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
+    default: st = ST(pp_world_query_circle(w, p, q.x, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
+    }
+    if (!t) {
+        FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE || st == PP_ERR_INVALID_ARGUMENT, "query of a dead world: %d", (int)st);
+        return;
+    }
+    if (st != PP_OK)
+        return;
+    pp_vec2 pos;
+    if (k % 4 == 0) {
+        FUZZ_CHECK(hit == 0 || hit == 1, "hit %d", (int)hit);
+        if (hit) {
+            FUZZ_CHECK(h.fraction >= 0 && h.fraction <= 1, "fraction %g", h.fraction);
+            FUZZ_CHECK(isfinite(h.point.x) && isfinite(h.point.y) && isfinite(h.normal.x) && isfinite(h.normal.y),
+                       "a hit that is not finite");
+            FUZZ_CHECK(pp_body_get_position(w, h.body, &pos) == PP_OK, "a ray hit no live body");
+        }
+        return;
+    }
+    FUZZ_CHECK(n >= 0, "count %d", (int)n);
+    for (int32_t i = 0; i < n && i < cap; i++)
+        FUZZ_CHECK(pp_body_get_position(w, bodies[i], &pos) == PP_OK, "a query returned no live body");
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (!plane)
@@ -655,7 +695,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fail_countdown = 0;
     for (int ops = 0; r->n && ops < 200; ops++) {
         injected = 0;
-        switch (u8(r) % 23) {
+        switch (u8(r) % 24) {
         case 0: case 1: op_world_create(r); break;
         case 2: op_world_destroy(r); break;
         case 3: case 4: case 5: op_body_create(r); break;
@@ -674,6 +714,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 19: op_collide(r, 0); break;
         case 20: op_collide(r, 1); break;
         case 21: op_snapshot(r); break;
+        case 22: op_query(r); break;
         default: op_fail_soon(r); break;
         }
         FUZZ_CHECK(pp_status_name((pp_status)u8(r)) != NULL, "status name");
