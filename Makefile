@@ -5,7 +5,7 @@ CC      ?= cc
 CXX     ?= c++
 PREFIX  ?= /usr/local
 BUILD   := build
-VERSION := 0.1.0
+VERSION := 0.2.0
 SOMAJOR := 0
 
 # Debian packages the build, the tests and the demo need (see README).

@@ -341,23 +341,40 @@ PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t
 
 /* ---- point, box and circle queries --------------------------------------------------------------- */
 
-/* The caller's output list: bodies written up to capacity, all of them counted. */
-typedef struct body_list {
-    pp_body *out;
-    int32_t capacity, count;
-} body_list;
+/* A query's shape in the world, px: its bounds, and what the test of each body reads. */
+typedef struct query_shape {
+    double x0, y0, x1, y1; /* world bounds */
+    dvec2 a, b;            /* point: a; box: [a, b]; circle: centre a, radius b.x */
+} query_shape;
 
-static void list_add(body_list *l, const body *bd)
+/* The world of a query, with its output buffer checked; NULL (and *st set) on a bad handle or buffer. */
+static world *query_world(pp_world w, const char *fn, pp_body *out, int32_t capacity, int32_t *count, pp_status *st)
 {
-    if (l->count < l->capacity)
-        l->out[l->count] = bd->handle;
-    l->count++;
+    world *wd = world_lookup(w, fn);
+    if (!wd)
+        *st = PP_ERR_INVALID_HANDLE;
+    else if ((*st = pp_check_out_buffer(fn, out, capacity, count)))
+        wd = NULL;
+    return wd;
 }
 
-static bool box_meets(const pp_aabb *b, double x0, double y0, double x1, double y1)
+/* Write, in slot order, the bodies passing the filter whose box meets the shape's and that `meets`
+ * accepts: up to capacity of them, all counted. */
+static void query_scan(const world *wd, uint32_t mask_bits, const query_shape *q,
+                       bool (*meets)(const body *, const query_shape *), pp_body *out, int32_t capacity, int32_t *count)
 {
-    return b->x0 - QUERY_SLACK <= x1 && x0 <= b->x1 + QUERY_SLACK && b->y0 - QUERY_SLACK <= y1 &&
-           y0 <= b->y1 + QUERY_SLACK;
+    int32_t n = 0;
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (!bd || bd->aabb.x0 - QUERY_SLACK > q->x1 || q->x0 > bd->aabb.x1 + QUERY_SLACK ||
+            bd->aabb.y0 - QUERY_SLACK > q->y1 || q->y0 > bd->aabb.y1 + QUERY_SLACK || !queried(bd, mask_bits) ||
+            !meets(bd, q))
+            continue;
+        if (n < capacity)
+            out[n] = bd->handle;
+        n++;
+    }
+    *count = n;
 }
 
 /* Is any pixel of columns [xa, xb] of row y solid (inside the bitmap, xa ≤ xb)? A word at a time. */
@@ -392,31 +409,27 @@ static bool rect_empty(const pp_raster *r, int32_t x0, int32_t y0, int32_t x1, i
     return raster_rect_state(r, x0, y0, (int64_t)x1 + 1, (int64_t)y1 + 1) == RASTER_EMPTY;
 }
 
+/* Is the pixel whose square holds the world point solid? The rule of pp_world_query_point. */
+static bool body_meets_point(const body *bd, const query_shape *s)
+{
+    const pp_raster *r = &bd->raster;
+    const dvec2 q = body_world_to_local(bd, s->a);
+    const double fx = floor(q.x), fy = floor(q.y);
+    return fx >= r->x0 && fx < r->x1 && fy >= r->y0 && fy < r->y1 && raster_solid(r, (int32_t)fx, (int32_t)fy);
+}
+
 PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_bits, pp_body *out, int32_t capacity,
                                       int32_t *count)
 {
     static const char *fn = "pp_world_query_point";
-    world *wd = world_lookup(w, fn);
+    pp_status st;
+    const world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer(fn, out, capacity, count);
-    if (st)
         return st;
     if (!finite2(point.x, point.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: point must be finite, got (%g, %g)", fn, point.x, point.y);
-    body_list l = {out, capacity, 0};
-    const dvec2 p = dv(point.x, point.y);
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (!bd || !box_meets(&bd->aabb, p.x, p.y, p.x, p.y) || !queried(bd, mask_bits))
-            continue;
-        const pp_raster *r = &bd->raster;
-        const dvec2 q = body_world_to_local(bd, p);
-        const double fx = floor(q.x), fy = floor(q.y);
-        if (fx >= r->x0 && fx < r->x1 && fy >= r->y0 && fy < r->y1 && raster_solid(r, (int32_t)fx, (int32_t)fy))
-            list_add(&l, bd);
-    }
-    *count = l.count;
+    const query_shape q = {point.x, point.y, point.x, point.y, dv(point.x, point.y), dv(0, 0)};
+    query_scan(wd, mask_bits, &q, body_meets_point, out, capacity, count);
     return PP_OK;
 }
 
@@ -429,8 +442,9 @@ static bool centre_in_box(const body *bd, int32_t x, int32_t y, dvec2 lo, dvec2 
 
 /* Has the body a solid pixel whose centre lies in the world box [lo, hi]? Row by row over the box's
  * rows in the bitmap, each row's span of centres from the pose, its ends settled by the rule itself. */
-static bool body_meets_box(const body *bd, dvec2 lo, dvec2 hi)
+static bool body_meets_box(const body *bd, const query_shape *shape)
 {
+    const dvec2 lo = shape->a, hi = shape->b;
     const pp_raster *r = &bd->raster;
     double ly0 = INFINITY, ly1 = -INFINITY, lx0 = INFINITY, lx1 = -INFINITY;
     for (int k = 0; k < 4; k++) {
@@ -475,11 +489,9 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
                                      int32_t capacity, int32_t *count)
 {
     static const char *fn = "pp_world_query_aabb";
-    world *wd = world_lookup(w, fn);
+    pp_status st;
+    const world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer(fn, out, capacity, count);
-    if (st)
         return st;
     if (!finite2(lower.x, lower.y) || !finite2(upper.x, upper.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got (%g, %g) and (%g, %g)", fn,
@@ -487,20 +499,16 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
     if (lower.x > upper.x || lower.y > upper.y)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower (%g, %g) must not exceed upper (%g, %g)", fn, lower.x,
                        lower.y, upper.x, upper.y);
-    body_list l = {out, capacity, 0};
-    const dvec2 lo = dv(lower.x, lower.y), hi = dv(upper.x, upper.y);
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (bd && box_meets(&bd->aabb, lo.x, lo.y, hi.x, hi.y) && queried(bd, mask_bits) && body_meets_box(bd, lo, hi))
-            list_add(&l, bd);
-    }
-    *count = l.count;
+    const query_shape q = {lower.x, lower.y, upper.x, upper.y, dv(lower.x, lower.y), dv(upper.x, upper.y)};
+    query_scan(wd, mask_bits, &q, body_meets_box, out, capacity, count);
     return PP_OK;
 }
 
 /* Has the body a solid pixel whose centre lies within radius of the world point center? The edits' rule. */
-static bool body_meets_circle(const body *bd, dvec2 center, double radius)
+static bool body_meets_circle(const body *bd, const query_shape *shape)
 {
+    const dvec2 center = shape->a;
+    const double radius = shape->b.x;
     const pp_raster *r = &bd->raster;
     const dvec2 c = body_world_to_local(bd, center);
     int32_t xa, xb, ya, yb;
@@ -522,24 +530,16 @@ PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius,
                                        int32_t capacity, int32_t *count)
 {
     static const char *fn = "pp_world_query_circle";
-    world *wd = world_lookup(w, fn);
+    pp_status st;
+    const world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer(fn, out, capacity, count);
-    if (st)
         return st;
     if (!finite2(center.x, center.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: center must be finite, got (%g, %g)", fn, center.x, center.y);
     if (!(radius >= 0) || !isfinite(radius))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: radius must be finite and ≥ 0, got %g", fn, radius);
-    body_list l = {out, capacity, 0};
-    const dvec2 c = dv(center.x, center.y);
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (bd && box_meets(&bd->aabb, c.x - radius, c.y - radius, c.x + radius, c.y + radius) &&
-            queried(bd, mask_bits) && body_meets_circle(bd, c, radius))
-            list_add(&l, bd);
-    }
-    *count = l.count;
+    const double r = radius;
+    const query_shape q = {center.x - r, center.y - r, center.x + r, center.y + r, dv(center.x, center.y), dv(r, 0)};
+    query_scan(wd, mask_bits, &q, body_meets_circle, out, capacity, count);
     return PP_OK;
 }

@@ -13,7 +13,7 @@ from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleE
 from .image import image_info, load_png, save_png
 from .world import Body, Camera, CollisionView, Contact, Event, RaycastHit, ScheduledEdit, StepStats, World
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 #: Version of the loaded library, (major, minor, patch).
 library_version = (_native.version // 10000, _native.version // 100 % 100, _native.version % 100)
