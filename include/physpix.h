@@ -306,6 +306,9 @@ PP_API pp_world_def pp_world_def_preset(pp_preset preset);
 PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
 /// The settings the world runs with: its def, with zero counts replaced by their defaults.
 PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out);
+/// Switch CONTACT_BEGIN/END events on (nonzero) or off, as pp_world_def.contact_events; pairs already touching
+/// when they go on begin at the next substep.
+PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled);
 /// Destroy a world and all its bodies; the handle becomes stale.
 PP_API pp_status pp_world_destroy(pp_world w);
 /// Advance the world by dt seconds (0 < dt ≤ 1), in `substeps` solver steps.

@@ -680,6 +680,16 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     return PP_OK;
 }
 
+PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled)
+{
+    world *wd = world_lookup(w, "pp_world_set_contact_events");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    /* Off, the pairs recorded for events end silently (touch.c queues no END without it). */
+    wd->def.contact_events = enabled != 0;
+    return PP_OK;
+}
+
 PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
 {
     world *wd = world_lookup(w, "pp_world_get_def");

@@ -431,6 +431,11 @@ static void world_get_query_body(plugin_object *self, const pp_variant *a, pp_va
         ret_body(self, self->cache->found[a[0].as.integer], ret);
 }
 
+static void world_set_contact_events(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_world_set_contact_events(self->world, a[0].as.boolean), "PhysPixWorld.set_contact_events");
+}
+
 /* The sensor and one-way settings of the bodies add_body* make from now on; checked when one is made. */
 static void world_set_body_options(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
@@ -712,6 +717,9 @@ static const method_def world_methods[] = {
            ARGS(ARG("center", VEC2), ARG("radius", FLOAT), ARG("mask", INT))),
     METHOD(world_get_query_body, "get_query_body", OBJECT, "the index-th body the last query_* found, in slot order",
            ARGS(ARG("index", INT)), RETURNS_BODY),
+    METHOD(world_set_contact_events, "set_contact_events", NIL,
+           "queue contact_begin and contact_end events (default false); pairs touching then begin at the next step",
+           ARGS(ARG("enabled", BOOL))),
     METHOD(world_set_body_options, "set_body_options", NIL,
            "make later add_body* bodies sensors and/or one-way platforms that bodies land on from one_way_direction "
            "(bitmap axes, length > 0; default false, false, (0, -1): from above)",

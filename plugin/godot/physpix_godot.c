@@ -64,7 +64,7 @@ typedef godot_variant (*method_fn)(call *c);
  * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
  * "static" or "kinematic"), M PoolByteArray, I Image, p path (String; res:// and user://
  * become filesystem paths through ProjectSettings.globalize_path, others are used as given),
- * m collision mask bits (int, 0..0xffffffff), o body options (Dictionary, see read_body_options). */
+ * m collision mask bits (int, 0..0xffffffff), o body options (Dictionary, see read_body_options), B bool. */
 typedef struct method_def {
     const char *name;
     const char *spec;
@@ -209,6 +209,11 @@ static bool read_arg(call *c, int i, char letter)
                fail(c, "argument %d, mask bits %lld, is outside 0..0xffffffff", i + 1, (long long)a->i);
     case 'o':
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (body options)");
+    case 'B':
+        if (t != GDN_BOOL)
+            return wrong_type(c, i, "bool");
+        a->i = gdn->godot_variant_as_bool(a->var);
+        return true;
     case 'f':
         if (t != GDN_REAL && t != GDN_INT)
             return wrong_type(c, i, "float");
@@ -754,6 +759,12 @@ static godot_variant load_snapshot(call *c)
     return ok(c, pp_world_load_snapshot(c->a[0].path, &loaded)) ? replace_world(c, loaded) : gdn_nil();
 }
 
+static godot_variant set_contact_events(call *c)
+{
+    ok(c, pp_world_set_contact_events(c->self->world, c->a[0].i != 0));
+    return gdn_nil();
+}
+
 static godot_variant get_time(call *c)
 {
     double t;
@@ -812,6 +823,7 @@ static const method_def METHODS[] = {
     {"save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"},
     {"load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"},
     {"get_time", "", get_time, "get_time() -> float"},
+    {"set_contact_events", "B", set_contact_events, "set_contact_events(enabled: bool)"},
     {"get_camera", "", get_camera, "get_camera() -> Dictionary"},
     {"get_last_error", "", get_last_error, "get_last_error() -> String"},
 };

@@ -92,6 +92,32 @@ Test(gameplay, contact_events_are_off_by_default)
     pp_world_destroy(w);
 }
 
+/* Switched on in a running world, events begin the pairs already touching; off, pairs end silently. */
+Test(gameplay, contact_events_switch_on_and_off)
+{
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 300, 520, 0), 600, 40);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 480, 0), 40, 40);
+    step_n(w, DT, 30);
+    pp_event ev[8];
+    cr_assert_eq(read_events(w, ev, 8), 0);
+    PP_OK_OR_FAIL(pp_world_set_contact_events(w, 1));
+    pp_world_def got;
+    PP_OK_OR_FAIL(pp_world_get_def(w, &got));
+    cr_assert_eq(got.contact_events, 1);
+    step_n(w, DT, 1);
+    cr_assert_eq(read_events(w, ev, 8), 1);
+    cr_assert(ev[0].type == PP_EVENT_CONTACT_BEGIN && ev[0].other.id == box.id);
+    PP_OK_OR_FAIL(pp_world_set_contact_events(w, 0));
+    PP_OK_OR_FAIL(pp_body_destroy(w, box));
+    step_n(w, DT, 2);
+    cr_assert_eq(read_events(w, ev, 8), 0, "no END once events are off");
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    EXPECT_ERR(pp_world_set_contact_events(w, 1), PP_ERR_INVALID_HANDLE, "world");
+}
+
 /* Destroying a body ends its contacts. */
 Test(gameplay, destroying_a_body_ends_its_contact)
 {

@@ -160,6 +160,22 @@ func test_landing_and_impulses():
 		"resting contacts' normal_impulse sum %.1f ≈ m·g·h = %.1f" % [total / 30.0, weight])
 
 
+func test_contact_events_switch():
+	var e = PhysPixWorld.new()
+	e.add_body_mask(solid_mask(200, 20), 200, 20, Vector2(100, 100), "static")  # top y = 90
+	e.add_body_mask(solid_mask(10, 10), 10, 10, Vector2(100, 60))
+	e.set_contact_events(true)
+	var begins = 0
+	for k in range(60):
+		e.step(DT)
+		for ev in e.get_events():
+			if ev["type"] == "contact_begin":
+				begins += 1
+	check(begins == 1, "set_contact_events(true): the landing begins one contact, got %d" % begins)
+	check(e.set_contact_events(1) == null and e.get_last_error().find("expected bool") >= 0,
+		"set_contact_events(1) is refused: %s" % e.get_last_error())
+
+
 func test_one_way():
 	var o = PhysPixWorld.new()
 	var platform = o.add_body_mask(solid_mask(200, 10), 200, 10, Vector2(100, 100), "static", {"one_way": true})
@@ -389,6 +405,7 @@ func _init():
 	test_rays_and_queries()
 	test_sensor()
 	test_landing_and_impulses()
+	test_contact_events_switch()
 	test_one_way()
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)

@@ -324,6 +324,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"query_circle", {V_VEC2(50, 91), V_FLOAT(5), V_INT(1)}},
         {"get_query_body", {V_INT(0)}},
         {"set_body_options", {V_BOOL(0), V_BOOL(0), V_VEC2(0, -1)}},
+        {"set_contact_events", {V_BOOL(0)}},
         {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
         {"load_scene", {V_STR(scene)}}, /* on a scratch world: it replaces the world's bodies */
@@ -720,6 +721,28 @@ Test(methods, a_ray_meets_the_top_face_of_a_static_box_and_queries_find_it)
     /* Erased pixels are not found. */
     cr_assert_gt(call(box, "erase_circle", (pp_variant[]){V_VEC2(45, 55), V_FLOAT(4)}, 2).as.integer, 0);
     cr_assert_eq(call(world, "query_point", (pp_variant[]){V_VEC2(45.5, 55.5), V_INT(1)}, 2).as.integer, 0);
+    plugin.api.object_destroy(world, &ret);
+}
+
+/* Contact events switched on in a world the plugin made: a box landing on the ground begins one contact. */
+Test(methods, contact_events_switch_on_in_a_plugin_world)
+{
+    const uint64_t world = new_world();
+    add_rect(world, 200, 20, (pp_vec2){100, 100}, "static"); /* top y 90 */
+    add_rect(world, 10, 10, (pp_vec2){100, 60}, "dynamic");
+    cr_assert_eq(call(world, "set_contact_events", (pp_variant[]){V_BOOL(1)}, 1).type, PP_VARIANT_NIL);
+    int begins = 0;
+    for (int k = 0; k < 60; k++) {
+        step_n(world, 1);
+        const int64_t n = call(world, "get_event_count", NULL, 0).as.integer;
+        for (int64_t i = 0; i < n; i++) {
+            char type[16];
+            event_type(world, i, type, sizeof type);
+            begins += strcmp(type, "contact_begin") == 0;
+        }
+    }
+    cr_assert_eq(begins, 1, "the landing begins one contact, got %d", begins);
+    pp_variant ret;
     plugin.api.object_destroy(world, &ret);
 }
 

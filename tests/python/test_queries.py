@@ -160,6 +160,24 @@ def test_a_dropped_ball_reports_contact_begin_at_the_free_fall_speed():
         assert len(ends) == 1 and {ends[0].body, ends[0].other} == {b, ground}
 
 
+def test_contact_events_switch_on_and_off_in_a_running_world():
+    with physpix.World(backend="cpu", allow_sleep=False) as w:
+        rect(w, 400, 40, type="static", position=(300, 500))
+        ball(w, 8, position=(300, 400))
+        assert w.contact_events is False
+        for _ in range(60):
+            w.step(DT)
+        w.contact_events = True
+        assert w.contact_events is True
+        w.step(DT)
+        begins = [e for e in w.events() if e.type == EventType.CONTACT_BEGIN]
+        assert len(begins) == 1, "the pair already touching begins when events go on"
+        w.contact_events = False
+        for _ in range(10):
+            w.step(DT)
+        assert not w.events()
+
+
 def test_no_contact_events_without_contact_events():
     with physpix.World(backend="cpu", allow_sleep=False) as w:
         rect(w, 400, 40, type="static", position=(300, 500))

@@ -204,6 +204,7 @@ SIGNATURES = {
     "pp_world_def_preset": (pp_world_def, [c_enum]),
     "pp_world_create": (STATUS, [P(pp_world_def), P(pp_world)]),
     "pp_world_get_def": (STATUS, [pp_world, P(pp_world_def)]),
+    "pp_world_set_contact_events": (STATUS, [pp_world, c_uint32]),
     "pp_world_destroy": (STATUS, [pp_world]),
     "pp_world_step": (STATUS, [pp_world, c_float]),
     "pp_world_get_bodies": (STATUS, [pp_world, P(pp_body), c_int32, P(c_int32)]),

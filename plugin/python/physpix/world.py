@@ -401,6 +401,15 @@ class World:
         return t.value
 
     @property
+    def contact_events(self):
+        """Whether CONTACT_BEGIN/END events are queued (the world def's contact_events); settable."""
+        return bool(self.settings["contact_events"])
+
+    @contact_events.setter
+    def contact_events(self, enabled):
+        lib.pp_world_set_contact_events(self._handle, 1 if enabled else 0)
+
+    @property
     def settings(self):
         """The pp_world_def the world runs with, as a dict of field name to value (vectors as (x, y))."""
         d = N.pp_world_def()
