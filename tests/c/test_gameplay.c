@@ -281,20 +281,25 @@ Test(gameplay, a_kinematic_sensor_finds_sleeping_bodies_and_keeps_them)
     pp_world_destroy(w);
 }
 
-/* A box thrown up from under a one-way platform passes through it, then lands and stays on it;
- * the same platform without one_way stops it underneath. */
+/* A box thrown up from under a one-way platform passes through it, then lands and stays on it, whichever
+ * of the two is the pair's first body; the same platform without one_way stops it underneath. */
 Test(gameplay, a_body_jumps_up_through_a_one_way_platform_and_lands_on_it)
 {
-    for (int one_way = 0; one_way <= 1; one_way++) {
+    for (int run = 0; run < 3; run++) {
+        const int one_way = run > 0, box_first = run == 2;
         pp_world_def wd = pp_world_def_default();
         wd.contact_events = 1;
         pp_world w = make_world_def(&wd);
         pp_body_def pd = body_def(PP_BODY_STATIC, 300, 300, 0);
         pd.one_way = (uint32_t)one_way;
-        add_rect(w, pd, 240, 12);
         pp_body_def bd = body_def(PP_BODY_DYNAMIC, 300, 420, 0);
         bd.linear_velocity = v2(0, -800); /* rises v²/2g = 327 px: its bottom clears the platform */
-        pp_body box = add_rect(w, bd, 24, 24);
+        pp_body box = {0};
+        if (box_first)
+            box = add_rect(w, bd, 24, 24);
+        add_rect(w, pd, 240, 12);
+        if (!box_first)
+            box = add_rect(w, bd, 24, 24);
         float highest = 1e9f;
         for (int s = 0; s < 240; s++) {
             PP_OK_OR_FAIL(pp_world_step(w, DT));
@@ -337,6 +342,24 @@ Test(gameplay, a_one_way_platform_follows_its_direction_and_rotation)
             cr_assert_float_eq(y, 294.0f - 12.0f, 1.5f, "rotated by π the direction is up: it lands (y %g)", y);
         pp_world_destroy(w);
     }
+}
+
+/* A body standing on a rising kinematic one-way platform (a lift) stays on it, carried up. */
+Test(gameplay, a_one_way_lift_carries_a_body_standing_on_it)
+{
+    pp_world w = make_world(0, G);
+    pp_body_def pd = body_def(PP_BODY_KINEMATIC, 300, 300, 0);
+    pd.one_way = 1;
+    pd.linear_velocity = v2(0, -60);
+    pp_body lift = add_rect(w, pd, 120, 12);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 250, 0), 24, 24);
+    step_n(w, DT, 180);
+    const float top = body_pos(w, lift).y - 6.0f;
+    cr_assert_float_eq(body_pos(w, lift).y, 300.0f - 180.0f, 0.5f, "the lift rose 3 s × 60 px/s");
+    cr_assert_float_eq(body_pos(w, box).y, top - 12.0f, 1.5f, "the box rides on the lift's top (y %g, top %g)",
+                       body_pos(w, box).y, top);
+    cr_assert_float_eq(body_vel(w, box).y, -60.0f, 3.0f, "at the lift's speed");
+    pp_world_destroy(w);
 }
 
 /* A fast body falling onto a one-way platform is stopped by continuous collision, not tunnelled. */
