@@ -124,22 +124,11 @@ static bool untested(const world *wd, const touch *t)
 pp_status touch_end(world *wd)
 {
     touch_sort(wd->touch_next, wd->touch_next_count);
-    /* The old pairs kept untested and the END events, counted before anything changes. */
-    int32_t kept = 0, ends = 0;
-    for (int32_t i = 0; i < wd->touch_count; i++) {
-        const touch *t = &wd->touching[i];
-        if (listed(t, wd->touch_next, wd->touch_next_count))
-            continue;
-        if (untested(wd, t))
-            kept++;
-        else
-            ends += !(t->flags & TOUCH_PASSING);
-    }
-    const int32_t n = wd->touch_next_count + kept;
-    pp_status st = world_reserve_events(wd, ends);
+    /* Room for the worst case first (every old pair kept, or ended with an event): nothing below can fail. */
+    const int32_t found = wd->touch_next_count, n = found + wd->touch_count;
+    pp_status st = world_reserve_events(wd, wd->touch_count);
     if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
-    const int32_t found = wd->touch_next_count;
     for (int32_t i = 0; i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
         if (listed(t, wd->touch_next, found))
@@ -157,7 +146,8 @@ pp_status touch_end(world *wd)
         else if (wd->def.contact_events)
             world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
     }
-    touch_sort(wd->touch_next, wd->touch_next_count);
+    if (wd->touch_next_count > found) /* kept pairs went on the end */
+        touch_sort(wd->touch_next, wd->touch_next_count);
     /* The new list becomes current; the old one's buffer is reused for the next substep. */
     touch *list = wd->touching;
     const int32_t cap = wd->touch_capacity;

@@ -239,7 +239,6 @@ Test(gameplay, a_sensor_reports_an_overlap_and_never_pushes)
     }
     cr_assert_geq(begin_step, 0, "the ball entered the sensor");
     cr_assert_gt(end_step, begin_step, "and left it");
-    /* Entered when its bottom reached the sensor's top (y 270), left when its top passed the bottom (330). */
     pp_world_destroy(w);
     pp_world_destroy(plain);
 }
