@@ -1,26 +1,35 @@
-# PhysPix — every entry point: deps, all, test, demo, bench, install, clean.
+# PhysPix — every entry point: deps, all, test, demo, bench, wheel, install, clean (and godot-api, fuzz).
 # Build outputs go to build/ (ignored by git).
 
 CC      ?= cc
 CXX     ?= c++
+NM      ?= nm
+OBJCOPY ?= objcopy
 PREFIX  ?= /usr/local
 BUILD   := build
-VERSION := 0.2.0
-SOMAJOR := 0
+
+# The one version source is include/physpix.h (PHYSPIX_VERSION_*); the .pc and the Python package follow it.
+version_part = $(shell sed -n 's/^.define PHYSPIX_VERSION_$(1) \([0-9][0-9]*\).*/\1/p' include/physpix.h)
+SOMAJOR := $(call version_part,MAJOR)
+VERSION := $(SOMAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 
 # Debian packages the build, the tests and the demo need (see README).
 # EGL/GLES headers build the GPU backend; Mesa's EGL and llvmpipe run it on a machine without a GPU.
-# clang and its runtime (libFuzzer, TSan) build the fuzz targets; valgrind checks the demo for leaks.
-DEPS := gcc g++ make pkg-config libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
-        libpng-dev libcjson-dev godot3-server python3 clang libclang-rt-14-dev valgrind
-# From PyPI: the Python package's tests.
-PY_DEPS := numpy pytest
+# clang and its runtime (libFuzzer, TSan) build the fuzz targets; valgrind checks the demo for leaks;
+# git clones the repository for the fresh-clone test; python3-venv gives Debian's python3 its venv module.
+DEPS := gcc g++ make pkg-config binutils git libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 \
+        libgl1-mesa-dri libpng-dev libcjson-dev godot3-server python3 python3-venv clang libclang-rt-14-dev valgrind
+# The interpreter the project's virtual environment (build/venv, see plugin/python/python.mk) is made from.
 PYTHON ?= python3
 
 WARN     := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wno-unused-parameter
-CFLAGS_  := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
-LIBCFLAGS := $(CFLAGS_) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
+PP_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
+LIBCFLAGS := $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
 LIBS     := -lode -lpng -lcjson -lm -lpthread -ldl
+# The user's flags come after ours, so `make CFLAGS=-O0` wins; LDFLAGS go before the libraries.
+USER_CFLAGS = $(CPPFLAGS) $(CFLAGS)
+# Each library object lists the headers it includes (build/*/*.d), so a header change rebuilds only those.
+DEPFLAGS := -MMD -MP
 SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
 
 LIB_SRC  := $(wildcard lib/*.c)
@@ -28,7 +37,6 @@ GLSL_SRC := $(wildcard glsl/*.comp)
 GLSL_GEN := $(BUILD)/gen/glsl_sources.c
 LIB_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/glsl_sources.o
 SAN_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/san/%.o) $(BUILD)/san/glsl_sources.o
-LIB_HDR  := include/physpix.h $(wildcard lib/*.h)
 TEST_SRC := $(wildcard tests/c/*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)
 PLUGIN_SRC := plugin/plugin.c plugin/classes.c
@@ -38,8 +46,8 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all deps test test-c test-san test-compile test-plugin test-python test-godot test-demo check-deep demo bench install \
-        clean fuzz test-fuzz
+.PHONY: all lib print-version deps test test-c test-san test-compile test-plugin test-python test-godot test-demo test-package check-deep \
+        demo bench install clean fuzz test-fuzz
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -56,16 +64,19 @@ deps:
 	    echo "  apt-get install -y$$missing"; exit 1; \
 	  fi; \
 	fi
-	@$(PYTHON) -c 'import numpy, pytest' 2>/dev/null || { \
-	  echo "make deps: installing from PyPI: $(PY_DEPS)"; $(PYTHON) -m pip install --quiet $(PY_DEPS); }
+	@$(MAKE) --no-print-directory venv
 
-all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc $(PLUGIN)
+# The shared library alone (what the Python package's build asks for).
+lib: $(SHARED)
 
-$(BUILD)/obj/%.o: lib/%.c $(LIB_HDR) | $(BUILD)/obj
-	$(CC) $(LIBCFLAGS) -c $< -o $@
+print-version:
+	@echo $(VERSION)
 
-$(BUILD)/san/%.o: lib/%.c $(LIB_HDR) | $(BUILD)/san
-	$(CC) $(CFLAGS_) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) -c $< -o $@
+$(BUILD)/obj/%.o: lib/%.c | $(BUILD)/obj
+	$(CC) $(LIBCFLAGS) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
+
+$(BUILD)/san/%.o: lib/%.c | $(BUILD)/san
+	$(CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
 
 # Each compute shader is glsl/common.glsl followed by its .comp, embedded as a C string.
 $(GLSL_GEN): glsl/common.glsl $(GLSL_SRC) | $(BUILD)/gen
@@ -82,26 +93,33 @@ $(GLSL_GEN): glsl/common.glsl $(GLSL_SRC) | $(BUILD)/gen
 	} > $@
 
 $(BUILD)/obj/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/obj
-	$(CC) $(LIBCFLAGS) -c $< -o $@
+	$(CC) $(LIBCFLAGS) $(USER_CFLAGS) -c $< -o $@
 
 $(BUILD)/san/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/san
-	$(CC) $(CFLAGS_) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) -c $< -o $@
+	$(CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) $(USER_CFLAGS) -c $< -o $@
 
 $(SHARED): $(LIB_OBJ)
-	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined -o $@ $^ $(LIBS)
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined -o $@ $^ $(LDFLAGS) $(LIBS)
 	ln -sf libphyspix.so.$(VERSION) $(BUILD)/$(SONAME)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
 $(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h include/physpix_plugin.h $(SHARED)
-	$(CC) $(LIBCFLAGS) -Iplugin -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) -L$(BUILD) -l:$(SONAME) \
-	  -Wl,-rpath,'$$ORIGIN' -lpthread
+	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
+	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lpthread
 
-$(STATIC): $(LIB_OBJ)
-	rm -f $@ && ar rcs $@ $^
+# The archive keeps global only what the shared library exports (the pp_* entry points), so a program that
+# links it statically may define its own read_int: the objects are merged into one, the rest made local.
+STATIC_OBJ := $(BUILD)/static/physpix.o
+$(STATIC): $(LIB_OBJ) $(SHARED)
+	mkdir -p $(BUILD)/static
+	$(NM) -D --defined-only $(SHARED) | awk '{ print $$3 }' > $(BUILD)/static/exports.txt
+	$(CC) -nostdlib -r -o $(STATIC_OBJ) $(LIB_OBJ)
+	$(OBJCOPY) --keep-global-symbols=$(BUILD)/static/exports.txt $(STATIC_OBJ)
+	rm -f $@ && $(AR) rcs $@ $(STATIC_OBJ)
 
-$(BUILD)/physpix.pc: Makefile | $(BUILD)
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lpng -lcjson -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
+$(BUILD)/physpix.pc: Makefile include/physpix.h | $(BUILD)
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: physpix\nDescription: 2D rigid bodies from bitmaps\nVersion: %s\nLicense: MIT\nRequires.private: ode\nLibs: -L$${libdir} -lphyspix\nLibs.private: -lpng -lcjson -lm -lpthread -ldl\nCflags: -I$${includedir}\n' '$(PREFIX)' '$(VERSION)' > $@
 
 $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 	mkdir -p $@
@@ -109,11 +127,13 @@ $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 # C tests: Criterion, linked against the sanitized library (ASan + UBSan). It links the objects, so
 # PP_TEST_PRIVATE lets tests reach private headers (tests/c/test_tiles.c).
 $(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -O1 -g $(SANFLAGS) -DPP_TEST_PRIVATE -o $@ $(TEST_SRC) $(SAN_OBJ) -lcriterion $(LIBS)
+	$(CC) $(PP_CFLAGS) -O1 -g $(SANFLAGS) -DPP_TEST_PRIVATE $(USER_CFLAGS) -o $@ $(TEST_SRC) $(SAN_OBJ) $(LDFLAGS) \
+	  -lcriterion $(LIBS)
 
 # The same tests against the optimised shared library, as a user links it.
 $(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $(TEST_SRC) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lcriterion $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(TEST_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' \
+	  -lcriterion $(LIBS)
 
 test-compile: | $(BUILD)/tests
 	$(CC) -std=c11 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_c.c -o $(BUILD)/tests/header_c.o
@@ -133,11 +153,12 @@ test-san: $(BUILD)/tests/test_c_san
 
 # The plugin interface through the reference host's loader: manifests, version refusal, every method.
 $(BUILD)/tests/test_plugin: tests/plugin/test_plugin.c demo/plugin_host.c $(PLUGIN) demo/plugin_host.h include/physpix_plugin.h | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/plugin/test_plugin.c demo/plugin_host.c -lcriterion -ldl -lm
+	$(CC) $(PP_CFLAGS) -Idemo -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ tests/plugin/test_plugin.c demo/plugin_host.c \
+	  $(LDFLAGS) -lcriterion -ldl -lm
 
 $(BUILD)/demo/host: demo/host.c demo/plugin_host.c demo/plugin_host.h include/physpix_plugin.h
 	mkdir -p $(BUILD)/demo
-	$(CC) $(CFLAGS_) -O2 -g -o $@ demo/host.c demo/plugin_host.c -ldl -lm
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ demo/host.c demo/plugin_host.c $(LDFLAGS) -ldl -lm
 
 test-plugin: all $(BUILD)/tests/test_plugin $(BUILD)/demo/host
 	$(call run_san,$(BUILD)/tests/test_plugin,$(BUILD)/tests/plugin.log)
@@ -156,10 +177,18 @@ test: deps
 	$(MAKE) test-python
 	$(MAKE) test-godot
 	$(MAKE) test-demo
+	$(MAKE) test-package
 	$(MAKE) check-deep
 
 # The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
 include plugin/python/python.mk plugin/godot/godot.mk
+
+all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc $(PLUGIN) $(GODOT_LIB)
+
+# What a user meets outside the build tree: a fresh clone, the installed prefix, the wheel, the exports,
+# the version, the licence, the README's first program (tests/package).
+test-package: all venv $(BUILD)/demo/host
+	BUILD=$(BUILD) PYTHON=$(PYTHON) $(VENV_PY) -m pytest -q -p no:cacheprovider tests/package
 
 # The demo: scene, sprites, renderer; its rules live beside it.
 include demo/demo.mk
@@ -172,50 +201,50 @@ include tests/deep/deep.mk
 
 $(BUILD)/bench/bench: $(BENCH_SRC) $(STATIC) $(wildcard tests/bench/*.h)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $(BENCH_SRC) $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(BENCH_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
 
 # Narrowphase throughput, CPU against GPU, and what AUTO picks.
 $(BUILD)/bench/bench_narrow: tests/bench/narrowphase/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
-# The CPU narrowphase core alone, tiled against dense, on named pairs (private headers: the static library).
-$(BUILD)/bench/bench_core: tests/bench/narrowphase/core.c tests/bench/machine.h $(STATIC)
+# The CPU narrowphase core alone, tiled against dense, on named pairs (private headers: the objects, since the archive keeps only pp_* global).
+$(BUILD)/bench/bench_core: tests/bench/narrowphase/core.c tests/bench/machine.h $(LIB_OBJ)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(LIB_OBJ) $(LDFLAGS) $(LIBS)
 
 # Edit latency: a crater in a large terrain, and the step after it.
 $(BUILD)/bench/bench_edit: tests/bench/edit/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 # Tunnelling: the largest speed at which a fast body never passes through an 8 px wall.
 $(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 # What a scene pays for the features it does not use.
 $(BUILD)/bench/bench_features: tests/bench/features/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 # Raycasts and queries per second against a large terrain with 1,000 crates.
 $(BUILD)/bench/bench_raycast: tests/bench/raycast/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
 $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(ACC_SRC) $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -Itests/bench -O2 -g $(USER_CFLAGS) -o $@ $(ACC_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
 
 # How cost grows with bodies, bitmap sizes, overlap and edits, raster beside analytic: a table, CSV, a plot.
 SCALE_SRC := $(wildcard tests/bench/scale/*.c) tests/bench/engine_ode.c tests/bench/engine_physpix.c \
   tests/bench/scenes.c tests/bench/settings.c
 $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/bench.h tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(CFLAGS_) -Itests/bench -O2 -g -o $@ $(SCALE_SRC) $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -Itests/bench -O2 -g $(USER_CFLAGS) -o $@ $(SCALE_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
 
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
@@ -231,21 +260,35 @@ bench: deps
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
 	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
-	@$(PYTHON) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing from PyPI: matplotlib"; \
-	  $(PYTHON) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
-	$(PYTHON) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
-	$(PYTHON) tests/bench/scale/plot.py $(BUILD)/bench/scale.csv $(BUILD)/bench/scale.png
+	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
+	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
+	$(VENV_PY) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
+	$(VENV_PY) tests/bench/scale/plot.py $(BUILD)/bench/scale.csv $(BUILD)/bench/scale.png
 
+# Under PREFIX: lib/ (libraries, the plugin and its manifest, pkgconfig/physpix.pc), include/, and share/physpix/:
+# godot/ (a Godot 3.2 project's bin/ and resources, copied into a project whole) and python/ (the package's
+# source; `pip install PREFIX/share/physpix/python` builds a wheel that carries PREFIX/lib's library).
+INSTALL_LIB    = $(DESTDIR)$(PREFIX)/lib
+INSTALL_SHARE  = $(DESTDIR)$(PREFIX)/share/physpix
 install: all
-	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -d $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include $(INSTALL_SHARE)/godot/bin \
+	  $(INSTALL_SHARE)/python/physpix
 	install -m 644 include/physpix.h include/physpix_plugin.h $(DESTDIR)$(PREFIX)/include/
-	install -m 755 $(PLUGIN) $(DESTDIR)$(PREFIX)/lib/
-	sed 's|"../build/libphyspix_plugin.so"|"libphyspix_plugin.so"|' plugin/physpix.plugin > $(DESTDIR)$(PREFIX)/lib/physpix.plugin
-	install -m 755 $(SHARED) $(DESTDIR)$(PREFIX)/lib/
-	ln -sf libphyspix.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
-	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libphyspix.so
-	install -m 644 $(STATIC) $(DESTDIR)$(PREFIX)/lib/
-	sed 's|^prefix=.*|prefix=$(PREFIX)|' $(BUILD)/physpix.pc > $(DESTDIR)$(PREFIX)/lib/pkgconfig/physpix.pc
+	install -m 755 $(SHARED) $(INSTALL_LIB)/
+	ln -sf libphyspix.so.$(VERSION) $(INSTALL_LIB)/$(SONAME)
+	ln -sf $(SONAME) $(INSTALL_LIB)/libphyspix.so
+	install -m 644 $(STATIC) $(INSTALL_LIB)/
+	sed 's|^prefix=.*|prefix=$(PREFIX)|' $(BUILD)/physpix.pc > $(INSTALL_LIB)/pkgconfig/physpix.pc
+	install -m 755 $(PLUGIN) $(INSTALL_LIB)/
+	sed 's|"../build/libphyspix_plugin.so"|"libphyspix_plugin.so"|' plugin/physpix.plugin > $(INSTALL_LIB)/physpix.plugin
+	install -m 755 $(GODOT_LIB) $(INSTALL_SHARE)/godot/bin/
+	install -m 755 $(SHARED) $(INSTALL_SHARE)/godot/bin/$(SONAME)
+	install -m 644 plugin/godot/physpix.gdnlib plugin/godot/physpix_world.gdns $(INSTALL_SHARE)/godot/
+	install -m 644 plugin/python/pyproject.toml plugin/python/setup.py plugin/python/README.md $(INSTALL_SHARE)/python/
+	install -m 644 plugin/python/physpix/*.py plugin/python/physpix/py.typed $(INSTALL_SHARE)/python/physpix/
+	install -m 644 LICENSE $(INSTALL_SHARE)/
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) plugin/python/build plugin/python/physpix.egg-info
+
+-include $(wildcard $(BUILD)/obj/*.d $(BUILD)/san/*.d $(BUILD)/tsan/*.d $(FUZZ_DIR)/obj/*.d)

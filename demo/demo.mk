@@ -15,11 +15,11 @@ TEST_DEMO_OUT     := $(BUILD)/tests/demo
 # The simulation goes through the plugin (dlopen); libphyspix is linked for PNG in and out only.
 $(DEMO_BIN): $(DEMO_SRC) $(DEMO_HDR) $(SHARED)
 	mkdir -p $(BUILD)/demo
-	$(CC) $(CFLAGS_) -Idemo -O2 -g -o $@ $(DEMO_SRC) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -ldl -lm
+	$(CC) $(PP_CFLAGS) -Idemo -O2 -g $(USER_CFLAGS) -o $@ $(DEMO_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -ldl -lm
 
 $(DEMO_SPRITES): demo/make_sprites.c include/physpix.h $(SHARED)
 	mkdir -p $(BUILD)/demo
-	$(CC) $(CFLAGS_) -O2 -g -o $@ $< -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lm
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lm
 
 demo-sprites: $(DEMO_SPRITES)
 	$(DEMO_SPRITES) demo
@@ -33,8 +33,8 @@ demo: deps
 # Criterion, with ASan+UBSan; the renderer gives the test the sky and the debug view's cell colours.
 $(BUILD)/tests/test_demo: tests/demo/test_demo.c demo/render.c demo/render.h demo/debug_view.c demo/debug_view.h \
   $(SHARED) | $(BUILD)/tests
-	$(CC) $(CFLAGS_) -Idemo -O1 -g $(SANFLAGS) -o $@ tests/demo/test_demo.c demo/render.c demo/debug_view.c \
-	  -L$(BUILD) -lphyspix \
+	$(CC) $(PP_CFLAGS) -Idemo -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ tests/demo/test_demo.c demo/render.c \
+	  demo/debug_view.c $(LDFLAGS) -L$(BUILD) -lphyspix \
 	  -Wl,-rpath,'$$ORIGIN/..' -lcriterion -lm
 
 test-demo: export PP_DEMO_OUT := $(TEST_DEMO_OUT)

@@ -21,14 +21,14 @@ VALGRIND_FLAGS := --tool=memcheck --leak-check=full --show-leak-kinds=definite,i
 $(BUILD)/tsan:
 	mkdir -p $@
 
-$(BUILD)/tsan/%.o: lib/%.c $(LIB_HDR) | $(BUILD)/tsan
-	$(TSAN_CC) $(CFLAGS_) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
+$(BUILD)/tsan/%.o: lib/%.c | $(BUILD)/tsan
+	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) $(DEPFLAGS) -c $< -o $@
 
 $(BUILD)/tsan/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/tsan
-	$(TSAN_CC) $(CFLAGS_) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
+	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
 
 $(TSAN_BIN): tests/deep/tsan_worlds.c $(TSAN_OBJ) include/physpix.h
-	$(TSAN_CC) $(CFLAGS_) -O1 -g $(TSAN_FLAGS) -o $@ $< $(TSAN_OBJ) $(LIBS)
+	$(TSAN_CC) $(PP_CFLAGS) -O1 -g $(TSAN_FLAGS) -o $@ $< $(TSAN_OBJ) $(LIBS)
 
 check-tsan: $(TSAN_BIN)
 	$(TSAN_RUN) $(TSAN_BIN)

@@ -11,7 +11,7 @@ FUZZ_TARGETS      := fuzz_png fuzz_scene fuzz_snapshot fuzz_api
 FUZZ_BINS         := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/%)
 FUZZ_OBJ          := $(LIB_SRC:lib/%.c=$(FUZZ_DIR)/obj/%.o) $(FUZZ_DIR)/obj/glsl_sources.o
 FUZZ_SAN          := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-FUZZ_CFLAGS       := $(CFLAGS_) -O1 -g $(FUZZ_SAN)
+FUZZ_CFLAGS       := $(PP_CFLAGS) -O1 -g $(FUZZ_SAN)
 FUZZ_HDR          := tests/fuzz/fuzz_common.h tests/fuzz/fuzz_archive.h include/physpix.h
 # Per target: the longest input, and the dictionary of the JSON targets. Every target: 10 s and 256 MB in one
 # malloc at most (no legitimate input of the harnesses comes near either).
@@ -28,9 +28,9 @@ FUZZ_BAD := ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|ERROR: l
 # (fuzz-run-% and test-fuzz-run-% are pattern rules, which make skips for .PHONY targets: no such files exist.)
 .PHONY: fuzz test-fuzz fuzz-seeds
 
-$(FUZZ_DIR)/obj/%.o: lib/%.c $(LIB_HDR)
+$(FUZZ_DIR)/obj/%.o: lib/%.c
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link -c $< -o $@
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link $(DEPFLAGS) -c $< -o $@
 
 $(FUZZ_DIR)/obj/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h
 	@mkdir -p $(@D)
@@ -42,7 +42,7 @@ $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_HDR) $(FUZZ_OBJ)
 # The seed generator (real snapshots, PNG variants): `make fuzz-seeds` rewrites tests/fuzz/corpus/.
 $(FUZZ_DIR)/make_seeds: tests/fuzz/make_seeds.c tests/fuzz/fuzz_archive.h $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS_) -O1 -g -o $@ $< $(STATIC) $(LIBS)
+	$(CC) $(PP_CFLAGS) -O1 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 fuzz-seeds: $(FUZZ_DIR)/make_seeds
 	$(FUZZ_DIR)/make_seeds tests/fuzz/corpus

@@ -19,7 +19,7 @@ done
 
 rm -rf "$root"
 mkdir -p "$project/bin" "$root/home" "$root/xdg/config" "$root/xdg/data" "$root/xdg/cache" || exit 1
-cp tests/godot/project.godot tests/godot/physpix.gdnlib tests/godot/physpix_world.gdns tests/godot/test.gd \
+cp tests/godot/project.godot plugin/godot/physpix.gdnlib plugin/godot/physpix_world.gdns tests/godot/test.gd \
     "$project/" || exit 1
 # -L: the soname is a symlink in build/; the project needs the file itself.
 cp -L "$BUILD/libphyspix_godot.so" "$BUILD/libphyspix.so.0" "$project/bin/" || exit 1

@@ -2,8 +2,10 @@
 
 Names mirror include/physpix.h: World(**pp_world_def fields), world.create_body(mask=…, **pp_body_def fields).
 Units: pixels, seconds, radians; world y points down. The library is found through PHYSPIX_LIBRARY,
-a source checkout's build/ folder, or the system's library path.
+the copy an installed package carries, a source checkout's build/ folder, or the system's library path.
 """
+
+from typing import Callable, Optional
 
 from . import _native
 from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, NormalMethod,
@@ -13,17 +15,20 @@ from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleE
 from .image import image_info, load_png, save_png
 from .world import Body, Camera, CollisionView, Contact, Event, RaycastHit, ScheduledEdit, StepStats, World
 
-__version__ = "0.2.0"
-
 #: Version of the loaded library, (major, minor, patch).
 library_version = (_native.version // 10000, _native.version // 100 % 100, _native.version % 100)
 #: Path of the loaded libphyspix.
-library_path = _native.path
+library_path: str = _native.path
+
+try:  # written by setup.py from include/physpix.h when the package is built
+    from ._version import version as __version__
+except ImportError:  # run from a checkout: the checkout's library is built from the same header
+    __version__ = "%d.%d.%d" % library_version
 
 _log_hook = None  # the ctypes callback must outlive its installation
 
 
-def set_log_hook(fn):
+def set_log_hook(fn: "Optional[Callable[[int, str], None]]") -> None:
     """Install fn(level, message) as the library's log hook (0 debug … 3 error); None removes it."""
     global _log_hook
     if fn is None:

@@ -254,21 +254,32 @@ SIGNATURES = {
 }
 
 
+def _candidates():
+    """Where libphyspix may be, best first: the package's own copy, a checkout's build/, an installed prefix."""
+    here = Path(__file__).resolve().parent
+    yield here / "libphyspix.so"                                  # a wheel or `pip install` bundles it here
+    yield here.parents[2] / "build" / "libphyspix.so"             # run from a checkout: plugin/python/physpix
+    yield here.parents[3] / "lib" / "libphyspix.so.0"             # PREFIX/share/physpix/python/physpix
+
+
 def _load():
-    """Load libphyspix from PHYSPIX_LIBRARY, else a source checkout's build/, else the system's library path."""
+    """Load libphyspix from PHYSPIX_LIBRARY, else the first of _candidates() that exists, else the system's."""
     env = os.environ.get("PHYSPIX_LIBRARY")
-    # plugin/python/physpix/_native.py: the repository root is three folders above the package.
-    build = Path(__file__).resolve().parents[3] / "build" / "libphyspix.so"
     if env:
         # An explicit choice is final: falling back elsewhere would hide a wrong path.
         candidates, tried = [env], []
     else:
-        system = find_library("physpix")
-        candidates = ([str(build)] if build.exists() else []) + ([system] if system else [])
         tried = ["PHYSPIX_LIBRARY (unset)"]
-        if not build.exists():
-            tried.append(f"{build} (missing)")
-        if not system:
+        candidates = []
+        for path in _candidates():
+            if path.exists():
+                candidates.append(str(path))
+            else:
+                tried.append(f"{path} (missing)")
+        system = find_library("physpix")
+        if system:
+            candidates.append(system)
+        else:
             tried.append("ctypes.util.find_library('physpix') (nothing)")
     for candidate in candidates:
         try:
@@ -276,7 +287,8 @@ def _load():
         except OSError as exc:
             tried.append(f"{candidate} ({exc})")
     raise ImportError(f"physpix: cannot load libphyspix; looked at: {'; '.join(tried)}. "
-                      "Build it with `make all` or set PHYSPIX_LIBRARY to the .so path.")
+                      "Install the package with `pip install ./plugin/python`, build a checkout with `make all`, "
+                      "or set PHYSPIX_LIBRARY to the .so path.")
 
 
 def last_error():

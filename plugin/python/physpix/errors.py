@@ -1,12 +1,21 @@
 """Exceptions: PhysPixError and one subclass per pp_status, each carrying the library's message."""
+from __future__ import annotations
+
+from typing import Dict, Optional, Type, Union
+
 from .enums import Status
 
 
 class PhysPixError(Exception):
     """A call into libphyspix failed; .status is the pp_status, .message pp_last_error()'s text."""
-    status = None
+    #: The pp_status (a Status, or the int of one this package does not know); None on a PhysPixError made without.
+    status: Optional[Union[Status, int]] = None
+    message: str
+    #: The C function that failed ("pp_world_step"), or None.
+    function: Optional[str]
 
-    def __init__(self, message, status=None, function=None):
+    def __init__(self, message: str, status: Optional[Union[Status, int]] = None,
+                 function: Optional[str] = None) -> None:
         super().__init__(message)
         self.message = message
         if status is not None:
@@ -54,11 +63,12 @@ class AbiError(PhysPixError):
     status = Status.ABI
 
 
-_BY_STATUS = {cls.status: cls for cls in (InvalidArgumentError, InvalidHandleError, OutOfMemoryError,
-                                          PhysPixIOError, FormatError, UnsupportedError, LimitError, AbiError)}
+_BY_STATUS: Dict[Optional[Union[Status, int]], Type[PhysPixError]] = {
+    cls.status: cls for cls in (InvalidArgumentError, InvalidHandleError, OutOfMemoryError, PhysPixIOError, FormatError,
+                                UnsupportedError, LimitError, AbiError)}
 
 
-def error_for(status, message, function, name):
+def error_for(status: int, message: Optional[str], function: str, name: str) -> PhysPixError:
     """The exception for a failed call: its status's subclass (PhysPixError for an unknown status)."""
     try:
         status = Status(status)

@@ -1,21 +1,29 @@
 """PNG files through the library's libpng reader and writer (pp_image_info, pp_image_load, pp_image_save)."""
+from __future__ import annotations
+
 import os
 from ctypes import byref, c_int32
+from typing import Tuple
 
 import numpy as np
 
 from . import _native as N
-from .world import _as_u8
+from .world import PathLike, _as_u8
+
+try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
+    import numpy.typing as npt
+except ImportError:  # an older numpy runs the package all the same; only its hints do not resolve at run time
+    pass
 
 
-def image_info(path):
+def image_info(path: PathLike) -> Tuple[int, int]:
     """Size of a PNG file's image, (width, height) px, read from its header."""
     w, h = c_int32(), c_int32()
     N.lib.pp_image_info(os.fsencode(path), byref(w), byref(h))
     return w.value, h.value
 
 
-def load_png(path):
+def load_png(path: PathLike) -> npt.NDArray[np.uint8]:
     """Decode a PNG file (any colour type, 8 or 16 bit) into a (height, width, 4) uint8 RGBA array."""
     w, h = image_info(path)
     out = np.empty((h, w, 4), dtype=np.uint8)
@@ -25,7 +33,7 @@ def load_png(path):
     return out
 
 
-def save_png(path, rgba):
+def save_png(path: PathLike, rgba: npt.ArrayLike) -> None:
     """Encode a (height, width, 4) RGBA array (uint8, or integers 0..255) as an 8-bit RGBA PNG file."""
     a = _as_u8(rgba, "rgba", 3, channels=4)
     N.lib.pp_image_save(os.fsencode(path), a.ctypes.data_as(N.u8p), a.shape[1], a.shape[0])

@@ -3,10 +3,16 @@
 Units everywhere: pixels, seconds, radians; world y points down. Every failing call raises
 the PhysPixError subclass of its status with the library's message.
 """
+from __future__ import annotations
+
+import ctypes
 import os
 import weakref
 from ctypes import POINTER, byref, c_double, c_float, c_int32, c_int64, c_uint64
 from dataclasses import astuple, dataclass, fields as dataclass_fields
+from enum import IntEnum
+from typing import (Any, Callable, Collection, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Type, TypeVar,
+                    Union)
 
 import numpy as np
 
@@ -14,15 +20,32 @@ from . import _native as N
 from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod, Preset
 from .errors import InvalidArgumentError, PhysPixError
 
+try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
+    import numpy.typing as npt
+except ImportError:  # an older numpy runs the package all the same; only its hints do not resolve at run time
+    pass
+
+#: A vector as the package returns it: (x, y).
+Vec2 = Tuple[float, float]
+#: A vector as the package takes it: any (x, y) pair of numbers, a tuple, a list or a numpy array of two.
+Vec2Like = Union[Sequence[float], np.ndarray]
+#: A file or folder path, as os.fsencode takes it.
+PathLike = Union[str, bytes, os.PathLike]
+
+_E = TypeVar("_E", bound=IntEnum)
+_S = TypeVar("_S", bound=ctypes.Structure)
+_W = TypeVar("_W", bound="World")
+
 lib = N.lib
 
 # Def fields that take an enum: the enum class accepts members, ints and lower-case names.
-_ENUM_FIELDS = {"backend": Backend, "normal_method": NormalMethod, "contact_mode": ContactMode, "type": BodyType}
+_ENUM_FIELDS: Dict[str, Type[IntEnum]] = {"backend": Backend, "normal_method": NormalMethod,
+                                          "contact_mode": ContactMode, "type": BodyType}
 # Body def fields that create_body fills from the numpy arrays, never from keywords.
 _PLANE_FIELDS = ("rgba", "mask", "weights")
 
 
-def enum_value(cls, value, what):
+def enum_value(cls: Type[_E], value: Union[_E, int, str], what: str) -> _E:
     """An enum member from a member, an int or a case-insensitive name such as "area_gradient"."""
     if isinstance(value, str):
         try:
@@ -37,7 +60,7 @@ def enum_value(cls, value, what):
         raise ValueError(f"{what}: {value!r} is not one of {choices}") from None
 
 
-def vec2(value, what="vector"):
+def vec2(value: Vec2Like, what: str = "vector") -> N.pp_vec2:
     """A pp_vec2 from any (x, y) pair of numbers."""
     try:
         x, y = value
@@ -46,9 +69,9 @@ def vec2(value, what="vector"):
         raise TypeError(f"{what}: expected an (x, y) pair of numbers, got {value!r}") from None
 
 
-def _fill_def(struct, values, caller, skip=()):
+def _fill_def(struct: ctypes.Structure, values: Mapping[str, Any], caller: str, skip: Collection[str] = ()) -> None:
     """Set def fields from keywords named as in the C struct; unknown names are a TypeError."""
-    types = dict(struct._fields_)
+    types = {field[0]: field[1] for field in struct._fields_}
     for name, value in values.items():
         if name in skip:
             raise TypeError(f"{caller}(): {name!r} comes from the arrays, not from a keyword")
@@ -64,7 +87,7 @@ def _fill_def(struct, values, caller, skip=()):
             raise TypeError(f"{name}: {exc}") from None
 
 
-def _read_list(fn, item_type, *args, guess=0):
+def _read_list(fn: Callable[..., Any], item_type: Type[_S], *args: Any, guess: int = 0) -> List[_S]:
     """All items of a snapshot getter (bodies, contacts, collide): read with a first guess of the count
     (0: just ask it), then again with the total the library reported if that was more."""
     capacity, count = guess, c_int32(0)
@@ -72,11 +95,11 @@ def _read_list(fn, item_type, *args, guess=0):
         buf = (item_type * capacity)() if capacity else None
         fn(*args, buf, capacity, byref(count))
         if count.value <= capacity:
-            return list(buf[:count.value]) if capacity else []
+            return list(buf[:count.value]) if buf is not None else []
         capacity = count.value
 
 
-def _as_u8(array, name, ndim, channels=None):
+def _as_u8(array: npt.ArrayLike, name: str, ndim: int, channels: Optional[int] = None) -> npt.NDArray[np.uint8]:
     """A C-contiguous uint8 copy-free view where possible; integer arrays must hold 0..255."""
     a = np.asarray(array)
     if a.ndim != ndim or (channels is not None and a.shape[-1] != channels):
@@ -89,7 +112,7 @@ def _as_u8(array, name, ndim, channels=None):
     return np.ascontiguousarray(a)
 
 
-def _mask_u8(mask):
+def _mask_u8(mask: npt.ArrayLike) -> npt.NDArray[np.uint8]:
     """A collision mask as C-contiguous uint8: any dtype, non-zero is solid."""
     m = np.asarray(mask)
     if m.ndim != 2:
@@ -100,25 +123,26 @@ def _mask_u8(mask):
 _INT32 = (-2**31, 2**31 - 1)
 
 
-def _check_range(value, low, high, what):
+def _check_range(value: int, low: int, high: int, what: str) -> int:
     """value as an int within low..high: the range a C integer argument holds, where ctypes would wrap it."""
     if not low <= int(value) <= high:
         raise ValueError(f"{what}: {value!r} is outside {low}..{high}")
     return int(value)
 
 
-def _mask_bits(bits):
+def _mask_bits(bits: int) -> int:
     """Collision filter bits as the uint32 the library takes, where ctypes would wrap a wider value."""
     return _check_range(bits, 0, 2**32 - 1, "mask_bits")
 
 
-def _u8_ptr(array):
+def _u8_ptr(array: Optional[np.ndarray]) -> Any:
     return None if array is None else array.ctypes.data_as(N.u8p)
 
 
-def _planes(mask, rgba, weights):
+def _planes(mask: Optional[npt.ArrayLike], rgba: Optional[npt.ArrayLike], weights: Optional[npt.ArrayLike]
+            ) -> Tuple[Dict[str, npt.NDArray[np.uint8]], Tuple[int, int]]:
     """Validated planes and their common (height, width); a disagreement between them is a ValueError."""
-    planes = {}
+    planes: Dict[str, npt.NDArray[np.uint8]] = {}
     if mask is not None:
         planes["mask"] = _mask_u8(mask)
     if rgba is not None:
@@ -139,10 +163,10 @@ def _planes(mask, rgba, weights):
 class Contact:
     """One contact point: normal points from a to b; point in world px, depth in px; normal_impulse, mass·px/s,
     is what the solver applied along the normal in the last substep (0 from collide)."""
-    a: "Body"
-    b: "Body"
-    point: tuple
-    normal: tuple
+    a: Body
+    b: Body
+    point: Vec2
+    normal: Vec2
     depth: float
     pixel_count: int
     normal_impulse: float
@@ -155,10 +179,10 @@ class Event:
     SENSOR_BEGIN also give the first contact's world point (px), the unit normal from body to other, and the
     speed at which they closed along it (px/s); other events give zeros."""
     type: EventType
-    body: "Body"
-    other: "Body | None"
-    point: tuple
-    normal: tuple
+    body: Body
+    other: Optional[Body]
+    point: Vec2
+    normal: Vec2
     approach_speed: float
 
 
@@ -166,9 +190,9 @@ class Event:
 class RaycastHit:
     """The nearest solid pixel a ray meets: the body, the world point where the ray enters it (px), the unit
     surface normal there (out of the body), and where along from → to it lies (0..1)."""
-    body: "Body"
-    point: tuple
-    normal: tuple
+    body: Body
+    point: Vec2
+    normal: Vec2
     fraction: float
 
 
@@ -192,7 +216,7 @@ class StepStats:
 @dataclass(frozen=True)
 class Camera:
     """A renderer's view: world point at the image centre (px), image px per world px, image size (px)."""
-    center: tuple
+    center: Vec2
     zoom: float
     width: int
     height: int
@@ -203,8 +227,8 @@ class ScheduledEdit:
     """A pending timed edit: world time (s), circle centre (px) and radius (px); body None erases every body."""
     time: float
     type: EditType
-    body: "Body | None"
-    center: tuple
+    body: Optional[Body]
+    center: Vec2
     radius: float
     weight: int
 
@@ -215,15 +239,15 @@ class CollisionView:
     the global normal from a to b (zero when apart), and the intersection and critical cell counts."""
     width: int
     height: int
-    origin: tuple
-    step_x: tuple
-    step_y: tuple
-    normal: tuple
+    origin: Vec2
+    step_x: Vec2
+    step_y: Vec2
+    normal: Vec2
     intersection: int
     critical: int
 
 
-def _destroy_world(world_id):
+def _destroy_world(world_id: int) -> None:
     """Finalizer of a World never closed: destroy it, quietly (at exit nobody can handle an error)."""
     try:
         lib.pp_world_destroy(N.pp_world(world_id))
@@ -234,28 +258,31 @@ def _destroy_world(world_id):
 class World:
     """A physics world; keywords are pp_world_def field names (gravity=(0, 980) px/s², backend="cpu", …)."""
 
-    def __init__(self, **fields):
+    _handle: N.pp_world
+    _finalizer: weakref.finalize
+
+    def __init__(self, **fields: Any) -> None:
         self._create(lib.pp_world_def_default(), fields, "World")
 
     @classmethod
-    def from_preset(cls, preset, **fields):
+    def from_preset(cls: Type[_W], preset: Union[Preset, int, str], **fields: Any) -> _W:
         """A world from a preset ("fast", "balanced" = the default, "accurate"); keywords override its fields."""
         world = cls.__new__(cls)
         world._create(lib.pp_world_def_preset(enum_value(Preset, preset, "preset")), fields, "from_preset")
         return world
 
-    def _create(self, d, fields, caller):
+    def _create(self, d: N.pp_world_def, fields: Mapping[str, Any], caller: str) -> None:
         _fill_def(d, fields, caller)
         handle = N.pp_world()
         lib.pp_world_create(byref(d), byref(handle))
         self._adopt(handle)
 
-    def _adopt(self, handle):
+    def _adopt(self, handle: N.pp_world) -> None:
         self._handle = handle
         self._finalizer = weakref.finalize(self, _destroy_world, handle.id)
 
     @classmethod
-    def _created_by(cls, fn, path):
+    def _created_by(cls: Type[_W], fn: Callable[..., Any], path: PathLike) -> _W:
         world = cls.__new__(cls)
         handle = N.pp_world()
         fn(os.fsencode(path), byref(handle))
@@ -263,47 +290,48 @@ class World:
         return world
 
     @classmethod
-    def load_scene(cls, path):
+    def load_scene(cls: Type[_W], path: PathLike) -> _W:
         """A world from a JSON scene file (settings, camera, bodies, timed edits); PNG paths are relative to it."""
         return cls._created_by(lib.pp_world_load_scene, path)
 
     @classmethod
-    def load_snapshot(cls, folder):
+    def load_snapshot(cls: Type[_W], folder: PathLike) -> _W:
         """A world from a snapshot folder; stepping it continues exactly as the saved world would have."""
         return cls._created_by(lib.pp_world_load_snapshot, folder)
 
-    def save_snapshot(self, folder):
+    def save_snapshot(self, folder: PathLike) -> None:
         """Write the world's whole state into a new folder (world.json and PNG planes)."""
         lib.pp_world_save_snapshot(self._handle, os.fsencode(folder))
 
-    def close(self):
+    def close(self) -> None:
         """Destroy the world and its bodies; later calls with it raise InvalidHandleError. Idempotent."""
         if self._finalizer.detach() is not None:
             lib.pp_world_destroy(self._handle)
 
-    def __enter__(self):
+    def __enter__(self: _W) -> _W:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         state = "closed" if not self._finalizer.alive else "open"
         return f"<physpix.World id={self._handle.id:#x} {state}>"
 
     @property
-    def id(self):
+    def id(self) -> int:
         """The opaque pp_world handle value."""
         return self._handle.id
 
-    def _body(self, handle):
+    def _body(self, handle: N.pp_body) -> Optional[Body]:
         return Body(self, handle.id) if handle.id else None
 
-    def step(self, dt):
+    def step(self, dt: float) -> None:
         """Advance the world by dt seconds (0 < dt ≤ 1)."""
         lib.pp_world_step(self._handle, dt)
 
-    def create_body(self, mask=None, rgba=None, weights=None, **fields):
+    def create_body(self, mask: Optional[npt.ArrayLike] = None, rgba: Optional[npt.ArrayLike] = None,
+                    weights: Optional[npt.ArrayLike] = None, **fields: Any) -> Body:
         """A body from numpy planes (mask (h, w) non-zero solid; rgba (h, w, 4) uint8; weights (h, w) 0..255)
         and pp_body_def fields as keywords (type="static", position=(x, y) px, angle rad, density, …)."""
         planes, (height, width) = _planes(mask, rgba, weights)
@@ -317,27 +345,27 @@ class World:
         lib.pp_body_create(self._handle, byref(d), byref(handle))
         return Body(self, handle.id)
 
-    def bodies(self):
+    def bodies(self) -> List[Body]:
         """Every live body."""
         return [Body(self, h.id) for h in _read_list(lib.pp_world_get_bodies, N.pp_body, self._handle)]
 
-    def _contacts(self, raw):
+    def _contacts(self, raw: Iterable[N.pp_contact]) -> List[Contact]:
         return [Contact(Body(self, c.a.id), Body(self, c.b.id), (c.point.x, c.point.y), (c.normal.x, c.normal.y),
                         c.depth, c.pixel_count, c.normal_impulse) for c in raw]
 
-    def contacts(self):
+    def contacts(self) -> List[Contact]:
         """The contacts of the last substep."""
         return self._contacts(_read_list(lib.pp_world_get_contacts, N.pp_contact, self._handle))
 
-    def collide(self, a, b):
+    def collide(self, a: Body, b: Body) -> List[Contact]:
         """Run the narrowphase on one pair at the current poses, without stepping; normals point from a to b."""
         # A pair makes at most two contacts (MANIFOLD): one call, not a count then a read of the narrowphase.
         return self._contacts(_read_list(lib.pp_world_collide, N.pp_contact, self._handle, a._handle, b._handle,
                                          guess=4))
 
-    def events(self):
+    def events(self) -> List[Event]:
         """The events since they were last read, oldest first; reading forgets them."""
-        out = []
+        out: List[Event] = []
         count = c_int32(0)
         lib.pp_world_get_events(self._handle, None, 0, byref(count))
         # Reading consumes what it writes, so read until nothing is pending rather than re-asking a total.
@@ -350,7 +378,7 @@ class World:
             count.value -= written
         return out
 
-    def raycast(self, from_, to, mask_bits=0xffffffff):
+    def raycast(self, from_: Vec2Like, to: Vec2Like, mask_bits: int = 0xffffffff) -> Optional[RaycastHit]:
         """The nearest solid pixel on the segment from → to (world px) of a body whose category_bits meet
         mask_bits (sensors skipped), as a RaycastHit, or None; a ray starting inside a solid pixel hits at 0."""
         hit, out = c_int32(0), N.pp_raycast_hit()
@@ -361,25 +389,25 @@ class World:
         return RaycastHit(Body(self, out.body.id), (out.point.x, out.point.y), (out.normal.x, out.normal.y),
                           out.fraction)
 
-    def _query(self, fn, *args):
+    def _query(self, fn: Callable[..., Any], *args: Any) -> List[Body]:
         return [Body(self, h.id) for h in _read_list(fn, N.pp_body, self._handle, *args)]
 
-    def query_point(self, point, mask_bits=0xffffffff):
+    def query_point(self, point: Vec2Like, mask_bits: int = 0xffffffff) -> List[Body]:
         """Bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square contains
         the world point (px), in slot order."""
         return self._query(lib.pp_world_query_point, vec2(point, "point"), _mask_bits(mask_bits))
 
-    def query_aabb(self, lower, upper, mask_bits=0xffffffff):
+    def query_aabb(self, lower: Vec2Like, upper: Vec2Like, mask_bits: int = 0xffffffff) -> List[Body]:
         """Bodies with a solid pixel whose centre lies in the world box [lower, upper] (px), as query_point."""
         return self._query(lib.pp_world_query_aabb, vec2(lower, "lower"), vec2(upper, "upper"),
                            _mask_bits(mask_bits))
 
-    def query_circle(self, center, radius, mask_bits=0xffffffff):
+    def query_circle(self, center: Vec2Like, radius: float, mask_bits: int = 0xffffffff) -> List[Body]:
         """Bodies with a solid pixel whose centre lies within radius px of a world point (px), as query_point:
         the bodies erase_circle would change."""
         return self._query(lib.pp_world_query_circle, vec2(center, "center"), radius, _mask_bits(mask_bits))
 
-    def stats(self):
+    def stats(self) -> StepStats:
         """Statistics of the last step."""
         s = N.pp_step_stats()
         lib.pp_world_get_stats(self._handle, byref(s))
@@ -387,74 +415,76 @@ class World:
         values["backend"] = Backend(values["backend"])
         return StepStats(**values)
 
-    def erase_circle(self, center, radius):
+    def erase_circle(self, center: Vec2Like, radius: float) -> int:
         """Erase every body's pixels within radius px of a world point (px); returns the pixels erased."""
         changed = c_int32(0)
         lib.pp_world_erase_circle(self._handle, vec2(center, "center"), radius, byref(changed))
         return changed.value
 
     @property
-    def time(self):
+    def time(self) -> float:
         """Simulated time since the world was created, s (the sum of every step's dt)."""
         t = c_double()
         lib.pp_world_get_time(self._handle, byref(t))
         return t.value
 
     @property
-    def contact_events(self):
+    def contact_events(self) -> bool:
         """Whether CONTACT_BEGIN/END events are queued (the world def's contact_events); settable."""
         return bool(self.settings["contact_events"])
 
     @contact_events.setter
-    def contact_events(self, enabled):
+    def contact_events(self, enabled: bool) -> None:
         lib.pp_world_set_contact_events(self._handle, 1 if enabled else 0)
 
     @property
-    def settings(self):
+    def settings(self) -> Dict[str, Any]:
         """The pp_world_def the world runs with, as a dict of field name to value (vectors as (x, y))."""
         d = N.pp_world_def()
         lib.pp_world_get_def(self._handle, byref(d))
-        out = {}
-        for name, _ in d._fields_[1:]:
+        out: Dict[str, Any] = {}
+        for name, *_ in d._fields_[1:]:
             v = getattr(d, name)
             out[name] = (v.x, v.y) if isinstance(v, N.pp_vec2) else _ENUM_FIELDS[name](v) if name in _ENUM_FIELDS else v
         return out
 
     @property
-    def camera(self):
+    def camera(self) -> Camera:
         """The world's Camera (a scene's, or the default); set a Camera or (center px, zoom, width px, height px)."""
         c = N.pp_camera()
         lib.pp_world_get_camera(self._handle, byref(c))
         return Camera((c.center.x, c.center.y), c.zoom, c.width, c.height)
 
     @camera.setter
-    def camera(self, value):
+    def camera(self, value: Union[Camera, Tuple[Vec2Like, float, int, int]]) -> None:
         center, zoom, width, height = astuple(value) if isinstance(value, Camera) else value
         c = N.pp_camera(vec2(center, "center"), zoom, _check_range(width, *_INT32, "width"),
                         _check_range(height, *_INT32, "height"))
         lib.pp_world_set_camera(self._handle, byref(c))
 
-    def _schedule(self, time, edit_type, body, center, radius, weight):
+    def _schedule(self, time: float, edit_type: EditType, body: Optional[Body], center: Vec2Like, radius: float,
+                  weight: int) -> None:
         e = N.pp_timed_edit(time=time, type=edit_type, weight=weight, center=vec2(center, "center"), radius=radius)
         e.body = body._handle if body is not None else N.pp_body()
         lib.pp_world_schedule_edit(self._handle, byref(e))
 
-    def schedule_erase(self, time, center, radius, body=None):
+    def schedule_erase(self, time: float, center: Vec2Like, radius: float, body: Optional[Body] = None) -> None:
         """Erase at world time (s) the pixels within radius px of a world point (px): of body, or of every body."""
         self._schedule(time, EditType.ERASE_CIRCLE, body, center, radius, 0)
 
-    def schedule_paint(self, time, body, center, radius, weight=255):
+    def schedule_paint(self, time: float, body: Body, center: Vec2Like, radius: float, weight: int = 255) -> None:
         """Make solid at world time (s), with weight 1..255, body's pixels within radius px of a world point (px)."""
         # As in paint_circle: ctypes would wrap -1 or 2**32 in the 32-bit field; the library refuses 0 itself.
         self._schedule(time, EditType.PAINT_CIRCLE, body, center, radius, _check_range(weight, 0, 255, "weight"))
 
-    def scheduled_edits(self):
+    def scheduled_edits(self) -> List[ScheduledEdit]:
         """The edits still pending, in the order they will apply."""
         return [ScheduledEdit(e.time, EditType(e.type), self._body(e.body), (e.center.x, e.center.y), e.radius,
                               e.weight)
                 for e in _read_list(lib.pp_world_get_scheduled_edits, N.pp_timed_edit, self._handle)]
 
-    def debug_collision(self, a, b):
+    def debug_collision(self, a: Body, b: Body
+                        ) -> Tuple[npt.NDArray[np.uint8], npt.NDArray[np.float32], CollisionView]:
         """A pair's sampled grid at the current poses: (cells (h, w) uint8 of CELL_* flags, local normals
         (h, w, 2) float32 in world axes on critical cells, zero elsewhere, CollisionView)."""
         v = N.pp_collision_view()
@@ -478,166 +508,168 @@ class Body:
     """A body of a World: a value handle; equal when world and body ids are."""
 
     __slots__ = ("_world", "_handle")
+    _world: World
+    _handle: N.pp_body
 
-    def __init__(self, world, body_id):
+    def __init__(self, world: World, body_id: int) -> None:
         self._world = world
         self._handle = N.pp_body(body_id)
 
-    def __eq__(self, other):
+    def __eq__(self, other: object) -> bool:
         return isinstance(other, Body) and self._key() == other._key()
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash(self._key())
 
-    def _key(self):
+    def _key(self) -> Tuple[int, int]:
         return self._world._handle.id, self._handle.id
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<physpix.Body id={self._handle.id:#x}>"
 
-    def _call(self, fn, *args):
+    def _call(self, fn: Callable[..., Any], *args: Any) -> Any:
         return fn(self._world._handle, self._handle, *args)
 
     @property
-    def world(self):
+    def world(self) -> World:
         """The World the body lives in."""
         return self._world
 
     @property
-    def id(self):
+    def id(self) -> int:
         """The opaque pp_body handle value."""
         return self._handle.id
 
-    def destroy(self):
+    def destroy(self) -> None:
         """Destroy the body; its handle becomes stale."""
         self._call(lib.pp_body_destroy)
 
     @property
-    def position(self):
+    def position(self) -> Vec2:
         """World position of the pivot, (x, y) px; setting it teleports the body."""
         p = N.pp_vec2()
         self._call(lib.pp_body_get_position, byref(p))
         return p.x, p.y
 
     @position.setter
-    def position(self, value):
+    def position(self, value: Vec2Like) -> None:
         self.set_transform(value, self.angle)
 
     @property
-    def angle(self):
+    def angle(self) -> float:
         """Rotation, radians (positive turns +x toward +y); setting it turns the body about its pivot."""
         a = c_float()
         self._call(lib.pp_body_get_angle, byref(a))
         return a.value
 
     @angle.setter
-    def angle(self, value):
+    def angle(self, value: float) -> None:
         self.set_transform(self.position, value)
 
-    def set_transform(self, position, angle):
+    def set_transform(self, position: Vec2Like, angle: float) -> None:
         """Teleport: pivot to position (px), rotation to angle (radians); wakes the body."""
         self._call(lib.pp_body_set_transform, vec2(position, "position"), angle)
 
-    def _velocities(self):
+    def _velocities(self) -> Tuple[Vec2, float]:
         v, w = N.pp_vec2(), c_float()
         self._call(lib.pp_body_get_velocity, byref(v), byref(w))
         return (v.x, v.y), w.value
 
     @property
-    def velocity(self):
+    def velocity(self) -> Vec2:
         """Velocity of the centre of mass, (x, y) px/s."""
         return self._velocities()[0]
 
     @velocity.setter
-    def velocity(self, value):
+    def velocity(self, value: Vec2Like) -> None:
         self.set_velocity(value, self._velocities()[1])
 
     @property
-    def angular_velocity(self):
+    def angular_velocity(self) -> float:
         """Angular velocity, rad/s."""
         return self._velocities()[1]
 
     @angular_velocity.setter
-    def angular_velocity(self, value):
+    def angular_velocity(self, value: float) -> None:
         self.set_velocity(self._velocities()[0], value)
 
-    def set_velocity(self, linear, angular):
+    def set_velocity(self, linear: Vec2Like, angular: float) -> None:
         """Set the centre of mass velocity (px/s) and angular velocity (rad/s); wakes the body."""
         self._call(lib.pp_body_set_velocity, vec2(linear, "linear"), angular)
 
-    def apply_impulse(self, impulse, point):
+    def apply_impulse(self, impulse: Vec2Like, point: Vec2Like) -> None:
         """Apply an impulse (mass·px/s) at a world point (px); dynamic bodies only."""
         self._call(lib.pp_body_apply_impulse, vec2(impulse, "impulse"), vec2(point, "point"))
 
     @property
-    def memory(self):
+    def memory(self) -> Tuple[int, int]:
         """Bytes the body holds: (collision raster, sprite copy); the weight plane counts only where there is one."""
         collision, sprite = c_int64(), c_int64()
         self._call(lib.pp_body_get_memory, byref(collision), byref(sprite))
         return collision.value, sprite.value
 
-    def _mass(self):
+    def _mass(self) -> Tuple[float, Vec2, float]:
         m, c, i = c_float(), N.pp_vec2(), c_float()
         self._call(lib.pp_body_get_mass, byref(m), byref(c), byref(i))
         return m.value, (c.x, c.y), i.value
 
     @property
-    def mass(self):
+    def mass(self) -> float:
         """Mass, mass units (density × Σ weight/255 over solid pixels)."""
         return self._mass()[0]
 
     @property
-    def center_of_mass(self):
+    def center_of_mass(self) -> Vec2:
         """Centre of mass in bitmap coordinates, (x, y) px from the bitmap's top-left corner."""
         return self._mass()[1]
 
     @property
-    def inertia(self):
+    def inertia(self) -> float:
         """Moment of inertia about the centre of mass, mass·px²."""
         return self._mass()[2]
 
     @property
-    def is_awake(self):
+    def is_awake(self) -> bool:
         """Whether the body is awake (static bodies never are)."""
         awake = c_int32()
         self._call(lib.pp_body_is_awake, byref(awake))
         return bool(awake.value)
 
     @property
-    def size(self):
+    def size(self) -> Tuple[int, int]:
         """Bitmap size, (width, height) px."""
         w, h = c_int32(), c_int32()
         self._call(lib.pp_body_get_size, byref(w), byref(h))
         return w.value, h.value
 
     @property
-    def pivot(self):
+    def pivot(self) -> Vec2:
         """Pivot in bitmap coordinates, (x, y) px from the bitmap's top-left corner."""
         p = N.pp_vec2()
         self._call(lib.pp_body_get_pivot, byref(p))
         return p.x, p.y
 
     @property
-    def type(self):
+    def type(self) -> BodyType:
         """How the body moves: a BodyType."""
         t = N.c_enum()
         self._call(lib.pp_body_get_type, byref(t))
         return BodyType(t.value)
 
     @property
-    def user_data(self):
+    def user_data(self) -> int:
         """The host's integer given as user_data at creation."""
         u = c_uint64()
         self._call(lib.pp_body_get_user_data, byref(u))
         return u.value
 
-    def erase_circle(self, center, radius):
+    def erase_circle(self, center: Vec2Like, radius: float) -> int:
         """Erase the pixels whose centres lie within radius px of a world point (px); returns how many."""
         changed = c_int32(0)
         self._call(lib.pp_body_erase_circle, vec2(center, "center"), radius, byref(changed))
         return changed.value
 
-    def paint_circle(self, center, radius, weight=255):
+    def paint_circle(self, center: Vec2Like, radius: float, weight: int = 255) -> int:
         """Make solid, with weight 1..255, the pixels within radius px of a world point (px); returns how many changed."""
         # c_uint8 would wrap 256 to 0 silently; the library cannot see what was meant.
         if not 0 <= int(weight) <= 255:
@@ -646,7 +678,7 @@ class Body:
         self._call(lib.pp_body_paint_circle, vec2(center, "center"), radius, weight, byref(changed))
         return changed.value
 
-    def write_pixels(self, x, y, mask, weights=None):
+    def write_pixels(self, x: int, y: int, mask: npt.ArrayLike, weights: Optional[npt.ArrayLike] = None) -> None:
         """Overwrite the rectangle at bitmap pixel (x, y) with mask (h, w; non-zero solid) and weights (0..255)."""
         m = _mask_u8(mask)
         wt = None if weights is None else _as_u8(weights, "weights", 2)
@@ -655,14 +687,14 @@ class Body:
         h, w = m.shape
         self._call(lib.pp_body_write_pixels, x, y, w, h, _u8_ptr(m), _u8_ptr(wt))
 
-    def read_mask(self):
+    def read_mask(self) -> npt.NDArray[np.uint8]:
         """The collision mask as a (height, width) uint8 array, 1 solid, 0 empty."""
         w, h = self.size
         out = np.empty((h, w), dtype=np.uint8)
         self._call(lib.pp_body_read_mask, _u8_ptr(out), out.nbytes)
         return out
 
-    def read_rgba(self):
+    def read_rgba(self) -> npt.NDArray[np.uint8]:
         """The body's look as a (height, width, 4) uint8 RGBA array: its sprite where solid, clear elsewhere;
         without a sprite, solid pixels are opaque gray of their weight."""
         w, h = self.size
