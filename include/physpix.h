@@ -1,6 +1,26 @@
 /* PhysPix — 2D rigid bodies whose shapes are bitmaps used as they are.
  * The public C ABI: value handles, status codes, def structs with a struct_size.
- * Units everywhere: pixels, seconds, radians; world y points down. */
+ * Units everywhere: pixels, seconds, radians; world y points down.
+ *
+ * Conventions. Mass is in mass units (a solid pixel of weight 255 weighs `density`); gravity defaults
+ * to (0, 980) px/s². A body's pose maps bitmap coordinates (origin at the bitmap's top-left corner,
+ * pixel (i, j) covering [i, i+1) × [j, j+1)) to the world: world = position + R(angle)·(local − pivot),
+ * the pivot defaulting to the bitmap centre; the pose does not jump when an edit moves the centre of
+ * mass. Velocities are those of the centre of mass. Handles (pp_world, pp_body) are values carrying a
+ * slot and a generation: a destroyed or stale one is answered with PP_ERR_INVALID_HANDLE, never a crash.
+ * Every call that can fail returns a pp_status and writes results through out-pointers; on failure
+ * pp_last_error() says why, naming the argument, and the outputs are untouched. Def structs come from
+ * their default function, which sets struct_size (a binding with a wrong layout gets PP_ERR_ABI). The
+ * caller owns every output buffer: a call writes up to `capacity` items and reports the total in `count`.
+ * Results (contacts, events, stats) are read after pp_world_step; there are no callbacks during a step.
+ *
+ * Threads. A world is used from one thread at a time; different worlds may run on different threads.
+ * Inside a step the CPU narrowphase may share its pairs over pp_world_def.worker_threads threads: they
+ * start with the first batch of 32,768 cells or more and live until the world is destroyed, so a small
+ * scene never has any, and each pair writes only its own result, so contacts are the same bit for bit
+ * on any number of threads. The ODE step is serialised across worlds by one lock (the price of a
+ * deterministic QuickStep with ODE's process-wide random generator). GPU batches from different worlds
+ * take turns on the process's one GLES context. Measured figures: tests/bench/README.md. */
 #ifndef PHYSPIX_H
 #define PHYSPIX_H
 
@@ -22,6 +42,9 @@ extern "C" {
 #define PHYSPIX_VERSION_MINOR 2
 /// Library patch version.
 #define PHYSPIX_VERSION_PATCH 0
+
+/* Limits. A request over one gets PP_ERR_LIMIT before anything is allocated; PNG and file sizes are read
+ * from the header or the file's size, so a 40,000 × 40,000 PNG is refused before its pixels are. */
 
 /// Largest bitmap side accepted by pp_body_create, in pixels.
 #define PP_MAX_BITMAP_SIDE 16384
@@ -72,11 +95,18 @@ typedef enum pp_contact_mode {
     PP_CONTACT_FORCE_U32 = 0x7fffffff
 } pp_contact_mode;
 
-/// A named point on the measured speed/accuracy trade (README, "Presets").
+/* Presets are named points on the measured speed/accuracy trade (figures: tests/bench/README.md, "Presets").
+ * They differ only in solver work, the knob that decides whether stacks stand; all keep AREA_GRADIENT
+ * normals, MANIFOLD contacts (two points a pair) and raster stride 1. BALANCED meets the accuracy targets
+ * (normal error median ≤ 0.5°, 95th percentile ≤ 2°; depth error median ≤ 0.5 px) and holds a 10-row
+ * pyramid and a 10-box tower for 60 s; FAST lets tall stacks fall and is for debris and loose piles. A
+ * scene's "preset" key and Python's World.from_preset start from them; the other settings override. */
+
+/// A named point on the measured speed/accuracy trade; see pp_world_def_preset.
 typedef enum pp_preset {
-    PP_PRESET_FAST = 1,     ///< 1 substep × 10 iterations: 7.5 times cheaper, same contact errors; tall stacks fall
-    PP_PRESET_BALANCED = 2, ///< the default, 4 substeps × 40 iterations: meets DESIGN.md's accuracy targets
-    PP_PRESET_ACCURATE = 3, ///< 4 substeps × 80 iterations: the stiffest stacks measured, at 1.7 times the cost
+    PP_PRESET_FAST = 1,     ///< 1 substep × 10 iterations: cheapest, same contact errors; tall stacks fall
+    PP_PRESET_BALANCED = 2, ///< the default, 4 substeps × 40 iterations: stacks stand, contact errors on target
+    PP_PRESET_ACCURATE = 3, ///< 4 substeps × 80 iterations: the stiffest stacks measured, for more solver time
     PP_PRESET_FORCE_U32 = 0x7fffffff
 } pp_preset;
 
@@ -104,6 +134,24 @@ typedef struct pp_body {
     uint64_t id; ///< slot index and generation; opaque
 } pp_body;
 
+/* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
+ * sweep-and-prune on the solid pixels' world boxes (static–static, filtered and sleeping–sleeping pairs
+ * are skipped), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
+ * and contact points from the intersection raster, in integers, so the CPU and GPU backends agree bit for
+ * bit and runs are deterministic. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
+ * (pixels_per_meter); contact joints with Coulomb friction μ = √(μa·μb) and restitution max(ea, eb) above
+ * bounce_threshold; contact_cfm is relative to the pair's reduced mass, so it does not depend on body size.
+ * QuickStep's random order is seeded from the world's step count before each step: the same scene gives
+ * the same result in any run. Sleeping: bodies slower than sleep_linear_speed and sleep_angular_speed for
+ * sleep_time sleep, and bodies in contact sleep together or not at all.
+ * Continuous collision: contacts are found at the start of each substep, so a body moving farther than
+ * about half of (its length + a wall's thickness) in one substep could pass through unseen. With
+ * `continuous`, a dynamic body that moved over half its thinnest side is swept along its motion against
+ * static and kinematic bodies (`bullet` bodies against dynamic ones too) and stopped, velocity kept, at
+ * the first pose where it overlaps (to half a pixel of travel); the rest of that substep is lost.
+ * pp_step_stats.swept_stops counts the stops. Only fast bodies pay. How it all works, and what it
+ * costs: tests/bench/README.md. */
+
 /// Settings of a world; fill from pp_world_def_default(). Zero in substeps, solver_iterations or raster_stride means its default.
 typedef struct pp_world_def {
     uint32_t struct_size;           ///< sizeof(pp_world_def), set by pp_world_def_default
@@ -115,19 +163,19 @@ typedef struct pp_world_def {
     pp_normal_method normal_method; ///< contact normal estimator (default AREA_GRADIENT)
     pp_contact_mode contact_mode;   ///< contact points per pair (default MANIFOLD)
     int32_t raster_stride;          ///< collision grid coarsening: 1, 2 or 4 pixels per sample (default 1)
-    float pixels_per_meter;         ///< internal length scale handed to ODE, px/m (default 100)
-    float contact_slop;             ///< penetration left uncorrected, px (default 0.75)
+    float pixels_per_meter;         ///< internal length scale handed to ODE, px/m, > 0 (default 100)
+    float contact_slop;             ///< penetration left uncorrected, px, ≥ 0 (default 0.75)
     float contact_erp;              ///< fraction of penetration corrected per solver step, 0..1 (default 0.2)
-    float contact_cfm;              ///< contact softness, ODE constraint force mixing, non-dimensional (default 1e-5)
-    float bounce_threshold;         ///< approach speed below which restitution is ignored, px/s (default 20)
+    float contact_cfm;              ///< contact softness, ODE constraint force mixing, non-dimensional, ≥ 0 (default 1e-5)
+    float bounce_threshold;         ///< approach speed below which restitution is ignored, px/s, ≥ 0 (default 20)
     uint32_t allow_sleep;           ///< nonzero: resting bodies are put to sleep (default 1)
-    float sleep_linear_speed;       ///< speed under which a body may sleep, px/s (default 5)
-    float sleep_angular_speed;      ///< angular speed under which a body may sleep, rad/s (default 0.1)
-    float sleep_time;               ///< time a body must stay slow before it sleeps, s (default 0.5)
+    float sleep_linear_speed;       ///< speed under which a body may sleep, px/s, ≥ 0 (default 5)
+    float sleep_angular_speed;      ///< angular speed under which a body may sleep, rad/s, ≥ 0 (default 0.1)
+    float sleep_time;               ///< time a body must stay slow before it sleeps, s, ≥ 0 (default 0.5)
     uint32_t continuous;            ///< nonzero: a dynamic body moving over half its thickness in a substep is swept
                                     ///< against static and kinematic bodies and stopped where it first hits (default 1)
     float max_correction_speed;     ///< fastest that contacts push overlapping bodies apart, px/s, > 0 (default 300)
-    int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0 for one per CPU (default 0);
+    int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0: one per CPU, at most 16 (default 0);
                                     ///< started only when a step's pairs are big enough to need them
     uint32_t contact_events;        ///< nonzero: PP_EVENT_CONTACT_BEGIN/END are queued for pp_world_get_events (default 0)
 } pp_world_def;
@@ -142,11 +190,11 @@ typedef struct pp_body_def {
     pp_vec2 pivot;            ///< pivot in bitmap coordinates (origin at the top-left corner), px
     pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s
     float angular_velocity;   ///< initial angular velocity, rad/s
-    float density;            ///< mass of one solid pixel of weight 255, mass units (default 1)
+    float density;            ///< mass of one solid pixel of weight 255, mass units, > 0 (default 1)
     float friction;           ///< Coulomb coefficient, ≥ 0 (default 0.6); pairs use sqrt(fa·fb)
     float restitution;        ///< bounciness 0..1 (default 0); pairs use max(ra, rb)
-    float linear_damping;     ///< velocity decay, 1/s (default 0)
-    float angular_damping;    ///< angular velocity decay, 1/s (default 0)
+    float linear_damping;     ///< velocity decay, 1/s, ≥ 0 (default 0)
+    float angular_damping;    ///< angular velocity decay, 1/s, ≥ 0 (default 0)
     uint32_t category_bits;   ///< the categories this body is in (default 1)
     uint32_t mask_bits;       ///< the categories it collides with (default all)
     uint32_t fixed_rotation;  ///< nonzero: the body never rotates
@@ -167,6 +215,10 @@ typedef struct pp_body_def {
     pp_vec2 one_way_direction; ///< the side bodies may land from, in bitmap axes, any length > 0 (default (0, −1): up)
 } pp_body_def;
 
+/* Contacts are those of the last substep. `a` is the pair's body in the lower slot. normal_impulse is read
+ * back from ODE's joint feedback: a box resting on the ground has impulses summing to its weight × the
+ * substep; divide by the substep (s) for a force. pp_world_collide runs no solver and reports 0. */
+
 /// One contact point between two bodies.
 typedef struct pp_contact {
     pp_body a;           ///< first body
@@ -179,6 +231,30 @@ typedef struct pp_contact {
                           ///< mass·px/s, ≥ 0 (force = impulse ÷ substep); 0 from pp_world_collide
     uint32_t reserved;   ///< zero
 } pp_contact;
+
+/* Events queue inside the step and are read after it with pp_world_get_events, oldest first.
+ * Splits and destruction: an edit that cuts a dynamic body (or a static one with detach_islands) into
+ *   several 8-connected islands keeps the largest under the old handle and makes each other island a new
+ *   body moving as its material did (v + ω × r): BODY_SPLIT. A body left without pixels is destroyed:
+ *   BODY_DESTROYED.
+ * Contact events (opt-in: pp_world_def.contact_events or pp_world_set_contact_events, since they queue
+ *   until read): each substep compares the touching pairs with those of the substep before; a new pair
+ *   queues CONTACT_BEGIN, a pair gone CONTACT_END. `body` is the pair's body in the lower slot, as in
+ *   pp_contact. Pairs of sleeping bodies are not tested and not ended, so a pile that falls asleep keeps
+ *   its pairs; destroying a body (or emptying it) ends its pairs at the next substep. Switched on, pairs
+ *   already touching begin at the next substep; switched off, recorded pairs end without an event.
+ * Sensors (pp_body_def.is_sensor): a pair with a sensor runs the narrowphase but makes no contact:
+ *   SENSOR_BEGIN/END with the sensor as `body`, with or without contact_events. Continuous collision,
+ *   rays and queries ignore sensors; two sensors do not sense each other; a body moves through a sensor
+ *   exactly as if it were not there.
+ * One-way platforms (pp_body_def.one_way): when a pair with a platform begins, its contacts are kept only
+ *   if the normal from the platform to the other body lies within 60° of one_way_direction (bitmap axes,
+ *   turning with the body); otherwise the pair passes until the two part. The choice lasts while they
+ *   touch, so a body standing on a platform stays on it, and one that jumps up through it lands on it on
+ *   the way down. Continuous collision stops a fast body only when it moves against
+ *   one_way_direction (falling onto the platform), and not while it is inside.
+ * The step records touching pairs only when something needs them (contact events, a sensor or a platform
+ * in the world, or pairs still to be ended); an unused feature costs nothing. */
 
 /// What an event reports.
 typedef enum pp_event_type {
@@ -203,6 +279,19 @@ typedef struct pp_event {
                           ///< at the point before the solver acted, px/s, ≥ 0; else zero
     uint32_t reserved2;   ///< zero
 } pp_event;
+
+/* Rays (pp_world_raycast) walk each body's pixel grid in the body's frame, an exact DDA over the pixel
+ * squares [i, i+1) × [j, j+1) that jumps whole empty 8×8 tiles, and stop at the first solid pixel of the
+ * nearest body. The normal is the mask's area gradient (the contact normal's estimator) over the solid
+ * pixel centres within 8 px of where the ray enters the pixel; the point then moves along the ray (≤ 8 px)
+ * onto the edge line that a 4 px window places across it. Where no straight edge fits the window (a body
+ * or feature thinner than it, a crossing of lines) the point stays where the ray enters the pixel, and
+ * with no usable gradient the normal is the axis of the face entered. A ray a few degrees off a staircase
+ * edge meets a pixel that stands proud of the edge up to 0.7 / sin(angle) px early: that pixel is the hit.
+ * Queries (pp_world_query_point, _aabb, _circle) name bodies in slot order and stop at a body's first
+ * pixel; the circle query uses the rule of pp_world_erase_circle, so it names exactly the bodies that
+ * erase would change. Rays and queries filter by category_bits & mask_bits, skip sensors, and see static,
+ * kinematic and dynamic bodies alike. Accuracy and speed: tests/bench/README.md. */
 
 /// The nearest solid pixel a ray meets, from pp_world_raycast.
 typedef struct pp_raycast_hit {
@@ -234,6 +323,19 @@ typedef struct pp_step_stats {
 
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
 typedef void (*pp_log_fn)(int level, const char *msg, void *user);
+
+/* Running out. pp_set_allocator routes every allocation PhysPix makes, libpng's included, through the
+ * host's functions (worker threads call them too). ODE and cJSON keep their own: ODE cannot report a failed
+ * allocation except in its step (PP_ERR_OUT_OF_MEMORY), and cJSON's hooks are process-wide, so setting them
+ * would change the host's own cJSON. Out of memory changes nothing: every call returns PP_ERR_OUT_OF_MEMORY
+ * and leaves the world as it was, and succeeds when retried. A step saves what it changes before changing
+ * it (144 bytes a body slot) and puts it back if any substep runs short; an edit makes a split's pieces
+ * before it commits anything. Timed edits due at a step apply first, each whole or not at all; one applied
+ * stays applied if the rest of the step fails, and one that failed stays queued. Worker threads never
+ * allocate: the calling thread grows their scratch first, so a failure is reported where it happened.
+ * Files are never half-written: a snapshot or image is written beside its target, flushed and renamed over
+ * it only when whole; a save that fails part way (disk full, a file-size limit) returns PP_ERR_IO and leaves
+ * the previous file as it was. A load that fails creates no world and leaves *out untouched. */
 
 /// The memory functions behind every allocation the library makes; sizes in bytes, never 0.
 typedef struct pp_allocator {
@@ -369,6 +471,14 @@ PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *l
 PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_bytes, int64_t *sprite_bytes);
 /// Whether the body is awake (1) or asleep (0); static bodies are never awake.
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
+
+/* Edits change pixels between steps, and the next step sees them. The mass sums and the solid bounds follow
+ * from the changed pixels alone; the pivot stays put and the body moves to its new centre of mass with the
+ * velocity its material had; bodies around the edit wake. A dynamic body cut into several 8-connected
+ * islands (pixels touching at a corner hold together) splits, and a static one only with detach_islands;
+ * a body left without pixels is destroyed (PP_EVENT_BODY_SPLIT, PP_EVENT_BODY_DESTROYED). A circle changes
+ * the pixels whose centres lie within its radius. */
+
 /// Erase the body's pixels whose centres lie within radius (px) of a world point (px); changed receives how many (may be NULL).
 PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, int32_t *changed);
 /// Make solid, with weight 1..255, the pixels whose centres lie within radius (px) of a world point (px); changed receives how many changed.
@@ -385,9 +495,13 @@ PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t
 /// The host's value given in the body def.
 PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
 
+/* PNG in and out, through libpng. Loading accepts gray, gray+alpha, RGB, RGBA and palette images of 1–16 bits,
+ * all converted to RGBA8. A header declaring more than the bitmap limits gets PP_ERR_LIMIT before anything is
+ * allocated; a truncated file or a bad CRC gets PP_ERR_FORMAT with libpng's reason. */
+
 /// Size of a PNG file's image, px, read from its header without decoding; either pointer may be NULL.
 PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height);
-/// Decode a PNG file (gray, gray+alpha, RGB, RGBA, palette, 8 or 16 bit) into RGBA8 rows top to bottom;
+/// Decode a PNG file (gray, gray+alpha, RGB, RGBA, palette, 1 to 16 bits) into RGBA8 rows top to bottom;
 /// capacity in bytes ≥ width·height·4; width and height receive the size, px, even when capacity is short.
 PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capacity, int32_t *width, int32_t *height);
 
@@ -418,8 +532,61 @@ PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, in
 PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint8_t *cells, pp_vec2 *local_normals,
                                           int64_t capacity, pp_collision_view *view);
 
-/// Create a world from a JSON scene file (see README, "Scene files"); PNG paths are relative to the file.
+/* Scene files. One JSON object; every key is optional and takes the default of pp_world_def_default(),
+ * pp_body_def_default() or the default camera, but each body needs a bitmap. Keys are case-sensitive; an
+ * unknown key or a key given twice is an error (it catches typos).
+ *
+ *   { "world":  { "preset": "balanced", "gravity": [0, 980], "substeps": 4, "backend": "cpu" },
+ *     "camera": { "center": [480, 270], "zoom": 1, "width": 960, "height": 540 },
+ *     "bodies": [ { "name": "terrain", "type": "static", "sprite": "terrain.png", "mask": "terrain_mask.png",
+ *                   "position": [480, 400], "detach_islands": true },
+ *                 { "name": "crate", "box": [32, 32], "position": [480, 300], "density": 2 } ],
+ *     "edits":  [ { "time": 1.0, "type": "erase", "center": [500, 420], "radius": 40 },
+ *                 { "time": 2.0, "type": "paint", "body": "terrain", "center": [500, 420], "radius": 10,
+ *                   "weight": 255 } ] }
+ *
+ * "world":  every pp_world_def field but struct_size, by name, with its unit, default and range: vectors
+ *           as [x, y], flags as true/false, enums as lower-case strings ("backend" auto|cpu|gpu,
+ *           "normal_method" area_gradient|kernel, "contact_mode" manifold|centroid); and "preset"
+ *           fast|balanced|accurate (default "balanced"), the starting values that the other keys override.
+ * "camera": the pp_camera fields.
+ * "bodies": created in file order. Every pp_body_def field by name but struct_size, custom_pivot and the
+ *           bitmap's (width, height, rgba, mask, weights): "type" is dynamic|static|kinematic, "pivot" is in
+ *           bitmap px (the bitmap centre when absent), "category_bits" and "mask_bits" are integers
+ *           0..4294967295, "user_data" an integer 0..2^53. Plus "name" (unique; edits name bodies by it) and
+ *           the bitmap: "sprite" (a PNG, solid where alpha ≥ alpha_threshold unless there is a mask), "mask"
+ *           (a PNG of the same size, solid where red ≥ 128 and alpha ≥ 128), "weights" (a PNG of the same
+ *           size, red is each pixel's weight 0..255; default all 255), or "box": [w, h] (integers, px: a
+ *           solid rectangle; not with "sprite" or "mask").
+ * "edits":  pp_timed_edit's fields: "time" (s of world time, ≥ 0, default 0), "type" erase|paint (default
+ *           erase), "body" (a body's name; default every body; required for paint), "center" (world px),
+ *           "radius" (px; pixels whose centres lie within change), "weight" (1..255, default 255; paint only).
+ *           They apply at the start of the step nearest their time, in time order (file order among equal
+ *           times).
+ * PNG paths are relative to the scene file's folder. On failure nothing is created, *out is untouched, and
+ * pp_last_error() names the file and the JSON path of the fault, e.g.
+ *   pp_world_load_scene: 'scenes/a.json': bodies[3].density: expected a number > 0
+ *   pp_world_load_scene: 'scenes/a.json': bodies[2].densty: unknown key
+ *   pp_world_load_scene: 'scenes/a.json': edits[1].body: no body is named 'nobody'
+ *   pp_world_load_scene: 'scenes/a.json': line 4: invalid JSON
+ * Statuses: PP_ERR_INVALID_ARGUMENT (NULL path or out), PP_ERR_IO (the file cannot be read), PP_ERR_LIMIT
+ * (a file over PP_MAX_SCENE_BYTES, a bitmap over the limits), PP_ERR_FORMAT (bad JSON or a bad field), a
+ * PNG's own status under its JSON path, PP_ERR_UNSUPPORTED ("backend": "gpu" without a GPU). */
+
+/// Create a world from a JSON scene file (format above); PNG paths are relative to the file.
 PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
+
+/* Snapshots. A snapshot is a folder: world.json (settings, camera, clock, pending timed edits and events, the
+ * body slot tables, and per body its settings, handle, creation order, pose, ODE state and sleep timer, every
+ * double printed so that it reads back bit for bit) and each body's planes as PNG (body<slot>_mask.png,
+ * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
+ * flushed and renamed into place (or swapped with an older snapshot, which is then removed), so a crash
+ * leaves the old snapshot or the new one, never half of one; a folder that exists and is not a snapshot is
+ * refused. A loaded world has the same body handles and continues with the same determinism hash as the
+ * original. The last step's contacts are not saved (the next step makes them); the pairs touching at the last
+ * substep are, so a loaded world does not report resting contacts as begun again and a body halfway through
+ * a one-way platform is not stopped inside it. */
+
 /// Write the whole state of a world into a new folder (world.json and PNG planes), atomically by rename.
 PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder);
 /// Create a world from a snapshot folder; stepping it continues exactly as the saved world would have.

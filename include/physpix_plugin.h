@@ -14,6 +14,15 @@ extern "C" {
 /// The plugin-interface version this header describes; a host built for a newer one is refused.
 #define PP_PLUGIN_INTERFACE_VERSION 1
 
+/* The manifest (plugin/physpix.plugin, installed as PREFIX/lib/physpix.plugin) is an INI file in the format of
+ * Godot's .gdextension: [configuration] entry_symbol and compatibility_minimum (the oldest interface version a
+ * host must implement), and [libraries] one path per platform (linux.x86_64, linux.arm64), relative to the
+ * manifest. Methods return one value; compound results come through getters, as contacts do
+ * (get_contact_count, then get_contact_point(i) …), and raycast answers whether it hit, then get_ray_body,
+ * get_ray_point, get_ray_normal and get_ray_fraction describe the hit; query_point, query_aabb and query_circle
+ * answer a count and get_query_body(i) the bodies. set_body_options(is_sensor, one_way, one_way_direction)
+ * applies to the bodies that later add_body* calls make. Units are those of physpix.h: px, s, rad. */
+
 /// The entry symbol's default name, as written in plugin/physpix.plugin.
 #define PP_PLUGIN_ENTRY_SYMBOL "pp_plugin_entry"
 
