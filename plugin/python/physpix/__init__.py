@@ -10,8 +10,8 @@ from typing import Callable, Optional
 from . import _native
 from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, NormalMethod,
                     Preset, Status)
-from .errors import (AbiError, FormatError, InvalidArgumentError, InvalidHandleError, LimitError, OutOfMemoryError,
-                     PhysPixError, PhysPixIOError, UnsupportedError)
+from .errors import (AbiError, FormatError, IntegerRangeError, InvalidArgumentError, InvalidHandleError, LimitError,
+                     OutOfMemoryError, PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
 from .world import Body, Camera, CollisionView, Contact, Event, RaycastHit, ScheduledEdit, StepStats, World
 
@@ -45,5 +45,6 @@ __all__ = [
     "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Preset", "Status",
     "CELL_A", "CELL_B", "CELL_CRITICAL",
     "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
-    "FormatError", "UnsupportedError", "LimitError", "AbiError", "library_version", "library_path",
+    "FormatError", "UnsupportedError", "LimitError", "AbiError", "IntegerRangeError", "library_version",
+    "library_path",
 ]

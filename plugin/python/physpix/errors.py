@@ -1,4 +1,5 @@
-"""Exceptions: PhysPixError and one subclass per pp_status, each carrying the library's message."""
+"""Exceptions: PhysPixError and one subclass per pp_status, each carrying the library's message; IntegerRangeError
+for an integer the package refuses before the library sees it."""
 from __future__ import annotations
 
 from typing import Dict, Optional, Type, Union
@@ -61,6 +62,12 @@ class LimitError(PhysPixError):
 class AbiError(PhysPixError):
     """PP_ERR_ABI: a def struct whose struct_size does not match the library."""
     status = Status.ABI
+
+
+class IntegerRangeError(OverflowError, ValueError):
+    """An integer argument or def field outside the range of the C type it reaches, where ctypes would wrap it
+    silently; raised before the library is called. An OverflowError as Python's own conversions raise, and a
+    ValueError so that `except ValueError` around a bad argument catches it too."""
 
 
 _BY_STATUS: Dict[Optional[Union[Status, int]], Type[PhysPixError]] = {

@@ -6,9 +6,10 @@ the PhysPixError subclass of its status with the library's message.
 from __future__ import annotations
 
 import ctypes
+import operator
 import os
 import weakref
-from ctypes import POINTER, byref, c_double, c_float, c_int32, c_int64, c_uint64
+from ctypes import POINTER, byref, c_double, c_float, c_int32, c_int64, c_uint8, c_uint32, c_uint64
 from dataclasses import astuple, dataclass, fields as dataclass_fields
 from enum import IntEnum
 from typing import (Any, Callable, Collection, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Type, TypeVar,
@@ -18,7 +19,7 @@ import numpy as np
 
 from . import _native as N
 from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod, Preset
-from .errors import InvalidArgumentError, PhysPixError
+from .errors import IntegerRangeError, InvalidArgumentError, PhysPixError
 
 try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
     import numpy.typing as npt
@@ -45,6 +46,43 @@ _ENUM_FIELDS: Dict[str, Type[IntEnum]] = {"backend": Backend, "normal_method": N
 _PLANE_FIELDS = ("rgba", "mask", "weights")
 
 
+def _check_range(value: int, low: int, high: int, what: str, kind: str = "") -> int:
+    """value as an int within low..high: ctypes would wrap an int outside the C type's range silently (2**32 + 5
+    into a uint32 is 5), so that is an IntegerRangeError; a float or a str is a TypeError, never truncated."""
+    try:
+        number = operator.index(value)  # ints, bools and numpy integers
+    except TypeError:
+        raise TypeError(f"{what}: expected an integer, got {type(value).__name__} {value!r}") from None
+    if not low <= number <= high:
+        raise IntegerRangeError(f"{what}: {number} is outside {kind}[{low}, {high}]")
+    return number
+
+
+def _is_c_int(ctype: Any) -> bool:
+    """Whether a ctypes type is a C integer (int8 … uint64, whatever alias names it)."""
+    return isinstance(ctype, type) and issubclass(ctype, ctypes._SimpleCData) and ctype._type_ in "bBhHiIlLqQ"
+
+
+def _c_int(value: int, ctype: Type[ctypes._SimpleCData], what: str) -> int:
+    """value as an int that the C integer type ctype holds, checked as _check_range does."""
+    bits = 8 * ctypes.sizeof(ctype)
+    if ctype(-1).value < 0:
+        return _check_range(value, -2 ** (bits - 1), 2 ** (bits - 1) - 1, what, f"int{bits} ")
+    return _check_range(value, 0, 2 ** bits - 1, what, f"uint{bits} ")
+
+
+def _path(path: PathLike, what: str) -> bytes:
+    """A path as the bytes a C call takes; a NUL would end the C string early and name another file."""
+    try:
+        encoded = os.fsencode(path)
+    except TypeError:
+        raise TypeError(f"{what}: expected a str, bytes or os.PathLike path, got {type(path).__name__} "
+                        f"{path!r}") from None
+    if b"\0" in encoded:
+        raise ValueError(f"{what}: {path!r} contains a NUL character")
+    return encoded
+
+
 def enum_value(cls: Type[_E], value: Union[_E, int, str], what: str) -> _E:
     """An enum member from a member, an int or a case-insensitive name such as "area_gradient"."""
     if isinstance(value, str):
@@ -53,8 +91,9 @@ def enum_value(cls: Type[_E], value: Union[_E, int, str], what: str) -> _E:
         except KeyError:
             choices = ", ".join(repr(m.name.lower()) for m in cls)
             raise ValueError(f"{what}: {value!r} is not one of {choices}") from None
+    number = _c_int(value, N.c_enum, what)  # the enum's C type first: an int outside it is an IntegerRangeError
     try:
-        return cls(value)
+        return cls(number)
     except ValueError:
         choices = ", ".join(f"{m.name.lower()!r} ({int(m)})" for m in cls)
         raise ValueError(f"{what}: {value!r} is not one of {choices}") from None
@@ -81,6 +120,8 @@ def _fill_def(struct: ctypes.Structure, values: Mapping[str, Any], caller: str, 
             value = enum_value(_ENUM_FIELDS[name], value, name)
         elif types[name] is N.pp_vec2:
             value = vec2(value, name)
+        elif _is_c_int(types[name]):
+            value = _c_int(value, types[name], name)
         try:
             setattr(struct, name, value)
         except TypeError as exc:  # ctypes' own message does not say which field
@@ -120,19 +161,9 @@ def _mask_u8(mask: npt.ArrayLike) -> npt.NDArray[np.uint8]:
     return np.ascontiguousarray(m != 0, dtype=np.uint8)
 
 
-_INT32 = (-2**31, 2**31 - 1)
-
-
-def _check_range(value: int, low: int, high: int, what: str) -> int:
-    """value as an int within low..high: the range a C integer argument holds, where ctypes would wrap it."""
-    if not low <= int(value) <= high:
-        raise ValueError(f"{what}: {value!r} is outside {low}..{high}")
-    return int(value)
-
-
 def _mask_bits(bits: int) -> int:
-    """Collision filter bits as the uint32 the library takes, where ctypes would wrap a wider value."""
-    return _check_range(bits, 0, 2**32 - 1, "mask_bits")
+    """Collision filter bits as the uint32 the library takes."""
+    return _c_int(bits, c_uint32, "mask_bits")
 
 
 def _u8_ptr(array: Optional[np.ndarray]) -> Any:
@@ -282,26 +313,27 @@ class World:
         self._finalizer = weakref.finalize(self, _destroy_world, handle.id)
 
     @classmethod
-    def _created_by(cls: Type[_W], fn: Callable[..., Any], path: PathLike) -> _W:
+    def _created_by(cls: Type[_W], fn: Callable[..., Any], path: PathLike, what: str) -> _W:
+        encoded = _path(path, what)
         world = cls.__new__(cls)
         handle = N.pp_world()
-        fn(os.fsencode(path), byref(handle))
+        fn(encoded, byref(handle))
         world._adopt(handle)
         return world
 
     @classmethod
     def load_scene(cls: Type[_W], path: PathLike) -> _W:
         """A world from a JSON scene file (settings, camera, bodies, timed edits); PNG paths are relative to it."""
-        return cls._created_by(lib.pp_world_load_scene, path)
+        return cls._created_by(lib.pp_world_load_scene, path, "path")
 
     @classmethod
     def load_snapshot(cls: Type[_W], folder: PathLike) -> _W:
         """A world from a snapshot folder; stepping it continues exactly as the saved world would have."""
-        return cls._created_by(lib.pp_world_load_snapshot, folder)
+        return cls._created_by(lib.pp_world_load_snapshot, folder, "folder")
 
     def save_snapshot(self, folder: PathLike) -> None:
         """Write the world's whole state into a new folder (world.json and PNG planes)."""
-        lib.pp_world_save_snapshot(self._handle, os.fsencode(folder))
+        lib.pp_world_save_snapshot(self._handle, _path(folder, "folder"))
 
     def close(self) -> None:
         """Destroy the world and its bodies; later calls with it raise InvalidHandleError. Idempotent."""
@@ -458,8 +490,8 @@ class World:
     @camera.setter
     def camera(self, value: Union[Camera, Tuple[Vec2Like, float, int, int]]) -> None:
         center, zoom, width, height = astuple(value) if isinstance(value, Camera) else value
-        c = N.pp_camera(vec2(center, "center"), zoom, _check_range(width, *_INT32, "width"),
-                        _check_range(height, *_INT32, "height"))
+        c = N.pp_camera(vec2(center, "center"), zoom, _c_int(width, c_int32, "width"),
+                        _c_int(height, c_int32, "height"))
         lib.pp_world_set_camera(self._handle, byref(c))
 
     def _schedule(self, time: float, edit_type: EditType, body: Optional[Body], center: Vec2Like, radius: float,
@@ -474,7 +506,7 @@ class World:
 
     def schedule_paint(self, time: float, body: Body, center: Vec2Like, radius: float, weight: int = 255) -> None:
         """Make solid at world time (s), with weight 1..255, body's pixels within radius px of a world point (px)."""
-        # As in paint_circle: ctypes would wrap -1 or 2**32 in the 32-bit field; the library refuses 0 itself.
+        # A byte as in paint_circle, though the field is 32-bit; the library refuses 0 itself.
         self._schedule(time, EditType.PAINT_CIRCLE, body, center, radius, _check_range(weight, 0, 255, "weight"))
 
     def scheduled_edits(self) -> List[ScheduledEdit]:
@@ -513,7 +545,7 @@ class Body:
 
     def __init__(self, world: World, body_id: int) -> None:
         self._world = world
-        self._handle = N.pp_body(body_id)
+        self._handle = N.pp_body(_c_int(body_id, c_uint64, "body_id"))
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Body) and self._key() == other._key()
@@ -671,9 +703,7 @@ class Body:
 
     def paint_circle(self, center: Vec2Like, radius: float, weight: int = 255) -> int:
         """Make solid, with weight 1..255, the pixels within radius px of a world point (px); returns how many changed."""
-        # c_uint8 would wrap 256 to 0 silently; the library cannot see what was meant.
-        if not 0 <= int(weight) <= 255:
-            raise ValueError(f"weight: {weight!r} is outside 0..255")
+        weight = _c_int(weight, c_uint8, "weight")
         changed = c_int32(0)
         self._call(lib.pp_body_paint_circle, vec2(center, "center"), radius, weight, byref(changed))
         return changed.value
@@ -685,7 +715,8 @@ class Body:
         if wt is not None and wt.shape != m.shape:
             raise ValueError(f"weights shape {wt.shape} differs from mask shape {m.shape}")
         h, w = m.shape
-        self._call(lib.pp_body_write_pixels, x, y, w, h, _u8_ptr(m), _u8_ptr(wt))
+        self._call(lib.pp_body_write_pixels, _c_int(x, c_int32, "x"), _c_int(y, c_int32, "y"),
+                   _c_int(w, c_int32, "mask width"), _c_int(h, c_int32, "mask height"), _u8_ptr(m), _u8_ptr(wt))
 
     def read_mask(self) -> npt.NDArray[np.uint8]:
         """The collision mask as a (height, width) uint8 array, 1 solid, 0 empty."""
