@@ -417,16 +417,19 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
     return PP_OK;
 }
 
-/* The free list as saved: slots that exist, hold no body, once each. */
+/* The free list as saved: slots that exist, hold no body, once each (each marked as seen, so that a long
+ * list is checked in one pass). */
 static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *wd)
 {
     uint32_t *list = NULL;
     int32_t n = 0;
     pp_status st = read_int_array(c, root, "free_slots", 0, wd->body_capacity - 1, &list, &n);
+    uint8_t *seen = st == PP_OK ? pp_calloc((size_t)wd->body_capacity + 1, 1) : NULL;
+    if (st == PP_OK && !seen)
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)wd->body_capacity);
     for (int32_t i = 0; st == PP_OK && i < n; i++) {
-        bool twice = false;
-        for (int32_t k = 0; k < i && !twice; k++)
-            twice = list[k] == list[i];
+        const bool twice = seen[list[i]];
+        seen[list[i]] = 1;
         if (twice || wd->bodies[list[i]])
             st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "[%d]: slot %u is %s", (int)i, (unsigned)list[i],
                            twice ? "listed twice" : "in use");
@@ -435,6 +438,7 @@ static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *
         memcpy(wd->free_slots, list, (size_t)n * sizeof *list);
     if (st == PP_OK)
         wd->free_count = n;
+    pp_free(seen);
     pp_free(list);
     return st;
 }
