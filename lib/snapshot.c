@@ -154,19 +154,21 @@ static bool write_slots(const world *wd, cJSON *root)
 static bool write_edits_and_events(const world *wd, cJSON *root)
 {
     cJSON *edits = cJSON_CreateArray(), *events = cJSON_CreateArray();
-    bool ok = edits && events;
+    timed_edit *order = world_edits_in_order(wd);
+    bool ok = edits && events && order;
     for (int32_t i = 0; ok && i < wd->edit_count; i++) {
         /* An edit whose body is gone would only be skipped when due, and pp_world_schedule_edit refuses its
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
-        if (wd->edits[i].body.id != 0 && !body_find(wd, wd->edits[i].body))
+        if (order[i].edit.body.id != 0 && !body_find(wd, order[i].edit.body))
             continue;
         /* pp_world_schedule_edit takes a time before 0 (due at once), world.json's reader does not (fuzz_api).
          * At 0 it is as due, and the list's order, which loading keeps among equal times, is unchanged. */
-        pp_timed_edit ed = wd->edits[i];
+        pp_timed_edit ed = order[i].edit;
         ed.time = ed.time < 0 ? 0 : ed.time;
         cJSON *e = edit_to_json(&ed);
-        ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
+        ok = e && cJSON_AddItemToArray(edits, e) && (ed.body.id == 0 || add(e, "body", json_handle(ed.body.id)));
     }
+    pp_free(order);
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
         const pp_event *ev = &wd->events[i];
         cJSON *e = cJSON_CreateObject();
