@@ -88,7 +88,8 @@ static void write_snapshot(const char *dir, int n)
         const float x = grid_x(i), y = grid_y(i);
         fprintf(f,
                 "  {\"type\": \"static\", \"position\": [%g, %g], \"handle\": \"0x00000001%08x\", \"serial\": %d, "
-                "\"state\": {\"pose\": [%g, %g, 0, 1, 1], \"user_data\": \"0x0\", \"slow_time\": 0}, \"mask\": \"mask.png\"}%s\n",
+                "\"state\": {\"pose\": [%g, %g, 0, 1, 1], \"user_data\": \"0x0\", \"slow_time\": 0}, "
+                "\"mask\": \"mask.png\"}%s\n",
                 x, y, (unsigned)(2 * i + 1), i, x, y, i + 1 < n ? "," : "");
     }
     fprintf(f, " ]}\n");
