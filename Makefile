@@ -233,6 +233,11 @@ $(BUILD)/bench/bench_raycast: tests/bench/raycast/main.c tests/bench/machine.h $
 	mkdir -p $(BUILD)/bench
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
+# Loading and scheduling at scale: a 100,000-body scene and snapshot, 100,000 edits in decreasing time order.
+$(BUILD)/bench/bench_load: tests/bench/load/main.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
 $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
@@ -249,9 +254,10 @@ $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/b
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
-	  $(BUILD)/bench/bench_raycast
+	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
+	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
 	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_core

@@ -31,27 +31,48 @@ static pp_status parse_body(const json_ctx *c, const cJSON *obj, const char *whe
     return st;
 }
 
-/* Bodies by name, for edits; names point into the parsed JSON. */
+/* Bodies by name, for edits; names point into the parsed JSON. A hash table over the names, at most half
+ * full, keeps a scene's name checks and lookups linear in its size (scanning them was quadratic). */
 typedef struct body_names {
-    int32_t count;
     const char **names; /* NULL for an unnamed body */
     pp_body *bodies;
+    int32_t *table;     /* open addressing, linear probing: 1 + a named body's index, 0 where empty */
+    uint32_t mask;      /* the table's size − 1, a power of two */
 } body_names;
 
-static int32_t find_body(const body_names *bn, const char *name)
+/* FNV-1a, started from where the table lies: names crafted to collide do not collide in another run. The
+ * lookups' results do not depend on it, only their cost. */
+static uint32_t name_hash(const body_names *bn, const char *name)
 {
-    for (int32_t i = 0; i < bn->count; i++)
-        if (bn->names[i] && strcmp(bn->names[i], name) == 0)
-            return i;
-    return -1;
+    uint32_t h = 2166136261u ^ (uint32_t)((uintptr_t)bn->table >> 12);
+    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+        h = (h ^ *p) * 16777619u;
+    return h;
 }
+
+/* The table entry holding name, or the empty one where it would go. */
+static int32_t *name_entry(const body_names *bn, const char *name)
+{
+    for (uint32_t i = name_hash(bn, name) & bn->mask;; i = (i + 1) & bn->mask) {
+        int32_t *e = &bn->table[i];
+        if (*e == 0 || strcmp(bn->names[*e - 1], name) == 0)
+            return e;
+    }
+}
+
+static int32_t find_body(const body_names *bn, const char *name) { return *name_entry(bn, name) - 1; }
 
 static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, pp_world w, body_names *bn)
 {
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
+    size_t size = 2;
+    while (size < 2 * (size_t)n)
+        size *= 2;
     bn->names = pp_calloc((size_t)n + 1, sizeof *bn->names);
     bn->bodies = pp_calloc((size_t)n + 1, sizeof *bn->bodies);
-    if (!bn->names || !bn->bodies)
+    bn->table = pp_calloc(size, sizeof *bn->table);
+    bn->mask = (uint32_t)(size - 1);
+    if (!bn->names || !bn->bodies || !bn->table)
         return json_fail(c, PP_ERR_OUT_OF_MEMORY, "bodies", NULL, "no memory for %d bodies", (int)n);
     int32_t i = 0;
     for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
@@ -61,12 +82,13 @@ static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, pp_world w, b
         if (st)
             return st;
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(it, "name");
-        const int32_t twin = name ? find_body(bn, name->valuestring) : -1;
-        if (twin >= 0)
+        int32_t *entry = name ? name_entry(bn, name->valuestring) : NULL;
+        if (entry && *entry)
             return json_fail(c, PP_ERR_FORMAT, where, "name", "'%s' is already the name of bodies[%d]",
-                             name->valuestring, (int)twin);
+                             name->valuestring, (int)(*entry - 1));
         bn->names[i] = name ? name->valuestring : NULL;
-        bn->count = i + 1;
+        if (entry)
+            *entry = i + 1;
     }
     return PP_OK;
 }
@@ -143,6 +165,7 @@ static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out
         st = parse_edits(c, edits, w, &bn);
     pp_free(bn.names);
     pp_free(bn.bodies);
+    pp_free(bn.table);
     if (st) {
         pp_world_destroy(w);
         return st;

@@ -154,19 +154,21 @@ static bool write_slots(const world *wd, cJSON *root)
 static bool write_edits_and_events(const world *wd, cJSON *root)
 {
     cJSON *edits = cJSON_CreateArray(), *events = cJSON_CreateArray();
-    bool ok = edits && events;
+    timed_edit *order = world_edits_in_order(wd);
+    bool ok = edits && events && order;
     for (int32_t i = 0; ok && i < wd->edit_count; i++) {
         /* An edit whose body is gone would only be skipped when due, and pp_world_schedule_edit refuses its
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
-        if (wd->edits[i].body.id != 0 && !body_find(wd, wd->edits[i].body))
+        if (order[i].edit.body.id != 0 && !body_find(wd, order[i].edit.body))
             continue;
         /* pp_world_schedule_edit takes a time before 0 (due at once), world.json's reader does not (fuzz_api).
          * At 0 it is as due, and the list's order, which loading keeps among equal times, is unchanged. */
-        pp_timed_edit ed = wd->edits[i];
+        pp_timed_edit ed = order[i].edit;
         ed.time = ed.time < 0 ? 0 : ed.time;
         cJSON *e = edit_to_json(&ed);
-        ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
+        ok = e && cJSON_AddItemToArray(edits, e) && (ed.body.id == 0 || add(e, "body", json_handle(ed.body.id)));
     }
+    pp_free(order);
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
         const pp_event *ev = &wd->events[i];
         cJSON *e = cJSON_CreateObject();
@@ -417,16 +419,19 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
     return PP_OK;
 }
 
-/* The free list as saved: slots that exist, hold no body, once each. */
+/* The free list as saved: slots that exist, hold no body, once each (each marked as seen, so that a long
+ * list is checked in one pass). */
 static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *wd)
 {
     uint32_t *list = NULL;
     int32_t n = 0;
     pp_status st = read_int_array(c, root, "free_slots", 0, wd->body_capacity - 1, &list, &n);
+    uint8_t *seen = st == PP_OK ? pp_calloc((size_t)wd->body_capacity + 1, 1) : NULL;
+    if (st == PP_OK && !seen)
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)wd->body_capacity);
     for (int32_t i = 0; st == PP_OK && i < n; i++) {
-        bool twice = false;
-        for (int32_t k = 0; k < i && !twice; k++)
-            twice = list[k] == list[i];
+        const bool twice = seen[list[i]];
+        seen[list[i]] = 1;
         if (twice || wd->bodies[list[i]])
             st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "[%d]: slot %u is %s", (int)i, (unsigned)list[i],
                            twice ? "listed twice" : "in use");
@@ -435,6 +440,7 @@ static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *
         memcpy(wd->free_slots, list, (size_t)n * sizeof *list);
     if (st == PP_OK)
         wd->free_count = n;
+    pp_free(seen);
     pp_free(list);
     return st;
 }

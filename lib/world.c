@@ -504,12 +504,73 @@ static pp_status update_sleep(world *wd, double h)
     return PP_OK;
 }
 
+/* ---- timed edits: a binary heap, so that scheduling and applying n edits cost n log n, in any order ---- */
+
+static bool edit_before(const timed_edit *a, const timed_edit *b)
+{
+    return a->edit.time < b->edit.time || (a->edit.time == b->edit.time && a->serial < b->serial);
+}
+
+static int edit_order(const void *a, const void *b)
+{
+    return edit_before(a, b) ? -1 : edit_before(b, a);
+}
+
+/* Add an edit into room already made. */
+static void edits_push(world *wd, const pp_timed_edit *e)
+{
+    timed_edit x = {*e, wd->edit_serial++};
+    x.edit.reserved = 0;
+    int32_t i = wd->edit_count++;
+    /* Into an empty heap, or past every edit of a sorted one, it leaves the heap sorted. */
+    wd->edits_in_order = i == 0 || (wd->edits_in_order && !edit_before(&x, &wd->edits[i - 1]));
+    for (; i > 0 && edit_before(&x, &wd->edits[(i - 1) / 2]); i = (i - 1) / 2)
+        wd->edits[i] = wd->edits[(i - 1) / 2];
+    wd->edits[i] = x;
+}
+
+/* Remove the next edit to apply, edits[0]. */
+static void edits_pop(world *wd)
+{
+    const int32_t n = --wd->edit_count;
+    const timed_edit x = wd->edits[n];
+    int32_t i = 0;
+    for (int32_t c; (c = 2 * i + 1) < n; i = c) {
+        if (c + 1 < n && edit_before(&wd->edits[c + 1], &wd->edits[c]))
+            c++;
+        if (!edit_before(&wd->edits[c], &x))
+            break;
+        wd->edits[i] = wd->edits[c];
+    }
+    wd->edits[i] = x;
+    wd->edits_in_order = n <= 1;
+}
+
+/* Sort the heap in place, which leaves it a heap; keys are unique, so the order is the same every run. */
+static void edits_sort(world *wd)
+{
+    if (!wd->edits_in_order)
+        qsort(wd->edits, (size_t)wd->edit_count, sizeof *wd->edits, edit_order);
+    wd->edits_in_order = true;
+}
+
+timed_edit *world_edits_in_order(const world *wd)
+{
+    timed_edit *copy = pp_malloc(((size_t)wd->edit_count + 1) * sizeof *copy);
+    if (copy && wd->edit_count > 0) {
+        memcpy(copy, wd->edits, (size_t)wd->edit_count * sizeof *copy);
+        if (!wd->edits_in_order)
+            qsort(copy, (size_t)wd->edit_count, sizeof *copy, edit_order);
+    }
+    return copy;
+}
+
 /* Apply, in order, the timed edits due at a step that starts now: those nearest this step or earlier.
  * An edit leaves the queue once applied, so one that fails is tried again by the next step. */
 static pp_status apply_due_edits(world *wd, float dt)
 {
-    while (wd->edit_count > 0 && wd->edits[0].time < wd->time + 0.5 * dt) {
-        const pp_timed_edit e = wd->edits[0];
+    while (wd->edit_count > 0 && wd->edits[0].edit.time < wd->time + 0.5 * dt) {
+        const pp_timed_edit e = wd->edits[0].edit;
         pp_status st;
         if (e.type == PP_EDIT_PAINT_CIRCLE)
             st = pp_body_paint_circle(wd->handle, e.body, e.center, e.radius, (uint8_t)e.weight, NULL);
@@ -521,7 +582,7 @@ static pp_status apply_due_edits(world *wd, float dt)
             pp_log(1, "physpix: a timed edit at t = %g s skipped: its body is gone", e.time);
         else if (st)
             return st;
-        memmove(wd->edits, wd->edits + 1, (size_t)--wd->edit_count * sizeof e);
+        edits_pop(wd);
     }
     return PP_OK;
 }
@@ -849,16 +910,9 @@ PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
     pp_status st = check_timed_edit(wd, edit);
     if (st)
         return st;
-    if (!world_room((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *edit))
+    if (!world_room((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *wd->edits))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_schedule_edit: no memory for %d edits", (int)wd->edit_count + 1);
-    /* Stable in time: after every edit due no later. */
-    int32_t at = wd->edit_count;
-    while (at > 0 && wd->edits[at - 1].time > edit->time)
-        at--;
-    memmove(wd->edits + at + 1, wd->edits + at, (size_t)(wd->edit_count - at) * sizeof *edit);
-    wd->edits[at] = *edit;
-    wd->edits[at].reserved = 0;
-    wd->edit_count++;
+    edits_push(wd, edit);
     return PP_OK;
 }
 
@@ -872,7 +926,9 @@ PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, in
         return st;
     const int32_t n = wd->edit_count < capacity ? wd->edit_count : capacity;
     if (n > 0)
-        memcpy(out, wd->edits, (size_t)n * sizeof *out);
+        edits_sort(wd);
+    for (int32_t i = 0; i < n; i++)
+        out[i] = wd->edits[i].edit;
     *count = wd->edit_count;
     return PP_OK;
 }

@@ -49,6 +49,12 @@ typedef struct continuous_pose {
     bool valid;              /* the body is swept this substep */
 } continuous_pose;
 
+/* A pending timed edit and when it was scheduled: among equal times, the earlier scheduled applies first. */
+typedef struct timed_edit {
+    pp_timed_edit edit;
+    uint64_t serial;
+} timed_edit;
+
 /* A movable body's part of what a step changes, saved so that a step that fails can be undone. */
 typedef struct step_saved_body {
     uint64_t step;            /* the step that saved it: a body is saved at most once a step */
@@ -102,8 +108,10 @@ typedef struct world {
     pp_step_stats stats;
     double time;             /* simulated s, the sum of every step's dt */
     pp_camera camera;
-    pp_timed_edit *edits;    /* pending timed edits, in the order they apply */
+    timed_edit *edits;       /* pending timed edits: a binary heap on (time, serial), the next to apply first */
     int32_t edit_count, edit_capacity;
+    uint64_t edit_serial;    /* the next scheduled edit's serial */
+    bool edits_in_order;     /* the heap is sorted, as pp_world_get_scheduled_edits lists it */
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
@@ -144,6 +152,9 @@ void world_queue_event(world *wd, pp_event ev);
 
 /* Grow an array of `size`-byte items to hold n, doubling; false (nothing changed) when out of memory. */
 bool world_room(void **items, int32_t n, int32_t *capacity, size_t size);
+
+/* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */
+timed_edit *world_edits_in_order(const world *wd);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
