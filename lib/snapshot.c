@@ -673,12 +673,11 @@ PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out)
     char file[PATH_MAX];
     if (snprintf(file, sizeof file, "%s/world.json", folder) >= (int)sizeof file)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_load_snapshot: folder path is too long");
-    const json_ctx c = {"pp_world_load_snapshot", file, strlen(folder) + 1};
+    json_ctx c = {"pp_world_load_snapshot", file, strlen(folder) + 1, -1, true};
     cJSON *root = NULL;
     pp_status st = parse_json(&c, &root);
-    if (st)
-        return st;
-    st = build_snapshot(&c, root, out);
-    cJSON_Delete(root);
+    if (st == PP_OK)
+        st = build_snapshot(&c, root, out);
+    json_done(&c, root);
     return st;
 }

@@ -1,0 +1,24 @@
+/* Opening the files a scene or snapshot names. Only regular files
+ * are read (opened O_NONBLOCK and checked by fstat, so a FIFO or a device is refused at once, never waited
+ * on); the paths a file names are read only from beneath its folder. */
+#ifndef PP_FILES_H
+#define PP_FILES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* The first dir_len bytes of path (its folder; "." when 0) as a directory descriptor; -1 and errno. */
+int files_open_folder(const char *path, size_t dir_len);
+/* name (relative to dir_fd, or any path with AT_FDCWD) for reading, links followed, only if it is a regular
+ * file: its descriptor, or -1 and errno (EINVAL for a file that is not regular). */
+int files_open_regular(int dir_fd, const char *name);
+/* The same, confined beneath dir_fd: -1 and EXDEV for an absolute name, a ".." component or a link that
+ * leads outside; links that stay inside are followed. openat2's RESOLVE_BENEATH, else the walk below. */
+int files_open_beneath(int dir_fd, const char *name);
+/* files_open_beneath without openat2 (Linux before 5.6, or a sandbox refusing it): one component at a time,
+ * each opened without following links, a link's text spliced in and checked; tests call it directly. */
+int files_open_beneath_walk(int dir_fd, const char *name);
+/* strerror, with EINVAL read as "not a regular file", which is what the opens above mean by it. */
+const char *files_strerror(int err);
+
+#endif

@@ -1,0 +1,12 @@
+/* PNG through a descriptor the caller opened (a scene's PNGs and a snapshot's planes, opened by files.h):
+ * image.c's libpng reader without its own open. The descriptor stays the caller's; fn and
+ * path name the call and the file in messages. */
+#ifndef PP_IMAGE_H
+#define PP_IMAGE_H
+
+#include "physpix.h"
+
+/* Decode the PNG open on fd into a new RGBA8 buffer (*rgba, pp_free it), as pp_image_load does. */
+pp_status image_load_fd(int fd, const char *fn, const char *path, uint8_t **rgba, int32_t *width, int32_t *height);
+
+#endif
