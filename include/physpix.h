@@ -585,9 +585,13 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
  * body slot tables, and per body its settings, handle, creation order, pose, ODE state and sleep timer, every
  * double printed so that it reads back bit for bit) and each body's planes as PNG (body<slot>_mask.png,
  * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
- * flushed and renamed into place (or swapped with an older snapshot, which is then removed), so a crash
- * leaves the old snapshot or the new one, never half of one; a folder that exists and is not a snapshot is
- * refused. A loaded world has the same body handles and continues with the same determinism hash as the
+ * flushed and renamed into place (or swapped with an older snapshot, which is then removed whole, subfolders
+ * too), so a reader or a crash sees the old snapshot or the new one, never half of one. Every step goes
+ * through the parent folder's descriptor and never follows a symlink at the target, the temporary or the old
+ * folder: a target that is a symlink, or anything but a folder holding world.json, is refused as not a
+ * snapshot, and one swapped for something else during the save is put back and the save fails (PP_ERR_IO),
+ * so nothing outside the snapshot is ever written or removed. Loading reads world.json and the planes only
+ * from inside the folder and only regular files, as pp_world_load_scene reads PNGs. A loaded world has the same body handles and continues with the same determinism hash as the
  * original. The last step's contacts are not saved (the next step makes them); the pairs touching at the last
  * substep are, so a loaded world does not report resting contacts as begun again and a body halfway through
  * a one-way platform is not stopped inside it. */

@@ -1,15 +1,18 @@
-/* Opening the files a scene or snapshot names, confined to a folder and regular files only (see files.h).
- * Linux: openat2, O_PATH. */
+/* Opening the files a scene or snapshot names, confined to a folder and regular files only, and the
+ * directory-descriptor steps of a snapshot save (see files.h). Linux: openat2, O_PATH, renameat2. */
 #define _GNU_SOURCE /* O_PATH, syscall */
 #include "files.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <time.h>
 #include <unistd.h>
 #ifdef SYS_openat2
 #include <linux/openat2.h>
@@ -173,3 +176,81 @@ int files_open_beneath_walk(int dir_fd, const char *name)
 }
 
 const char *files_strerror(int err) { return err == EINVAL ? "not a regular file" : strerror(err); }
+
+/* ---- saving ------------------------------------------------------------------------------------- */
+
+int files_make_temp_folder(int parent_fd, const char *base, char *name, size_t size)
+{
+    static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    static _Atomic uint64_t counter;
+    for (int attempt = 0; attempt < 100; attempt++) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        /* splitmix64 of the time, the process and a counter: a fresh name each try */
+        uint64_t x = (uint64_t)ts.tv_nsec ^ ((uint64_t)ts.tv_sec << 30) ^ ((uint64_t)getpid() << 42) ^
+                     (counter++ * 0x9e3779b97f4a7c15ull);
+        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+        x ^= x >> 31;
+        char suffix[7];
+        for (int i = 0; i < 6; i++, x /= 62)
+            suffix[i] = letters[x % 62];
+        suffix[6] = '\0';
+        if (snprintf(name, size, "%s.tmp-%s", base, suffix) >= (int)size) {
+            errno = ENAMETOOLONG;
+            return -1;
+        }
+        if (mkdirat(parent_fd, name, 0700) == 0)
+            return openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (errno != EEXIST)
+            return -1;
+    }
+    return -1;
+}
+
+int files_create(int dir_fd, const char *name)
+{
+    return openat(dir_fd, name, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+}
+
+bool files_is_folder(int parent_fd, const char *name, int dir_fd)
+{
+    struct stat entry, dir;
+    return fstatat(parent_fd, name, &entry, AT_SYMLINK_NOFOLLOW) == 0 && fstat(dir_fd, &dir) == 0 &&
+           S_ISDIR(entry.st_mode) && entry.st_dev == dir.st_dev && entry.st_ino == dir.st_ino;
+}
+
+/* Everything dir_fd holds, through dir_fd: a file or link unlinked, a folder emptied the same way and removed. */
+static bool clear_folder(int dir_fd, int depth)
+{
+    const int list_fd = openat(dir_fd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    DIR *d = list_fd >= 0 ? fdopendir(list_fd) : NULL;
+    if (!d) {
+        if (list_fd >= 0)
+            close(list_fd);
+        return false;
+    }
+    bool ok = true;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0 || unlinkat(dir_fd, e->d_name, 0) == 0)
+            continue;
+        /* unlink refuses a folder (EISDIR on Linux, EPERM in POSIX): empty it through its own descriptor. */
+        const int sub = (errno == EISDIR || errno == EPERM) && depth < WALK_DEPTH
+                            ? openat(dir_fd, e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC)
+                            : -1;
+        ok = sub >= 0 && clear_folder(sub, depth + 1) && unlinkat(dir_fd, e->d_name, AT_REMOVEDIR) == 0 && ok;
+        if (sub >= 0)
+            close(sub);
+    }
+    closedir(d);
+    return ok;
+}
+
+bool files_remove_folder(int parent_fd, const char *name, int dir_fd)
+{
+    if (!files_is_folder(parent_fd, name, dir_fd))
+        return false;
+    const bool cleared = clear_folder(dir_fd, 0);
+    /* AT_REMOVEDIR removes only an empty folder, whatever may have been put at the name meanwhile. */
+    return cleared && unlinkat(parent_fd, name, AT_REMOVEDIR) == 0;
+}

@@ -244,6 +244,34 @@ static int create_beside(const char *path, char *tmp, size_t size)
     return -1;
 }
 
+/* Encode into wr->file, which the caller opened and closes. */
+static pp_status writer_encode(png_session *wr, const char *fn, const char *path, const uint8_t *rgba, int32_t width,
+                               int32_t height)
+{
+    pp_status st;
+    wr->png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, wr, session_error, session_warning, wr, session_alloc,
+                                        session_free);
+    wr->info = wr->png ? png_create_info_struct(wr->png) : NULL;
+    if (!wr->info) {
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
+    } else if (setjmp(png_jmpbuf(wr->png))) {
+        st = wr->out_of_memory ? pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to encode '%s'", fn, path)
+                               : pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr->error);
+    } else {
+        png_init_io(wr->png, wr->file);
+        png_set_IHDR(wr->png, wr->info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
+                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_write_info(wr->png, wr->info);
+        for (int32_t y = 0; y < height; y++)
+            png_write_row(wr->png, rgba + (size_t)y * (size_t)width * 4);
+        png_write_end(wr->png, NULL);
+        st = PP_OK;
+    }
+    if (wr->png)
+        png_destroy_write_struct(&wr->png, wr->info ? &wr->info : NULL);
+    return st;
+}
+
 PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height)
 {
     const char *fn = "pp_image_save";
@@ -266,31 +294,28 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
         }
         return pp_fail(PP_ERR_IO, "%s: cannot create '%s'", fn, path);
     }
-    pp_status st = PP_OK;
-    wr.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning, &wr, session_alloc,
-                                       session_free);
-    wr.info = wr.png ? png_create_info_struct(wr.png) : NULL;
-    if (!wr.info) {
-        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
-    } else if (setjmp(png_jmpbuf(wr.png))) {
-        st = wr.out_of_memory ? pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to encode '%s'", fn, path)
-                              : pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr.error);
-    } else {
-        png_init_io(wr.png, wr.file);
-        png_set_IHDR(wr.png, wr.info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
-                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_write_info(wr.png, wr.info);
-        for (int32_t y = 0; y < height; y++)
-            png_write_row(wr.png, rgba + (size_t)y * (size_t)width * 4);
-        png_write_end(wr.png, NULL);
-    }
-    if (wr.png)
-        png_destroy_write_struct(&wr.png, wr.info ? &wr.info : NULL);
+    pp_status st = writer_encode(&wr, fn, path, rgba, width, height);
     if (fclose(wr.file) != 0 && st == PP_OK)
         st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     if (st == PP_OK && rename(tmp, path) != 0)
         st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     if (st)
         unlink(tmp);
+    return st;
+}
+
+pp_status image_save_fd(int fd, const char *fn, const char *path, const uint8_t *rgba, int32_t width, int32_t height)
+{
+    const int own = fcntl(fd, F_DUPFD_CLOEXEC, 0);
+    png_session wr = {0};
+    wr.file = own >= 0 ? fdopen(own, "wb") : NULL;
+    if (!wr.file) {
+        if (own >= 0)
+            close(own);
+        return pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
+    }
+    pp_status st = writer_encode(&wr, fn, path, rgba, width, height);
+    if (fclose(wr.file) != 0 && st == PP_OK)
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     return st;
 }

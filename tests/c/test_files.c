@@ -1,10 +1,15 @@
-/* Files a scene or snapshot names: PNG paths and snapshot planes are read only from inside the folder of
- * the file that names them (one message whatever the reason), and a FIFO anywhere a file is read is refused
- * at once instead of blocking the loader. */
+/* Files a scene or snapshot names: a snapshot save never follows a symlink planted at its target, its
+ * temporary or its old folder (a thread swaps them for links to a decoy folder during 200 saves, and the
+ * decoy must come out untouched), an old snapshot is removed whole, PNG paths and snapshot planes are read
+ * only from inside the folder of the file that names them (one message whatever the reason), and a FIFO
+ * anywhere a file is read is refused at once instead of blocking the loader. */
+#define _GNU_SOURCE /* renameat2 */
 #include "helpers.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 
@@ -47,6 +52,18 @@ static void write_png(const char *path, int w, int h)
     PP_OK_OR_FAIL(pp_image_save(path, px, w, h));
 }
 
+static int entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    closedir(d);
+    return n;
+}
+
 /* A small world worth saving: a ground, two boxes, one weighted. */
 static pp_world small_world(void)
 {
@@ -61,6 +78,166 @@ static pp_world small_world(void)
     create_body_ok(w, &d);
     free(m);
     return w;
+}
+
+/* ---- the decoy: a folder that looks like a snapshot, whose files must never change ---------------- */
+
+#define DECOY_FILES 12
+
+static void decoy_make(const char *dir)
+{
+    cr_assert_eq(mkdir(dir, 0700), 0);
+    char path[600], text[64];
+    for (int i = 0; i < DECOY_FILES; i++) {
+        if (i == 0)
+            snprintf(path, sizeof path, "%s/world.json", dir);
+        else
+            snprintf(path, sizeof path, "%s/body%d_mask.png", dir, i - 1);
+        snprintf(text, sizeof text, "decoy %d", i);
+        write_text(path, text);
+    }
+}
+
+/* Asserts the decoy holds exactly its files with their texts. */
+static void decoy_check(const char *dir, const char *when)
+{
+    cr_assert_eq(entries(dir), DECOY_FILES, "%s: the decoy holds %d entries, not %d", when, entries(dir), DECOY_FILES);
+    char path[600], want[64], got[64];
+    for (int i = 0; i < DECOY_FILES; i++) {
+        if (i == 0)
+            snprintf(path, sizeof path, "%s/world.json", dir);
+        else
+            snprintf(path, sizeof path, "%s/body%d_mask.png", dir, i - 1);
+        snprintf(want, sizeof want, "decoy %d", i);
+        FILE *f = fopen(path, "rb");
+        cr_assert(f, "%s: %s is gone", when, path);
+        const size_t n = fread(got, 1, sizeof got - 1, f);
+        fclose(f);
+        got[n] = 0;
+        cr_assert_str_eq(got, want, "%s: %s changed", when, path);
+    }
+}
+
+/* ---- the swap during saves ------------------------------------------------------------------------ */
+
+typedef struct swapper {
+    char dir[96], slot[128], link[128], link2[128];
+    atomic_int stop;
+    atomic_long swaps;
+} swapper;
+
+/* Over and over: exchange the target folder with a link to the decoy, and any temporary or old folder
+ * beside it (*.tmp-*) with another such link, then put them back. */
+static void *swap_loop(void *arg)
+{
+    swapper *s = arg;
+    char tmp[512];
+    while (!atomic_load(&s->stop)) {
+        if (renameat2(AT_FDCWD, s->slot, AT_FDCWD, s->link, RENAME_EXCHANGE) == 0) {
+            atomic_fetch_add(&s->swaps, 1);
+            for (volatile int i = 0; i < 200; i++) {
+            }
+            renameat2(AT_FDCWD, s->slot, AT_FDCWD, s->link, RENAME_EXCHANGE);
+        }
+        DIR *d = opendir(s->dir);
+        for (struct dirent *e; d && (e = readdir(d));) {
+            if (!strstr(e->d_name, ".tmp-"))
+                continue;
+            snprintf(tmp, sizeof tmp, "%s/%s", s->dir, e->d_name);
+            if (renameat2(AT_FDCWD, tmp, AT_FDCWD, s->link2, RENAME_EXCHANGE) == 0) {
+                atomic_fetch_add(&s->swaps, 1);
+                for (volatile int i = 0; i < 200; i++) {
+                }
+                renameat2(AT_FDCWD, tmp, AT_FDCWD, s->link2, RENAME_EXCHANGE);
+            }
+        }
+        if (d)
+            closedir(d);
+    }
+    return NULL;
+}
+
+Test(files, a_symlink_swapped_in_during_saves_never_touches_the_folder_it_points_to, .timeout = 300)
+{
+    root_open();
+    const char *decoy = at("decoy");
+    decoy_make(decoy);
+    swapper s = {0};
+    snprintf(s.dir, sizeof s.dir, "%s/saves", root);
+    cr_assert_eq(mkdir(s.dir, 0700), 0);
+    snprintf(s.slot, sizeof s.slot, "%s/slot", s.dir);
+    snprintf(s.link, sizeof s.link, "%s/link", s.dir);
+    snprintf(s.link2, sizeof s.link2, "%s/link2", s.dir);
+    cr_assert_eq(symlink(decoy, s.link), 0);
+    cr_assert_eq(symlink(decoy, s.link2), 0);
+    pp_world w = small_world();
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, s.slot));
+    pthread_t t;
+    cr_assert_eq(pthread_create(&t, NULL, swap_loop, &s), 0);
+    int ok = 0, failed = 0;
+    for (int i = 0; i < 200; i++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
+        const pp_status st = pp_world_save_snapshot(w, s.slot);
+        cr_assert(st == PP_OK || st == PP_ERR_IO, "save %d: %s (%s)", i, pp_status_name(st), pp_last_error());
+        ok += st == PP_OK, failed += st != PP_OK;
+    }
+    atomic_store(&s.stop, 1);
+    pthread_join(t, NULL);
+    cr_log_info("200 saves under %ld swaps: %d saved, %d refused", (long)atomic_load(&s.swaps), ok, failed);
+    decoy_check(decoy, "after 200 saves with swaps");
+    cr_assert_gt(atomic_load(&s.swaps), 0, "the swapping thread never swapped");
+    pp_world_destroy(w);
+    root_close();
+}
+
+Test(files, a_replaced_snapshot_holding_a_subfolder_or_a_link_is_removed_whole)
+{
+    root_open();
+    const char *snap = at("snaps/slot"), *decoy = at("decoy");
+    decoy_make(decoy);
+    cr_assert_eq(mkdir(at("snaps"), 0700), 0);
+    pp_world w = small_world();
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    /* Things a user or a tool left inside the old snapshot: a subfolder two deep, and links out. */
+    char path[600];
+    snprintf(path, sizeof path, "%s/extra", snap);
+    cr_assert_eq(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/extra/deeper", snap);
+    cr_assert_eq(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/extra/deeper/note.txt", snap);
+    write_text(path, "note");
+    snprintf(path, sizeof path, "%s/extra/to_decoy", snap);
+    cr_assert_eq(symlink(decoy, path), 0);
+    snprintf(path, sizeof path, "%s/decoy_file", snap);
+    cr_assert_eq(symlink(at("decoy/world.json"), path), 0);
+    PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    cr_assert_eq(entries(at("snaps")), 1, "the replaced snapshot left %d entries beside the new one",
+                 entries(at("snaps")) - 1);
+    snprintf(path, sizeof path, "%s/extra", snap);
+    cr_assert_neq(access(path, F_OK), 0, "the new snapshot holds the old one's subfolder");
+    decoy_check(decoy, "after replacing a snapshot that linked to it");
+    pp_world back;
+    PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
+    pp_world_destroy(back);
+    pp_world_destroy(w);
+    root_close();
+}
+
+Test(files, a_link_at_the_target_is_not_followed)
+{
+    root_open();
+    const char *decoy = at("decoy");
+    decoy_make(decoy);
+    cr_assert_eq(symlink(decoy, at("slot")), 0);
+    pp_world w = small_world();
+    EXPECT_ERR(pp_world_save_snapshot(w, at("slot")), PP_ERR_IO, "not a snapshot");
+    decoy_check(decoy, "after a save at a link to it");
+    struct stat sb;
+    cr_assert(lstat(at("slot"), &sb) == 0 && S_ISLNK(sb.st_mode), "the link is gone");
+    cr_assert_eq(entries(root), 2, "a refused save left its temporary folder");
+    pp_world_destroy(w);
+    root_close();
 }
 
 /* ---- confinement ---------------------------------------------------------------------------------- */
