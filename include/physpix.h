@@ -497,7 +497,8 @@ PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
 
 /* PNG in and out, through libpng. Loading accepts gray, gray+alpha, RGB, RGBA and palette images of 1–16 bits,
  * all converted to RGBA8. A header declaring more than the bitmap limits gets PP_ERR_LIMIT before anything is
- * allocated; a truncated file or a bad CRC gets PP_ERR_FORMAT with libpng's reason. */
+ * allocated; a truncated file or a bad CRC gets PP_ERR_FORMAT with libpng's reason. Only a regular file is
+ * read: a FIFO or a device gets PP_ERR_IO ("not a regular file") at once, never a wait. */
 
 /// Size of a PNG file's image, px, read from its header without decoding; either pointer may be NULL.
 PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height);
@@ -563,8 +564,12 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  *           "radius" (px; pixels whose centres lie within change), "weight" (1..255, default 255; paint only).
  *           They apply at the start of the step nearest their time, in time order (file order among equal
  *           times).
- * PNG paths are relative to the scene file's folder. On failure nothing is created, *out is untouched, and
- * pp_last_error() names the file and the JSON path of the fault, e.g.
+ * PNG paths are relative to the scene file's folder and read only from inside it: an absolute path, a ".."
+ * component or a symlink leading outside (a symlink that stays inside is followed) is refused with PP_ERR_IO
+ * and the message a missing file gets, "cannot open '<path>': missing, unreadable, not a regular file, or
+ * outside '<folder>/'", whatever the reason, so that a scene from a mod or a download cannot probe other
+ * paths. Only regular files are read, the scene file too: a FIFO or a device is refused at once. On failure
+ * nothing is created, *out is untouched, and pp_last_error() names the file and the JSON path of the fault, e.g.
  *   pp_world_load_scene: 'scenes/a.json': bodies[3].density: expected a number > 0
  *   pp_world_load_scene: 'scenes/a.json': bodies[2].densty: unknown key
  *   pp_world_load_scene: 'scenes/a.json': edits[1].body: no body is named 'nobody'
@@ -573,16 +578,20 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  * (a file over PP_MAX_SCENE_BYTES, a bitmap over the limits), PP_ERR_FORMAT (bad JSON or a bad field), a
  * PNG's own status under its JSON path, PP_ERR_UNSUPPORTED ("backend": "gpu" without a GPU). */
 
-/// Create a world from a JSON scene file (format above); PNG paths are relative to the file.
+/// Create a world from a JSON scene file (format above); PNG paths are read only from inside the file's folder.
 PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
 
 /* Snapshots. A snapshot is a folder: world.json (settings, camera, clock, pending timed edits and events, the
  * body slot tables, and per body its settings, handle, creation order, pose, ODE state and sleep timer, every
  * double printed so that it reads back bit for bit) and each body's planes as PNG (body<slot>_mask.png,
  * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
- * flushed and renamed into place (or swapped with an older snapshot, which is then removed), so a crash
- * leaves the old snapshot or the new one, never half of one; a folder that exists and is not a snapshot is
- * refused. A loaded world has the same body handles and continues with the same determinism hash as the
+ * flushed and renamed into place (or swapped with an older snapshot, which is then removed whole, subfolders
+ * too), so a reader or a crash sees the old snapshot or the new one, never half of one. Every step goes
+ * through the parent folder's descriptor and never follows a symlink at the target, the temporary or the old
+ * folder: a target that is a symlink, or anything but a folder holding world.json, is refused as not a
+ * snapshot, and one swapped for something else during the save is put back and the save fails (PP_ERR_IO),
+ * so nothing outside the snapshot is ever written or removed. Loading reads world.json and the planes only
+ * from inside the folder and only regular files, as pp_world_load_scene reads PNGs. A loaded world has the same body handles and continues with the same determinism hash as the
  * original. The last step's contacts are not saved (the next step makes them); the pairs touching at the last
  * substep are, so a loaded world does not report resting contacts as begun again and a body halfway through
  * a one-way platform is not stopped inside it. */

@@ -2,6 +2,8 @@
  * normalised to RGBA8 by libpng's own transforms. Sizes are checked against the bitmap limits
  * from the header alone, before any large allocation. */
 #include "alloc.h"
+#include "files.h"
+#include "image.h"
 #include "status.h"
 
 #include <errno.h>
@@ -57,14 +59,26 @@ static void reader_close(png_session *r)
         fclose(r->file);
 }
 
-/* Open the file and check its signature; the caller sets the jump point before reading further. */
-static pp_status reader_open(png_session *r, const char *fn, const char *path)
+/* path opened for reading if it is a regular file: a FIFO would block the decoder forever. */
+static int open_input(const char *fn, const char *path)
 {
-    if (!path)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path is NULL", fn);
-    r->file = fopen(path, "rb");
-    if (!r->file)
-        return pp_fail(PP_ERR_IO, "%s: cannot open '%s'", fn, path);
+    const int fd = files_open_regular(AT_FDCWD, path);
+    if (fd < 0)
+        pp_fail(PP_ERR_IO, "%s: cannot open '%s': %s", fn, path, files_strerror(errno));
+    return fd;
+}
+
+/* Read the file open on fd (a copy of the descriptor, which the session closes) and check its signature;
+ * the caller sets the jump point before reading further. */
+static pp_status reader_open(png_session *r, const char *fn, const char *path, int fd)
+{
+    const int own = fcntl(fd, F_DUPFD_CLOEXEC, 0);
+    r->file = own >= 0 ? fdopen(own, "rb") : NULL;
+    if (!r->file) {
+        if (own >= 0)
+            close(own);
+        return pp_fail(PP_ERR_IO, "%s: cannot read '%s': %s", fn, path, strerror(errno));
+    }
     png_byte sig[8];
     if (fread(sig, 1, sizeof sig, r->file) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0)
         return pp_fail(PP_ERR_FORMAT, "%s: '%s' is not a PNG file (bad signature)", fn, path);
@@ -114,9 +128,15 @@ static pp_status reader_failure(const png_session *r, const char *fn, const char
 
 PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height)
 {
+    if (!path)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_image_info: path is NULL");
+    const int fd = open_input("pp_image_info", path);
+    if (fd < 0)
+        return PP_ERR_IO;
     png_session r = {0};
     int32_t w = 0, h = 0;
-    pp_status st = reader_open(&r, "pp_image_info", path);
+    pp_status st = reader_open(&r, "pp_image_info", path, fd);
+    close(fd);
     if (st == PP_OK) {
         if (setjmp(png_jmpbuf(r.png)))
             st = reader_failure(&r, "pp_image_info", path);
@@ -133,6 +153,50 @@ PP_API pp_status pp_image_info(const char *path, int32_t *width, int32_t *height
     return st;
 }
 
+/* Decode the image: into out (capacity bytes), or, when owned is given, into a new buffer left there. */
+static pp_status reader_pixels(png_session *r, const char *fn, const char *path, uint8_t *out, int64_t capacity,
+                               uint8_t **owned, int32_t *width, int32_t *height)
+{
+    png_bytep *volatile rows = NULL; /* volatile: read after a longjmp */
+    uint8_t *volatile buf = NULL;
+    pp_status st;
+    if (setjmp(png_jmpbuf(r->png))) {
+        st = reader_failure(r, fn, path);
+    } else if ((st = reader_header(r, fn, path, width, height)) == PP_OK) {
+        const int64_t need = (int64_t)*width * *height * 4;
+        if (owned && !(buf = pp_malloc((size_t)need))) {
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d x %d px", fn, (int)*width, (int)*height);
+        } else if (!owned && capacity < need) {
+            st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: '%s' needs %lld bytes, capacity is %lld", fn, path,
+                         (long long)need, (long long)capacity);
+        } else {
+            uint8_t *const pixels = owned ? buf : out;
+            /* Every colour type and depth becomes RGBA8. */
+            png_set_expand(r->png);
+            png_set_strip_16(r->png);
+            png_set_gray_to_rgb(r->png);
+            png_set_add_alpha(r->png, 0xff, PNG_FILLER_AFTER);
+            png_set_interlace_handling(r->png);
+            png_read_update_info(r->png, r->info);
+            rows = pp_malloc((size_t)*height * sizeof *rows);
+            if (!rows) {
+                st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate %d row pointers", fn, (int)*height);
+            } else {
+                for (int32_t y = 0; y < *height; y++)
+                    rows[y] = pixels + (size_t)y * (size_t)*width * 4;
+                png_read_image(r->png, rows);
+                png_read_end(r->png, NULL);
+            }
+        }
+    }
+    pp_free(rows);
+    if (owned && st == PP_OK)
+        *owned = buf;
+    else
+        pp_free(buf);
+    return st;
+}
+
 PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capacity, int32_t *width, int32_t *height)
 {
     const char *fn = "pp_image_load";
@@ -141,38 +205,26 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
     if (capacity < 0 || (capacity > 0 && !out_rgba))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out_rgba is NULL or capacity negative (%lld)", fn,
                        (long long)capacity);
+    if (!path)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path is NULL", fn);
+    const int fd = open_input(fn, path);
+    if (fd < 0)
+        return PP_ERR_IO;
     png_session r = {0};
-    png_bytep *volatile rows = NULL; /* volatile: read after a longjmp */
-    pp_status st = reader_open(&r, fn, path);
-    if (st == PP_OK) {
-        if (setjmp(png_jmpbuf(r.png))) {
-            st = reader_failure(&r, fn, path);
-        } else if ((st = reader_header(&r, fn, path, width, height)) == PP_OK) {
-            const int64_t need = (int64_t)*width * *height * 4;
-            if (capacity < need) {
-                st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: '%s' needs %lld bytes, capacity is %lld", fn, path,
-                             (long long)need, (long long)capacity);
-            } else {
-                /* Every colour type and depth becomes RGBA8. */
-                png_set_expand(r.png);
-                png_set_strip_16(r.png);
-                png_set_gray_to_rgb(r.png);
-                png_set_add_alpha(r.png, 0xff, PNG_FILLER_AFTER);
-                png_set_interlace_handling(r.png);
-                png_read_update_info(r.png, r.info);
-                rows = pp_malloc((size_t)*height * sizeof *rows);
-                if (!rows) {
-                    st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate %d row pointers", fn, (int)*height);
-                } else {
-                    for (int32_t y = 0; y < *height; y++)
-                        rows[y] = out_rgba + (size_t)y * (size_t)*width * 4;
-                    png_read_image(r.png, rows);
-                    png_read_end(r.png, NULL);
-                }
-            }
-        }
-    }
-    pp_free(rows);
+    pp_status st = reader_open(&r, fn, path, fd);
+    close(fd);
+    if (st == PP_OK)
+        st = reader_pixels(&r, fn, path, out_rgba, capacity, NULL, width, height);
+    reader_close(&r);
+    return st;
+}
+
+pp_status image_load_fd(int fd, const char *fn, const char *path, uint8_t **rgba, int32_t *width, int32_t *height)
+{
+    png_session r = {0};
+    pp_status st = reader_open(&r, fn, path, fd);
+    if (st == PP_OK)
+        st = reader_pixels(&r, fn, path, NULL, 0, rgba, width, height);
     reader_close(&r);
     return st;
 }
@@ -190,6 +242,34 @@ static int create_beside(const char *path, char *tmp, size_t size)
             return fd;
     }
     return -1;
+}
+
+/* Encode into wr->file, which the caller opened and closes. */
+static pp_status writer_encode(png_session *wr, const char *fn, const char *path, const uint8_t *rgba, int32_t width,
+                               int32_t height)
+{
+    pp_status st;
+    wr->png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, wr, session_error, session_warning, wr, session_alloc,
+                                        session_free);
+    wr->info = wr->png ? png_create_info_struct(wr->png) : NULL;
+    if (!wr->info) {
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
+    } else if (setjmp(png_jmpbuf(wr->png))) {
+        st = wr->out_of_memory ? pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to encode '%s'", fn, path)
+                               : pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr->error);
+    } else {
+        png_init_io(wr->png, wr->file);
+        png_set_IHDR(wr->png, wr->info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
+                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_write_info(wr->png, wr->info);
+        for (int32_t y = 0; y < height; y++)
+            png_write_row(wr->png, rgba + (size_t)y * (size_t)width * 4);
+        png_write_end(wr->png, NULL);
+        st = PP_OK;
+    }
+    if (wr->png)
+        png_destroy_write_struct(&wr->png, wr->info ? &wr->info : NULL);
+    return st;
 }
 
 PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height)
@@ -214,31 +294,28 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
         }
         return pp_fail(PP_ERR_IO, "%s: cannot create '%s'", fn, path);
     }
-    pp_status st = PP_OK;
-    wr.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &wr, session_error, session_warning, &wr, session_alloc,
-                                       session_free);
-    wr.info = wr.png ? png_create_info_struct(wr.png) : NULL;
-    if (!wr.info) {
-        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: cannot allocate the PNG encoder", fn);
-    } else if (setjmp(png_jmpbuf(wr.png))) {
-        st = wr.out_of_memory ? pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to encode '%s'", fn, path)
-                              : pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, wr.error);
-    } else {
-        png_init_io(wr.png, wr.file);
-        png_set_IHDR(wr.png, wr.info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
-                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_write_info(wr.png, wr.info);
-        for (int32_t y = 0; y < height; y++)
-            png_write_row(wr.png, rgba + (size_t)y * (size_t)width * 4);
-        png_write_end(wr.png, NULL);
-    }
-    if (wr.png)
-        png_destroy_write_struct(&wr.png, wr.info ? &wr.info : NULL);
+    pp_status st = writer_encode(&wr, fn, path, rgba, width, height);
     if (fclose(wr.file) != 0 && st == PP_OK)
         st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     if (st == PP_OK && rename(tmp, path) != 0)
         st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     if (st)
         unlink(tmp);
+    return st;
+}
+
+pp_status image_save_fd(int fd, const char *fn, const char *path, const uint8_t *rgba, int32_t width, int32_t height)
+{
+    const int own = fcntl(fd, F_DUPFD_CLOEXEC, 0);
+    png_session wr = {0};
+    wr.file = own >= 0 ? fdopen(own, "wb") : NULL;
+    if (!wr.file) {
+        if (own >= 0)
+            close(own);
+        return pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
+    }
+    pp_status st = writer_encode(&wr, fn, path, rgba, width, height);
+    if (fclose(wr.file) != 0 && st == PP_OK)
+        st = pp_fail(PP_ERR_IO, "%s: cannot write '%s': %s", fn, path, strerror(errno));
     return st;
 }

@@ -179,12 +179,11 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out)
     if (!path || !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_load_scene: %s is NULL", path ? "out" : "path");
     const char *slash = strrchr(path, '/');
-    const json_ctx c = {"pp_world_load_scene", path, slash ? (size_t)(slash - path) + 1 : 0};
+    json_ctx c = {"pp_world_load_scene", path, slash ? (size_t)(slash - path) + 1 : 0, -1, false};
     cJSON *root = NULL;
     pp_status st = parse_json(&c, &root);
-    if (st)
-        return st;
-    st = build_scene(&c, root, out);
-    cJSON_Delete(root);
+    if (st == PP_OK)
+        st = build_scene(&c, root, out);
+    json_done(&c, root);
     return st;
 }

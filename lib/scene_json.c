@@ -1,6 +1,8 @@
 /* The JSON layer shared by scene files and snapshots (see scene_json.h): the path-naming reader,
  * the field tables, exact number printing, PNG bitmaps and whole-file parsing. */
 #include "alloc.h"
+#include "files.h"
+#include "image.h"
 #include "scene_json.h"
 #include "status.h"
 
@@ -12,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* ---- reader layer ------------------------------------------------------------------------- */
 
@@ -478,7 +481,19 @@ void bitmap_free(bitmap *b)
     pp_free(b->weights);
 }
 
-/* Decode the PNG named by obj[key], relative to the scene's directory unless absolute. */
+/* One message whatever the reason (missing, unreadable, not a regular file, outside the folder), so that a
+ * file cannot probe what lies outside its folder. path is the file named, or NULL for the file itself. */
+static pp_status cannot_open(const json_ctx *c, const char *where, const char *key, const char *path)
+{
+    static const char why[] = "missing, unreadable, not a regular file, or outside";
+    const int n = c->dir_len ? (int)c->dir_len : 2;
+    const char *folder = c->dir_len ? c->file : "./";
+    if (!path)
+        return pp_fail(PP_ERR_IO, "%s: '%s': cannot open: %s '%.*s'", c->fn, c->file, why, n, folder);
+    return json_fail(c, PP_ERR_IO, where, key, "cannot open '%s': %s '%.*s'", path, why, n, folder);
+}
+
+/* Decode the PNG named by obj[key], a path beneath the file's folder. */
 static pp_status load_png(const json_ctx *c, const cJSON *obj, const char *where, const char *key, uint8_t **rgba,
                           int32_t *w, int32_t *h)
 {
@@ -486,23 +501,24 @@ static pp_status load_png(const json_ctx *c, const cJSON *obj, const char *where
     pp_status st = read_string(c, obj, where, key, &name);
     if (st)
         return st;
+    /* The path as the host would write it, for messages: an absolute name as it is. */
     const size_t dir = name[0] == '/' ? 0 : c->dir_len;
     char *path = pp_malloc(dir + strlen(name) + 1);
     if (!path)
         return json_fail(c, PP_ERR_OUT_OF_MEMORY, where, key, "no memory");
     memcpy(path, c->file, dir);
     strcpy(path + dir, name);
-    if ((st = pp_image_info(path, w, h)) == PP_OK) {
-        *rgba = pp_malloc((size_t)*w * (size_t)*h * 4);
-        if (!*rgba)
-            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_image_load: no memory for %d x %d px", (int)*w, (int)*h);
-        else if ((st = pp_image_load(path, *rgba, (int64_t)*w * *h * 4, w, h)) != PP_OK) {
-            pp_free(*rgba);
-            *rgba = NULL;
-        }
+    const int fd = files_open_beneath(c->dir_fd, name);
+    if (fd < 0) {
+        st = cannot_open(c, where, key, path);
+    } else {
+        st = image_load_fd(fd, "pp_image_load", path, rgba, w, h);
+        close(fd);
+        if (st)
+            st = json_fail_from_last(c, st, where, key);
     }
     pp_free(path);
-    return st ? json_fail_from_last(c, st, where, key) : PP_OK;
+    return st;
 }
 
 /* A second plane must cover the bitmap exactly. */
@@ -593,14 +609,21 @@ pp_status parse_bitmap(const json_ctx *c, const cJSON *obj, const char *where, b
 
 /* ---- the file ------------------------------------------------------------------------------------ */
 
-/* The whole file, NUL-terminated; LIMIT past PP_MAX_SCENE_BYTES, from its size before reading when it has one. */
+/* The whole file, NUL-terminated; LIMIT past PP_MAX_SCENE_BYTES, from its size before reading. */
 static pp_status read_text(const json_ctx *c, char **out, size_t *len)
 {
-    FILE *f = fopen(c->file, "rb");
-    if (!f)
-        return pp_fail(PP_ERR_IO, "%s: '%s': cannot open: %s", c->fn, c->file, strerror(errno));
+    const char *leaf = c->file + c->dir_len;
+    const int fd = c->confine_file ? files_open_beneath(c->dir_fd, leaf) : files_open_regular(c->dir_fd, leaf);
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
+    if (!f) {
+        const int err = errno;
+        if (fd >= 0)
+            close(fd);
+        return c->confine_file ? cannot_open(c, "", NULL, NULL)
+                               : pp_fail(PP_ERR_IO, "%s: '%s': cannot open: %s", c->fn, c->file, files_strerror(err));
+    }
     struct stat sb;
-    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > PP_MAX_SCENE_BYTES) {
+    if (fstat(fileno(f), &sb) == 0 && sb.st_size > PP_MAX_SCENE_BYTES) {
         fclose(f);
         return pp_fail(PP_ERR_LIMIT, "%s: '%s' is %lld bytes, over PP_MAX_SCENE_BYTES (%d)", c->fn, c->file,
                        (long long)sb.st_size, PP_MAX_SCENE_BYTES);
@@ -641,9 +664,13 @@ static pp_status read_text(const json_ctx *c, char **out, size_t *len)
     return PP_OK;
 }
 
-/* Parse the file; a syntax error names its line. */
-pp_status parse_json(const json_ctx *c, cJSON **root)
+/* Open the folder, then parse the file from it; a syntax error names its line. */
+pp_status parse_json(json_ctx *c, cJSON **root)
 {
+    *root = NULL;
+    if ((c->dir_fd = files_open_folder(c->file, c->dir_len)) < 0)
+        return c->confine_file ? cannot_open(c, "", NULL, NULL)
+                               : pp_fail(PP_ERR_IO, "%s: '%s': cannot open: %s", c->fn, c->file, files_strerror(errno));
     char *text = NULL;
     size_t len = 0;
     pp_status st = read_text(c, &text, &len);
@@ -662,4 +689,12 @@ pp_status parse_json(const json_ctx *c, cJSON **root)
     }
     pp_free(text);
     return st;
+}
+
+void json_done(json_ctx *c, cJSON *root)
+{
+    cJSON_Delete(root);
+    if (c->dir_fd >= 0)
+        close(c->dir_fd);
+    c->dir_fd = -1;
 }

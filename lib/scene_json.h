@@ -14,11 +14,14 @@
 /* Largest integer a JSON number (a double) holds exactly: 2^53. */
 #define JSON_MAX_EXACT_INT 9007199254740992LL
 
-/* Who is reading which file: every message starts "<fn>: '<file>': ". */
+/* Who is reading which file: every message starts "<fn>: '<file>': ". The PNG paths a file names are read
+ * only from beneath its folder (DESIGN.md, "Files a scene or snapshot names"). */
 typedef struct json_ctx {
     const char *fn;
     const char *file;
-    size_t dir_len; /* length of file's directory prefix, '/' included; 0 when it has none */
+    size_t dir_len;    /* length of file's directory prefix, '/' included; 0 when it has none */
+    int dir_fd;        /* that folder, opened by parse_json (-1 before); json_done closes it */
+    bool confine_file; /* the file itself must lie beneath its folder too (a snapshot's world.json) */
 } json_ctx;
 
 typedef enum num_rule { NUM_FINITE, NUM_POSITIVE, NUM_NONNEG, NUM_UNIT } num_rule;
@@ -83,10 +86,12 @@ typedef struct bitmap {
 } bitmap;
 
 void bitmap_free(bitmap *b);
-/* The bitmap of obj's "sprite", "mask", "weights" (PNG paths relative to the file) or "box". */
+/* The bitmap of obj's "sprite", "mask", "weights" (PNG paths beneath the file's folder) or "box". */
 pp_status parse_bitmap(const json_ctx *c, const cJSON *obj, const char *where, bitmap *b);
 
-/* Read and parse a whole JSON file; a syntax error names its line. */
-pp_status parse_json(const json_ctx *c, cJSON **root);
+/* Open the file's folder, then read and parse the whole file; a syntax error names its line. */
+pp_status parse_json(json_ctx *c, cJSON **root);
+/* Free what parse_json made: the tree (may be NULL) and the folder's descriptor. */
+void json_done(json_ctx *c, cJSON *root);
 
 #endif

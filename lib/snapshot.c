@@ -4,11 +4,12 @@
  * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
 #define _GNU_SOURCE /* renameat2 */
 #include "alloc.h"
+#include "files.h"
+#include "image.h"
 #include "scene_json.h"
 #include "status.h"
 #include "world.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <float.h>
@@ -60,8 +61,43 @@ static cJSON *json_handle(uint64_t id)
     return cJSON_CreateString(text);
 }
 
+/* The temporary folder a snapshot is written into: every file is made through its descriptor. */
+typedef struct save_dir {
+    int fd;
+    const char *shown; /* its path, for messages */
+} save_dir;
+
+/* A new file of the folder (never through a link, never over an entry); its path for messages into shown. */
+static int create_file(const save_dir *dir, const char *name, char *shown, size_t size)
+{
+    snprintf(shown, size, "%s/%s", dir->shown, name);
+    const int fd = files_create(dir->fd, name);
+    if (fd < 0)
+        pp_fail(PP_ERR_IO, "pp_world_save_snapshot: cannot create '%s': %s", shown, strerror(errno));
+    return fd;
+}
+
+/* Flush a written file to disk and close it; st is how the writing went. */
+static pp_status close_file(int fd, const char *shown, pp_status st)
+{
+    if (st == PP_OK && fsync(fd) != 0)
+        st = pp_fail(PP_ERR_IO, "pp_world_save_snapshot: cannot flush '%s' to disk: %s", shown, strerror(errno));
+    if (close(fd) != 0 && st == PP_OK)
+        st = pp_fail(PP_ERR_IO, "pp_world_save_snapshot: cannot write '%s': %s", shown, strerror(errno));
+    return st;
+}
+
+static pp_status write_png(const save_dir *dir, const char *name, const uint8_t *rgba, int32_t w, int32_t h)
+{
+    char shown[PATH_MAX + NAME_MAX + 64];
+    const int fd = create_file(dir, name, shown, sizeof shown);
+    if (fd < 0)
+        return PP_ERR_IO;
+    return close_file(fd, shown, image_save_fd(fd, "pp_world_save_snapshot", shown, rgba, w, h));
+}
+
 /* One body's planes as PNG files: mask (opaque white where solid), weights (gray), sprite. */
-static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
+static pp_status write_planes(const save_dir *dir, const body *bd, cJSON *obj)
 {
     const pp_raster *r = &bd->raster;
     const size_t n = (size_t)r->width * (size_t)r->height;
@@ -70,7 +106,7 @@ static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory for a %d × %d body", (int)r->width,
                        (int)r->height);
     pp_status st = PP_OK;
-    char path[PATH_MAX + 64], name[48];
+    char name[48];
     for (int plane = 0; plane < 3 && st == PP_OK; plane++) {
         static const char *const kinds[] = {"mask", "weights", "sprite"};
         if ((plane == 1 && !r->weights) || (plane == 2 && !bd->sprite))
@@ -83,8 +119,7 @@ static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
                 p[3] = plane == 0 ? v : 255;
             }
         snprintf(name, sizeof name, "body%u_%s.png", (unsigned)bd->index, kinds[plane]);
-        snprintf(path, sizeof path, "%s/%s", dir, name);
-        st = pp_image_save(path, plane == 2 ? bd->sprite : rgba, r->width, r->height);
+        st = write_png(dir, name, plane == 2 ? bd->sprite : rgba, r->width, r->height);
         if (st == PP_OK && !add(obj, kinds[plane], cJSON_CreateString(name)))
             st = pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
     }
@@ -93,7 +128,7 @@ static pp_status write_planes(const char *dir, const body *bd, cJSON *obj)
 }
 
 /* A body: its settings as a scene writes them, its planes, and its exact state. */
-static pp_status write_body(const char *dir, const body *bd, cJSON *arr)
+static pp_status write_body(const save_dir *dir, const body *bd, cJSON *arr)
 {
     pp_body_def d = pp_body_def_default();
     d.type = bd->type;
@@ -206,7 +241,7 @@ static bool write_touching(const world *wd, cJSON *root)
 }
 
 /* world.json's top level, then every body in creation order. */
-static pp_status write_world(const char *dir, const world *wd, cJSON *root)
+static pp_status write_world(const save_dir *dir, const world *wd, cJSON *root)
 {
     static const char *fn = "pp_world_save_snapshot";
     bool ok = add(root, "format", cJSON_CreateString(SNAPSHOT_FORMAT)) &&
@@ -234,70 +269,62 @@ static pp_status write_world(const char *dir, const world *wd, cJSON *root)
     return st;
 }
 
-static pp_status write_text(const char *fn, const char *path, const char *text)
+static pp_status write_text(const save_dir *dir, const char *name, const char *text)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return pp_fail(PP_ERR_IO, "%s: cannot create '%s': %s", fn, path, strerror(errno));
-    const bool ok = fputs(text, f) >= 0;
-    if (fclose(f) != 0 || !ok)
-        return pp_fail(PP_ERR_IO, "%s: cannot write '%s' (disk full?)", fn, path);
-    return PP_OK;
-}
-
-/* Apply fn to every plain entry of dir (not . and ..); false as soon as one fails. */
-static bool each_file(const char *dir, bool (*fn)(const char *path))
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return false;
-    bool ok = true;
-    char path[PATH_MAX];
-    for (struct dirent *e; ok && (e = readdir(d));) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        ok = fn(path);
+    char shown[PATH_MAX + NAME_MAX + 64];
+    const int fd = create_file(dir, name, shown, sizeof shown);
+    if (fd < 0)
+        return PP_ERR_IO;
+    pp_status st = PP_OK;
+    for (size_t done = 0, n = strlen(text); done < n && st == PP_OK;) {
+        const ssize_t k = write(fd, text + done, n - done);
+        if (k > 0)
+            done += (size_t)k;
+        else if (k == 0 || errno != EINTR)
+            st = pp_fail(PP_ERR_IO, "pp_world_save_snapshot: cannot write '%s': %s", shown, strerror(errno));
     }
-    closedir(d);
-    return ok;
+    return close_file(fd, shown, st);
 }
 
-static bool sync_path(const char *path)
+/* Put the finished folder (tmp in parent, open on tmp_fd) in place as base: a rename, or over an older
+ * snapshot an exchange, then the old one's removal. Everything goes through parent and the folders'
+ * descriptors, so a link planted at base, tmp or the old folder is never followed. */
+static pp_status publish(int parent, const char *tmp, int tmp_fd, const char *base, const char *dest,
+                         const char *tmp_shown)
 {
-    const int fd = open(path, O_RDONLY);
-    const bool ok = fd >= 0 && fsync(fd) == 0;
-    if (fd >= 0)
-        close(fd);
-    return ok;
-}
-
-static bool unlink_path(const char *path) { return unlink(path) == 0; }
-
-/* Remove a snapshot folder: its files, then itself. */
-static void remove_folder(const char *dir)
-{
-    each_file(dir, unlink_path);
-    rmdir(dir);
-}
-
-/* Put the finished folder in place: rename, or swap with an older snapshot and remove that. */
-static pp_status publish(const char *fn, const char *tmp, const char *folder)
-{
-    if (!each_file(tmp, sync_path) || !sync_path(tmp))
-        return pp_fail(PP_ERR_IO, "%s: cannot flush '%s' to disk: %s", fn, tmp, strerror(errno));
-    if (rename(tmp, folder) == 0)
+    static const char *fn = "pp_world_save_snapshot";
+    if (!files_is_folder(parent, tmp, tmp_fd))
+        return pp_fail(PP_ERR_IO, "%s: '%s' was replaced while it was written; not saved", fn, tmp_shown);
+    /* The parent is flushed after a rename so the new name survives a crash; best effort, the save is done. */
+    if (renameat(parent, tmp, parent, base) == 0) {
+        fsync(parent);
         return PP_OK;
-    if (errno != EEXIST && errno != ENOTEMPTY)
-        return pp_fail(PP_ERR_IO, "%s: cannot rename '%s' to '%s': %s", fn, tmp, folder, strerror(errno));
-    char old_json[PATH_MAX + 16];
-    snprintf(old_json, sizeof old_json, "%s/world.json", folder);
-    if (access(old_json, F_OK) != 0)
-        return pp_fail(PP_ERR_IO, "%s: '%s' exists and is not a snapshot; refusing to replace it", fn, folder);
-    if (renameat2(AT_FDCWD, tmp, AT_FDCWD, folder, RENAME_EXCHANGE) != 0)
-        return pp_fail(PP_ERR_IO, "%s: cannot replace '%s': %s", fn, folder, strerror(errno));
-    remove_folder(tmp); /* now the old snapshot */
-    return PP_OK;
+    }
+    if (errno != EEXIST && errno != ENOTEMPTY && errno != ENOTDIR && errno != EISDIR)
+        return pp_fail(PP_ERR_IO, "%s: cannot rename '%s' to '%s': %s", fn, tmp_shown, dest, strerror(errno));
+    /* Something is there: replaced only if it is a folder, not a link, holding a regular world.json. */
+    const int old = openat(parent, base, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    struct stat sb;
+    if (old < 0 || fstatat(old, "world.json", &sb, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(sb.st_mode)) {
+        if (old >= 0)
+            close(old);
+        return pp_fail(PP_ERR_IO, "%s: '%s' exists and is not a snapshot; refusing to replace it", fn, dest);
+    }
+    pp_status st = PP_OK;
+    if (renameat2(parent, tmp, parent, base, RENAME_EXCHANGE) != 0) {
+        st = pp_fail(PP_ERR_IO, "%s: cannot replace '%s': %s", fn, dest, strerror(errno));
+    } else if (!files_is_folder(parent, tmp, old)) {
+        /* base was swapped for something else since the check: put that back, and the caller removes ours. */
+        renameat2(parent, tmp, parent, base, RENAME_EXCHANGE);
+        st = pp_fail(PP_ERR_IO, "%s: '%s' changed while it was being replaced; left as it was", fn, dest);
+    } else {
+        fsync(parent);
+        if (!files_remove_folder(parent, tmp, old))
+            pp_log(2, "physpix: %s: the snapshot replaced at '%s' was not removed whole; what is left is '%s'", fn,
+                   dest, tmp_shown);
+    }
+    close(old);
+    return st;
 }
 
 PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
@@ -308,26 +335,45 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
         return PP_ERR_INVALID_HANDLE;
     if (!folder || !folder[0])
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder is NULL or empty", fn);
-    char dest[PATH_MAX], tmp[PATH_MAX + 16], path[PATH_MAX + 32];
+    char dest[PATH_MAX], parent_path[PATH_MAX], tmp[NAME_MAX + 1], tmp_shown[PATH_MAX + NAME_MAX + 2];
     if (snprintf(dest, sizeof dest, "%s", folder) >= (int)sizeof dest)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder path is too long", fn);
     for (size_t n = strlen(dest); n > 1 && dest[n - 1] == '/'; n--)
         dest[n - 1] = '\0';
-    snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", dest);
-    if (!mkdtemp(tmp))
-        return pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
+    /* The folder is the entry base of its parent, and every step below works from the parent's descriptor. */
+    const char *slash = strrchr(dest, '/'), *base = slash ? slash + 1 : dest;
+    if (!base[0] || strcmp(base, ".") == 0 || strcmp(base, "..") == 0)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: '%s' does not name a folder to create", fn, folder);
+    if (slash)
+        snprintf(parent_path, sizeof parent_path, "%.*s", slash == dest ? 1 : (int)(slash - dest), dest);
+    else
+        strcpy(parent_path, ".");
+    const int parent = open(parent_path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    const int tmp_fd = parent >= 0 ? files_make_temp_folder(parent, base, tmp, sizeof tmp) : -1;
+    if (tmp_fd < 0) {
+        const pp_status st =
+            pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
+        if (parent >= 0)
+            close(parent);
+        return st;
+    }
+    snprintf(tmp_shown, sizeof tmp_shown, "%.*s%s", (int)(base - dest), dest, tmp);
+    const save_dir dir = {tmp_fd, tmp_shown};
     cJSON *root = cJSON_CreateObject();
-    pp_status st = root ? write_world(tmp, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    pp_status st = root ? write_world(&dir, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     char *text = st == PP_OK ? cJSON_Print(root) : NULL;
     if (st == PP_OK && !text)
         st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to print world.json", fn);
-    snprintf(path, sizeof path, "%s/world.json", tmp);
     if (st == PP_OK)
-        st = write_text(fn, path, text);
+        st = write_text(&dir, "world.json", text);
+    if (st == PP_OK && fsync(tmp_fd) != 0)
+        st = pp_fail(PP_ERR_IO, "%s: cannot flush '%s' to disk: %s", fn, tmp_shown, strerror(errno));
     if (st == PP_OK)
-        st = publish(fn, tmp, dest);
+        st = publish(parent, tmp, tmp_fd, base, dest, tmp_shown);
     if (st)
-        remove_folder(tmp);
+        files_remove_folder(parent, tmp, tmp_fd); /* only if what is at tmp is still the folder written */
+    close(tmp_fd);
+    close(parent);
     cJSON_free(text);
     cJSON_Delete(root);
     return st;
@@ -679,12 +725,11 @@ PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out)
     char file[PATH_MAX];
     if (snprintf(file, sizeof file, "%s/world.json", folder) >= (int)sizeof file)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_load_snapshot: folder path is too long");
-    const json_ctx c = {"pp_world_load_snapshot", file, strlen(folder) + 1};
+    json_ctx c = {"pp_world_load_snapshot", file, strlen(folder) + 1, -1, true};
     cJSON *root = NULL;
     pp_status st = parse_json(&c, &root);
-    if (st)
-        return st;
-    st = build_snapshot(&c, root, out);
-    cJSON_Delete(root);
+    if (st == PP_OK)
+        st = build_snapshot(&c, root, out);
+    json_done(&c, root);
     return st;
 }

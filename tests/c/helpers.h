@@ -223,7 +223,7 @@ static inline void remove_tree(const char *dir) {
         if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
         if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
         struct stat st;
-        if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) remove_tree(path);
+        if (lstat(path, &st) == 0 && S_ISDIR(st.st_mode)) remove_tree(path); /* a link is removed, not followed */
         else unlink(path);
     }
     closedir(d);

@@ -158,7 +158,8 @@ static void write_full_scene_planes(int *sprite_solid, double *weight_sum, int *
     write_png("terrain_mask.png", tmask, TW, TH);
 }
 
-/* Every field set away from its default. The sprite is named by absolute path, the rest relative. */
+/* Every field set away from its default. The sprite's path is given through "%s" (a scene reads only
+ * PNGs beneath its folder, so it is relative like the rest). */
 static const char *full_scene_fmt =
     "{\n"
     "  \"world\": { \"gravity\": [30, 500], \"substeps\": 4, \"solver_iterations\": 7, \"exact_solver\": true,\n"
@@ -190,7 +191,7 @@ Test(scene, every_field_arrives)
     double weight_sum;
     write_full_scene_planes(&sprite_solid, &weight_sum, &terrain_solid);
     char json[4096];
-    snprintf(json, sizeof json, full_scene_fmt, at("sprite.png"));
+    snprintf(json, sizeof json, full_scene_fmt, "./sprite.png");
     pp_world w = load_ok(json);
     pp_body b[8];
     cr_assert_eq(bodies_of(w, b, 8), 4);
@@ -448,7 +449,7 @@ Test(scene, unreadable_files)
     snprintf(want, sizeof want, "pp_world_load_scene: '%s': cannot open: No such file or directory", at("none.json"));
     cr_assert_str_eq(pp_last_error(), want);
     cr_assert_eq(pp_world_load_scene(dir, &w), PP_ERR_IO);
-    snprintf(want, sizeof want, "pp_world_load_scene: '%s': cannot read: Is a directory", dir);
+    snprintf(want, sizeof want, "pp_world_load_scene: '%s': cannot open: not a regular file", dir);
     cr_assert_str_eq(pp_last_error(), want);
     /* One byte over PP_MAX_SCENE_BYTES: a sparse file, refused from its size before anything is read. */
     const int fd = open(at("huge.json"), O_CREAT | O_WRONLY, 0644);
@@ -614,16 +615,21 @@ Test(scene, broken_pngs_keep_their_status_under_the_json_path)
 {
     dir_open();
     char tail[600];
-    snprintf(tail, sizeof tail, "bodies[0].sprite: cannot open '%s'", at("terrain.png"));
+    snprintf(tail, sizeof tail,
+             "bodies[0].sprite: cannot open '%s': missing, unreadable, not a regular file, or outside '%s/'",
+             at("terrain.png"), dir);
     expect_error("{ \"bodies\": [ { \"sprite\": \"terrain.png\" } ] }", PP_ERR_IO, tail);
     write_text("junk.png", "this is not a PNG file at all");
     snprintf(tail, sizeof tail, "bodies[0].mask: '%s' is not a PNG file (bad signature)", at("junk.png"));
     expect_error("{ \"bodies\": [ { \"mask\": \"junk.png\" } ] }", PP_ERR_FORMAT, tail);
-    /* Absolute paths stay absolute. */
-    snprintf(tail, sizeof tail, "bodies[0].weights: '%s' is not a PNG file (bad signature)", at("junk.png"));
+    /* An absolute path is refused as if missing, even to a file inside the folder (tests/c/test_files.c has
+     * every confinement case). */
+    snprintf(tail, sizeof tail,
+             "bodies[0].weights: cannot open '%s': missing, unreadable, not a regular file, or outside '%s/'",
+             at("junk.png"), dir);
     char json[600];
     snprintf(json, sizeof json, "{ \"bodies\": [ { \"box\": [2, 2], \"weights\": \"%s\" } ] }", at("junk.png"));
-    expect_error(json, PP_ERR_FORMAT, tail);
+    expect_error(json, PP_ERR_IO, tail);
     /* A PNG cut short: libpng's complaint, under the same prefix. */
     uint8_t px[16 * 16 * 4];
     for (size_t i = 0; i < sizeof px; i++)

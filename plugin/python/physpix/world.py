@@ -323,7 +323,8 @@ class World:
 
     @classmethod
     def load_scene(cls: Type[_W], path: PathLike) -> _W:
-        """A world from a JSON scene file (settings, camera, bodies, timed edits); PNG paths are relative to it."""
+        """A world from a JSON scene file (settings, camera, bodies, timed edits); PNG paths are read only from
+        inside its folder."""
         return cls._created_by(lib.pp_world_load_scene, path, "path")
 
     @classmethod
