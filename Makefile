@@ -31,6 +31,8 @@ USER_CFLAGS = $(CPPFLAGS) $(CFLAGS)
 # Each library object lists the headers it includes (build/*/*.d), so a header change rebuilds only those.
 DEPFLAGS := -MMD -MP
 SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
+# The sanitizer build also checks the internal invariants (PP_ASSERT, lib/check.h).
+SANFLAGS += -DPP_CHECKS
 
 LIB_SRC  := $(wildcard lib/*.c)
 GLSL_SRC := $(wildcard glsl/*.comp)

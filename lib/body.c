@@ -242,6 +242,7 @@ void body_unmake(world *wd, body *bd)
     const uint32_t slot = bd->index;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
+    PP_ASSERT(wd->free_count < wd->body_capacity);
     wd->free_slots[wd->free_count++] = slot; /* back on top, where alloc_slot took it */
     wd->live_count--;
     wd->next_serial--;
@@ -255,6 +256,7 @@ void body_remove(world *wd, body *bd)
     wd->bodies[slot] = NULL;
     if (++wd->generations[slot] == 0)
         wd->generations[slot] = 1;
+    PP_ASSERT(wd->free_count < wd->body_capacity);
     wd->free_slots[wd->free_count++] = slot;
     wd->live_count--;
     /* Contacts of the last step may name this body; drop them so none is stale. */

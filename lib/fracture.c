@@ -199,7 +199,8 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
         for (int32_t k = 0; k < p->count; k++)
             if (p->children[k].id) {
                 set_child_motion(wd, bd, wd->bodies[(uint32_t)p->children[k].id - 1]);
-                world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, p->children[k]); /* room reserved */
+                world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_SPLIT, .body = bd->handle,
+                                                 .other = p->children[k]}); /* room reserved */
             }
         raster_edit_done(r, e.y0, e.y1);
         if (bd->type == PP_BODY_DYNAMIC && bd->sums.w <= 0) {
@@ -207,7 +208,7 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
              * body an edit leaves without mass does; ODE aborts on a zero mass (found by fuzz_api). */
             const pp_body gone = bd->handle;
             body_remove(wd, bd);
-            world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0}); /* room reserved */
+            world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_DESTROYED, .body = gone}); /* room reserved */
         } else {
             body_update_pose_cache(bd);
             if (bd->sb.body)

@@ -118,6 +118,7 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
 static bool untested(const world *wd, const touch *t)
 {
     const body *a = body_find(wd, (pp_body){t->a}), *b = body_find(wd, (pp_body){t->b});
+    PP_ASSERT(wd->proxy_capacity >= wd->body_capacity);
     return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
 }
 
@@ -134,6 +135,7 @@ pp_status touch_end(world *wd)
         if (listed(t, wd->touch_next, found))
             continue;
         if (untested(wd, t)) {
+            PP_ASSERT(wd->touch_next_count < wd->touch_next_capacity);
             wd->touch_next[wd->touch_next_count++] = *t;
             continue;
         }

@@ -371,6 +371,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     for (int32_t p = 0; p < wd->broad.pair_count; p++) {
         const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
         const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
+        PP_ASSERT(n < wd->pair_capacity);
         if (!np_pair_setup(&set, &va, &vb, &wd->pairs[n]))
             continue;
         cells += np_pair_cells(&wd->pairs[n]);
@@ -466,6 +467,7 @@ static pp_status update_sleep(world *wd, double h)
         world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group, "sleep groups");
     if (st)
         return st;
+    PP_ASSERT(wd->group_capacity >= wd->body_capacity);
     int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         parent[i] = i, restless[i] = 0;
@@ -529,6 +531,7 @@ static pp_status apply_due_edits(world *wd, float dt)
 /* Save a movable body's part of the step, once a step. */
 static void save_body(step_undo *u, const body *bd)
 {
+    PP_ASSERT(bd->index < (uint32_t)u->body_capacity);
     step_saved_body *sv = &u->bodies[bd->index];
     if (!bd->sb.body || sv->step == u->step)
         return;
@@ -591,6 +594,8 @@ static void save_contact_bodies(world *wd)
 static void step_restore(world *wd)
 {
     step_undo *u = &wd->undo;
+    PP_ASSERT(u->body_capacity >= wd->body_capacity && u->contact_count <= wd->contact_capacity &&
+              u->order_count <= wd->broad.order_cap && u->event_count <= wd->event_count);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
@@ -742,15 +747,10 @@ pp_status world_reserve_events(world *wd, int32_t n)
     return PP_OK;
 }
 
-void world_queue_event(world *wd, pp_event ev) { wd->events[wd->event_count++] = ev; }
-
-pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
+void world_queue_event(world *wd, pp_event ev)
 {
-    pp_status st = world_reserve_events(wd, 1);
-    if (st)
-        return st;
-    world_queue_event(wd, (pp_event){.type = type, .body = b, .other = other});
-    return PP_OK;
+    PP_ASSERT(wd->event_count < wd->event_capacity);
+    wd->events[wd->event_count++] = ev;
 }
 
 PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count)

@@ -3,6 +3,7 @@
 #define PP_WORLD_H
 
 #include "broadphase.h"
+#include "check.h"
 #include "massprops.h"
 #include "math2d.h"
 #include "narrow_gpu.h"
@@ -136,10 +137,8 @@ void body_unmake(world *wd, body *bd);
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
 
-/* Queue an event for pp_world_get_events; never fails for n events after world_reserve_events(wd, n). */
-pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other);
+/* Room for n more events for pp_world_get_events, then queue each into it (checked by PP_ASSERT). */
 pp_status world_reserve_events(world *wd, int32_t n);
-/* Queue a whole event into room reserved by world_reserve_events. */
 void world_queue_event(world *wd, pp_event ev);
 
 /* Grow an array of `size`-byte items to hold n, doubling; false (nothing changed) when out of memory. */
