@@ -106,7 +106,7 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h include/physpix_plugin.h $(SHARED)
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h lib/handle.h include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
 	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lpthread
 

@@ -7,7 +7,8 @@
  * pixel (i, j) covering [i, i+1) × [j, j+1)) to the world: world = position + R(angle)·(local − pivot),
  * the pivot defaulting to the bitmap centre; the pose does not jump when an edit moves the centre of
  * mass. Velocities are those of the centre of mass. Handles (pp_world, pp_body) are values carrying a
- * slot and a generation: a destroyed or stale one is answered with PP_ERR_INVALID_HANDLE, never a crash.
+ * slot and a generation, and a body's names its world too: a destroyed or stale one, or a body of another
+ * world, is answered with PP_ERR_INVALID_HANDLE, never a crash.
  * Every call that can fail returns a pp_status and writes results through out-pointers; on failure
  * pp_last_error() says why, naming the argument, and the outputs are untouched. Def structs come from
  * their default function, which sets struct_size (a binding with a wrong layout gets PP_ERR_ABI). The
@@ -129,9 +130,9 @@ typedef struct pp_world {
     uint64_t id; ///< slot index and generation; opaque
 } pp_world;
 
-/// A body handle; id 0 is never valid.
+/// A body handle; id 0 is never valid. It names its world: used with another, it is PP_ERR_INVALID_HANDLE.
 typedef struct pp_body {
-    uint64_t id; ///< slot index and generation; opaque
+    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
 } pp_body;
 
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
@@ -582,10 +583,12 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
  * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
  * flushed and renamed into place (or swapped with an older snapshot, which is then removed), so a crash
  * leaves the old snapshot or the new one, never half of one; a folder that exists and is not a snapshot is
- * refused. A loaded world has the same body handles and continues with the same determinism hash as the
- * original. The last step's contacts are not saved (the next step makes them); the pairs touching at the last
- * substep are, so a loaded world does not report resting contacts as begun again and a body halfway through
- * a one-way platform is not stopped inside it. */
+ * refused. A loaded world continues with the same determinism hash as the original. Its bodies keep their
+ * slots and generations: pp_world_get_bodies lists them in the same order, and each handle differs from the
+ * saved world's only in the bits that name the world (a handle of the saved world is PP_ERR_INVALID_HANDLE
+ * in the loaded one). The last step's contacts are not saved (the next step makes them); the pairs touching
+ * at the last substep are, so a loaded world does not report resting contacts as begun again and a body
+ * halfway through a one-way platform is not stopped inside it. */
 
 /// Write the whole state of a world into a new folder (world.json and PNG planes), atomically by rename.
 PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder);

@@ -1,6 +1,7 @@
-/* Bodies: the handle table (slot + generation), creation from a def, poses and velocities.
- * A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
+/* Bodies: the handle table (slot + generation, and the world's tag: handle.h), creation from a def, poses
+ * and velocities. A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
 #include "alloc.h"
+#include "handle.h"
 #include "status.h"
 #include "world.h"
 
@@ -25,8 +26,9 @@ PP_API pp_body_def pp_body_def_default(void)
 
 body *body_find(const world *wd, pp_body b)
 {
-    const uint32_t slot = (uint32_t)(b.id & 0xffffffffu) - 1, gen = (uint32_t)(b.id >> 32);
-    if (b.id == 0 || slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen)
+    const uint32_t slot = handle_slot(b.id);
+    if (b.id == 0 || handle_tag(b.id) != wd->tag || slot >= (uint32_t)wd->body_capacity ||
+        wd->generations[slot] != handle_gen(b.id))
         return NULL;
     return wd->bodies[slot];
 }
@@ -34,10 +36,20 @@ body *body_find(const world *wd, pp_body b)
 body *body_lookup(world *wd, pp_body b, const char *fn)
 {
     body *bd = body_find(wd, b);
-    if (!bd)
+    if (bd)
+        return bd;
+    const uint64_t owner = b.id && handle_tag(b.id) != wd->tag ? world_id_of_tag(handle_tag(b.id)) : 0;
+    if (owner)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: body %#llx belongs to world %#llx, not %#llx", fn, (unsigned long long)b.id,
+                (unsigned long long)owner, (unsigned long long)wd->handle.id);
+    else if (b.id && handle_tag(b.id) != wd->tag)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: body %#llx belongs to a world that no longer exists (slot %u), not %#llx",
+                fn, (unsigned long long)b.id, (unsigned)tag_world_slot(handle_tag(b.id)),
+                (unsigned long long)wd->handle.id);
+    else
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: body handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)b.id);
-    return bd;
+    return NULL;
 }
 
 /* Look up both handles for a body call; returns the status to hand back. */
@@ -229,7 +241,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         return st;
     }
     bd->index = slot;
-    bd->handle.id = ((uint64_t)wd->generations[slot] << 32) | (slot + 1);
+    bd->handle.id = handle_make(wd->tag, slot, wd->generations[slot]);
     wd->bodies[slot] = bd;
     wd->live_count++;
     bd->serial = wd->next_serial++;
@@ -254,8 +266,7 @@ void body_remove(world *wd, body *bd)
     const pp_body b = bd->handle;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
-    if (++wd->generations[slot] == 0)
-        wd->generations[slot] = 1;
+    wd->generations[slot] = handle_next_gen(wd->generations[slot]);
     PP_ASSERT(wd->free_count < wd->body_capacity);
     wd->free_slots[wd->free_count++] = slot;
     wd->live_count--;

@@ -4,6 +4,7 @@
  * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
 #define _GNU_SOURCE /* renameat2 */
 #include "alloc.h"
+#include "handle.h"
 #include "scene_json.h"
 #include "status.h"
 #include "world.h"
@@ -52,7 +53,7 @@ static cJSON *json_doubles(const double *v, int n)
     return arr;
 }
 
-/* Handles as hex text: 64-bit ids do not fit a JSON number exactly. */
+/* Handles as hex text: 64-bit ids do not fit a JSON number exactly. A body's is saved without its world. */
 static cJSON *json_handle(uint64_t id)
 {
     char text[24];
@@ -114,7 +115,8 @@ static pp_status write_body(const char *dir, const body *bd, cJSON *arr)
     }
     cJSON *state = cJSON_CreateObject();
     const double pose[5] = {bd->pos.x, bd->pos.y, bd->angle, bd->pivot.x, bd->pivot.y};
-    bool ok = add(obj, "handle", json_handle(bd->handle.id)) && add(obj, "serial", json_number((double)bd->serial, false)) &&
+    bool ok = add(obj, "handle", json_handle(handle_saved(bd->handle.id))) &&
+              add(obj, "serial", json_number((double)bd->serial, false)) &&
               add(obj, "state", state) && add(state, "pose", json_doubles(pose, 5)) &&
               add(state, "user_data", json_handle(bd->user_data)) && add(state, "slow_time", json_number(bd->slow_time, false));
     if (ok && bd->sb.body) {
@@ -165,13 +167,15 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         pp_timed_edit ed = wd->edits[i];
         ed.time = ed.time < 0 ? 0 : ed.time;
         cJSON *e = edit_to_json(&ed);
-        ok = e && cJSON_AddItemToArray(edits, e) && (wd->edits[i].body.id == 0 || add(e, "body", json_handle(wd->edits[i].body.id)));
+        ok = e && cJSON_AddItemToArray(edits, e) &&
+             (wd->edits[i].body.id == 0 || add(e, "body", json_handle(handle_saved(wd->edits[i].body.id))));
     }
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
         const pp_event *ev = &wd->events[i];
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
-             add(e, "body", json_handle(ev->body.id)) && add(e, "other", json_handle(ev->other.id));
+             add(e, "body", json_handle(handle_saved(ev->body.id))) &&
+             add(e, "other", json_handle(handle_saved(ev->other.id)));
         if (ok && (ev->type == PP_EVENT_CONTACT_BEGIN || ev->type == PP_EVENT_SENSOR_BEGIN)) {
             const double point[2] = {ev->point.x, ev->point.y}, normal[2] = {ev->normal.x, ev->normal.y};
             ok = add(e, "point", json_doubles(point, 2)) && add(e, "normal", json_doubles(normal, 2)) &&
@@ -195,7 +199,8 @@ static bool write_touching(const world *wd, cJSON *root)
     for (int32_t i = 0; ok && i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
         cJSON *e = cJSON_CreateObject();
-        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(t->a)) && add(e, "b", json_handle(t->b)) &&
+        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(t->a))) &&
+             add(e, "b", json_handle(handle_saved(t->b))) &&
              add(e, "flags", json_number(t->flags, false));
     }
     if (!ok)
@@ -366,6 +371,17 @@ static pp_status read_handle(const json_ctx *c, const cJSON *obj, const char *wh
     return PP_OK;
 }
 
+/* A body handle as saved (handle.h), made one of the loaded world's. */
+static pp_status read_body_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                  bool optional, const world *wd, uint64_t *out)
+{
+    uint64_t saved = 0;
+    pp_status st = read_handle(c, obj, where, key, optional, &saved);
+    if (!st && !handle_from_saved(saved, wd->tag, out))
+        st = json_fail(c, PP_ERR_FORMAT, where, key, "no body handle has that slot and generation");
+    return st;
+}
+
 static pp_status read_required_int(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
                                    int64_t lo, int64_t hi, int64_t *out)
 {
@@ -401,7 +417,7 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
 {
     uint32_t *gens = NULL;
     int32_t n = 0;
-    pp_status st = read_int_array(c, root, "generations", 1, UINT32_MAX, &gens, &n);
+    pp_status st = read_int_array(c, root, "generations", 1, HANDLE_GEN_MAX, &gens, &n);
     if (st) {
         pp_free(gens);
         return st;
@@ -482,11 +498,12 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
     int64_t ser = 0;
     bitmap bm = {0};
     pp_status st = check_keys(c, obj, where, body_fields, body_snapshot_keys);
-    if (st || (st = parse_body_settings(c, obj, where, &d)) || (st = read_handle(c, obj, where, "handle", false, &id)) ||
+    if (st || (st = parse_body_settings(c, obj, where, &d)) ||
+        (st = read_body_handle(c, obj, where, "handle", false, wd, &id)) ||
         (st = read_required_int(c, obj, where, "serial", (int64_t)*serial, JSON_MAX_EXACT_INT, &ser)))
         return st;
-    const uint32_t slot = (uint32_t)(id & 0xffffffffu) - 1, gen = (uint32_t)(id >> 32);
-    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || wd->bodies[slot])
+    const uint32_t slot = handle_slot(id);
+    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != handle_gen(id) || wd->bodies[slot])
         return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free slot of that generation");
     if ((st = parse_bitmap(c, obj, where, &bm))) {
         bitmap_free(&bm); /* parse_bitmap leaves what it loaded to the caller (a leak found by fuzz_snapshot) */
@@ -532,7 +549,7 @@ static pp_status restore_edits(const json_ctx *c, const cJSON *root, world *wd)
         snprintf(where, sizeof where, "edits[%d]", (int)i);
         pp_timed_edit e = {0};
         if (!(st = check_keys(c, it, where, edit_fields, extra)) && !(st = read_fields(c, it, where, edit_fields, &e)) &&
-            !(st = read_handle(c, it, where, "body", true, &e.body.id)) &&
+            !(st = read_body_handle(c, it, where, "body", true, wd, &e.body.id)) &&
             (st = pp_world_schedule_edit(wd->handle, &e)))
             st = json_fail_from_last(c, st, where, NULL);
     }
@@ -566,8 +583,8 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
         int32_t type = 0;
         pp_event ev = {0};
         if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
-            !(st = read_handle(c, it, where, "body", false, &ev.body.id)) &&
-            !(st = read_handle(c, it, where, "other", false, &ev.other.id))) {
+            !(st = read_body_handle(c, it, where, "body", false, wd, &ev.body.id)) &&
+            !(st = read_body_handle(c, it, where, "other", false, wd, &ev.other.id))) {
             ev.type = (pp_event_type)type;
             if (!type)
                 st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
@@ -595,12 +612,15 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
         snprintf(where, sizeof where, "touching[%d]", (int)i);
         touch *t = &wd->touching[i];
         int64_t flags = 0;
-        if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_handle(c, it, where, "a", false, &t->a)) &&
-            !(st = read_handle(c, it, where, "b", false, &t->b)))
+        if (!(st = check_keys(c, it, where, NULL, keys)) &&
+            !(st = read_body_handle(c, it, where, "a", false, wd, &t->a)) &&
+            !(st = read_body_handle(c, it, where, "b", false, wd, &t->b)))
             st = read_required_int(c, it, where, "flags", 0, TOUCH_SENSOR | TOUCH_SENSOR_B | TOUCH_PASSING, &flags);
         t->flags = (uint32_t)flags, t->reserved = 0;
         /* touch_find expects a in the lower slot */
-        if (!st && (uint32_t)t->a - 1 > (uint32_t)t->b - 1)
+        if (!st && (t->a == 0 || t->b == 0))
+            st = json_fail(c, PP_ERR_FORMAT, where, t->a ? "b" : "a", "expected a body, not 0");
+        if (!st && handle_slot(t->a) > handle_slot(t->b))
             st = json_fail(c, PP_ERR_FORMAT, where, "a", "must be in a lower slot than b");
     }
     if (st)

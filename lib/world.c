@@ -2,6 +2,7 @@
  * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
 #include "alloc.h"
 #include "continuous.h"
+#include "handle.h"
 #include "world.h"
 #include "status.h"
 
@@ -10,7 +11,7 @@
 #include <string.h>
 #include <time.h>
 
-/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1). */
+/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1) (handle.h). */
 static world *worlds[PP_MAX_WORLDS];
 static uint32_t world_generations[PP_MAX_WORLDS];
 static pthread_mutex_t worlds_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -34,7 +35,7 @@ static double now_ms(void)
 
 world *world_lookup(pp_world w, const char *fn)
 {
-    const uint32_t slot = (uint32_t)(w.id & 0xffffffffu) - 1, gen = (uint32_t)(w.id >> 32);
+    const uint32_t slot = world_id_slot(w.id), gen = world_id_gen(w.id);
     world *wd = NULL;
     pthread_mutex_lock(&worlds_lock);
     if (w.id != 0 && slot < PP_MAX_WORLDS && world_generations[slot] == gen)
@@ -44,6 +45,17 @@ world *world_lookup(pp_world w, const char *fn)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: world handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)w.id);
     return wd;
+}
+
+uint64_t world_id_of_tag(uint32_t tag)
+{
+    const uint32_t slot = tag_world_slot(tag);
+    uint64_t id = 0;
+    pthread_mutex_lock(&worlds_lock);
+    if (worlds[slot] && worlds[slot]->tag == tag)
+        id = worlds[slot]->handle.id;
+    pthread_mutex_unlock(&worlds_lock);
+    return id;
 }
 
 PP_API pp_world_def pp_world_def_default(void)
@@ -190,7 +202,8 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
         world_generations[slot] = 1;
     worlds[slot] = wd;
     wd->slot = slot;
-    wd->handle.id = ((uint64_t)world_generations[slot] << 32) | (slot + 1);
+    wd->tag = world_tag(slot, world_generations[slot]);
+    wd->handle.id = world_id_make(slot, world_generations[slot]);
     pthread_mutex_unlock(&worlds_lock);
     wd->stats.backend = d.backend == PP_BACKEND_GPU ? PP_BACKEND_GPU : PP_BACKEND_CPU;
     *out = wd->handle;
@@ -417,7 +430,7 @@ static void add_contact_joints(world *wd)
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const int32_t i = reversed ? wd->contact_count - 1 - k : k;
         const pp_contact *c = &wd->contacts[i];
-        const body *a = wd->bodies[(uint32_t)c->a.id - 1], *b = wd->bodies[(uint32_t)c->b.id - 1];
+        const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
@@ -486,7 +499,7 @@ static pp_status update_sleep(world *wd, double h)
     if (!d->allow_sleep)
         return PP_OK;
     for (int32_t k = 0; k < wd->contact_count; k++) {
-        const uint32_t a = (uint32_t)wd->contacts[k].a.id - 1, b = (uint32_t)wd->contacts[k].b.id - 1;
+        const uint32_t a = handle_slot(wd->contacts[k].a.id), b = handle_slot(wd->contacts[k].b.id);
         if (wd->bodies[a]->type == PP_BODY_DYNAMIC && wd->bodies[b]->type == PP_BODY_DYNAMIC)
             parent[group_root(parent, (int32_t)a)] = group_root(parent, (int32_t)b);
     }
@@ -585,8 +598,8 @@ static pp_status step_save(world *wd)
 static void save_contact_bodies(world *wd)
 {
     for (int32_t k = 0; k < wd->contact_count; k++) {
-        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].a.id - 1]);
-        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].b.id - 1]);
+        save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
+        save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
     }
 }
 

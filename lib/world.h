@@ -4,6 +4,7 @@
 
 #include "broadphase.h"
 #include "check.h"
+#include "handle.h"
 #include "massprops.h"
 #include "math2d.h"
 #include "narrow_gpu.h"
@@ -77,6 +78,7 @@ typedef struct step_undo {
 
 typedef struct world {
     uint32_t slot;
+    uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
     pp_world handle;
     pp_world_def def;
     body **bodies;           /* by slot; NULL where free */
@@ -119,9 +121,19 @@ typedef struct world {
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* The id of the live world whose bodies carry this tag, or 0 (for a message naming a body's world). */
+uint64_t world_id_of_tag(uint32_t tag);
 body *body_lookup(world *wd, pp_body b, const char *fn);
 /* The same lookup without recording a failure: NULL for a null, destroyed or stale handle. */
 body *body_find(const world *wd, pp_body b);
+
+/* The body of a handle the world made and knows is live (a contact's, a new split piece's). */
+static inline body *body_of(const world *wd, pp_body b)
+{
+    body *bd = wd->bodies[handle_slot(b.id)];
+    PP_ASSERT(bd && bd->handle.id == b.id);
+    return bd;
+}
 
 /* Both lookups at once, as most body calls need them. */
 pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd);
