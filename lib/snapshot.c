@@ -208,6 +208,39 @@ static bool write_touching(const world *wd, cJSON *root)
     return ok && add(root, "touching", arr);
 }
 
+/* Whether world.json can hold every number (JSON has no inf or NaN) and the loader would take it back (its
+ * poses, velocities and event points are within ±FLT_MAX); PP_ERR_LIMIT naming the first that is not. */
+static pp_status check_savable(const world *wd)
+{
+    static const char *fn = "pp_world_save_snapshot";
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (!bd)
+            continue;
+        solver_exact_state s = {0};
+        if (bd->sb.body)
+            solver_body_save(&bd->sb, &s);
+        const double v[] = {bd->pos.x, bd->pos.y, bd->angle, bd->pivot.x, bd->pivot.y, s.px, s.py, s.rotation_angle,
+                            s.vx, s.vy, s.wz, bd->slow_time};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+            if (!(fabs(v[k]) <= FLT_MAX))
+                return pp_fail(PP_ERR_LIMIT, "%s: body %#llx has a %s of %g, which a snapshot cannot hold; nothing "
+                               "was written", fn, (unsigned long long)bd->handle.id,
+                               k < 5 ? "pose" : k < 11 ? "solver state" : "sleep timer", v[k]);
+    }
+    for (int32_t i = 0; i < wd->event_count; i++) {
+        const pp_event *e = &wd->events[i];
+        const float v[] = {e->point.x, e->point.y, e->normal.x, e->normal.y, e->approach_speed};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+            if (!isfinite(v[k]))
+                return pp_fail(PP_ERR_LIMIT, "%s: event %d has a number that is not finite (%g); nothing was written",
+                               fn, (int)i, v[k]);
+    }
+    if (!isfinite(wd->time))
+        return pp_fail(PP_ERR_LIMIT, "%s: the world's time is %g s; nothing was written", fn, wd->time);
+    return PP_OK;
+}
+
 /* world.json's top level, then every body in creation order. */
 static pp_status write_world(const char *dir, const world *wd, cJSON *root)
 {
@@ -311,6 +344,9 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
         return PP_ERR_INVALID_HANDLE;
     if (!folder || !folder[0])
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder is NULL or empty", fn);
+    pp_status st = check_savable(wd); /* before the old snapshot or anything beside it is touched */
+    if (st)
+        return st;
     char dest[PATH_MAX], tmp[PATH_MAX + 16], path[PATH_MAX + 32];
     if (snprintf(dest, sizeof dest, "%s", folder) >= (int)sizeof dest)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder path is too long", fn);
@@ -320,7 +356,7 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
     if (!mkdtemp(tmp))
         return pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
     cJSON *root = cJSON_CreateObject();
-    pp_status st = root ? write_world(tmp, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    st = root ? write_world(tmp, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     char *text = st == PP_OK ? cJSON_Print(root) : NULL;
     if (st == PP_OK && !text)
         st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to print world.json", fn);

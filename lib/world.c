@@ -6,6 +6,7 @@
 #include "world.h"
 #include "status.h"
 
+#include <float.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,6 +123,10 @@ static pp_status check_world_def(const pp_world_def *d)
 {
     if (!finite2(d->gravity.x, d->gravity.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: gravity must be finite");
+    if (!(hypot(d->gravity.x, d->gravity.y) <= PP_MAX_ACCELERATION))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "pp_world_create: gravity (%g, %g) px/s² is over PP_MAX_ACCELERATION (%g px/s²)", d->gravity.x,
+                       d->gravity.y, PP_MAX_ACCELERATION);
     if (d->substeps < 1 || d->substeps > 64)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: substeps must be 1..64, got %d", (int)d->substeps);
     if (d->solver_iterations < 1 || d->solver_iterations > 1000)
@@ -149,8 +154,10 @@ static pp_status check_world_def(const pp_world_def *d)
     if (d->worker_threads < 0 || d->worker_threads > 16)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: worker_threads must be 0 (one per CPU) or 1..16, got %d",
                        (int)d->worker_threads);
-    if (!(d->max_correction_speed > 0) || !isfinite(d->max_correction_speed))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: max_correction_speed must be finite and > 0");
+    if (!(d->max_correction_speed > 0 && d->max_correction_speed <= PP_MAX_SPEED))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "pp_world_create: max_correction_speed must be > 0 and at most PP_MAX_SPEED (%g px/s), got %g",
+                       PP_MAX_SPEED, d->max_correction_speed);
     if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
         !isfinite(d->sleep_linear_speed) || !isfinite(d->sleep_angular_speed) || !isfinite(d->sleep_time))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: sleep thresholds must be finite and ≥ 0");
@@ -440,8 +447,25 @@ static void add_contact_joints(world *wd)
     }
 }
 
-/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved). */
-static void sync_bodies(world *wd)
+static bool within_float(double x) { return fabs(x) <= FLT_MAX; } /* false for NaN too */
+
+/* Hold a body under the motion limits (physpix.h), as Box2D clamps speed: the direction is kept. A speed
+ * under them is left bit for bit as it is. */
+static void clamp_speed(world *wd, body *bd, solver_body_state *s)
+{
+    const double max_v = PP_MAX_SPEED, max_w = PP_MAX_ANGULAR_SPEED;
+    if (!(dv_dot(s->velocity, s->velocity) > max_v * max_v || fabs(s->angular_velocity) > max_w))
+        return;
+    const double speed = hypot(s->velocity.x, s->velocity.y);
+    if (speed > max_v)
+        s->velocity = dv_scale(s->velocity, max_v / speed);
+    s->angular_velocity = fmax(-max_w, fmin(max_w, s->angular_velocity));
+    solver_body_set_velocity(wd->solver, &bd->sb, s->velocity, s->angular_velocity);
+}
+
+/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved), its speed
+ * clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
+static pp_status sync_bodies(world *wd)
 {
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
@@ -450,13 +474,21 @@ static void sync_bodies(world *wd)
         solver_body_flatten(&bd->sb);
         solver_body_state s;
         solver_body_get_state(wd->solver, &bd->sb, &s);
-        bd->angle = s.angle;
-        bd->cos_a = cos(s.angle), bd->sin_a = sin(s.angle);
+        clamp_speed(wd, bd, &s);
+        const double c = cos(s.angle), sn = sin(s.angle);
         /* pivot = com − R(angle)·(com_local − pivot) */
-        const dvec2 arm = dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), bd->cos_a, bd->sin_a);
-        bd->pos = dv_sub(s.com_world, arm);
+        const dvec2 pos = dv_sub(s.com_world, dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), c, sn));
+        if (!within_float(pos.x) || !within_float(pos.y) || !isfinite(s.angle) || !within_float(s.velocity.x) ||
+            !within_float(s.velocity.y) || !isfinite(s.angular_velocity))
+            return pp_fail(PP_ERR_LIMIT,
+                           "pp_world_step: body %#llx would reach (%g, %g) px, %g rad, moving (%g, %g) px/s, %g rad/s: "
+                           "past what a float holds; the step is undone", (unsigned long long)bd->handle.id, pos.x,
+                           pos.y, s.angle, s.velocity.x, s.velocity.y, s.angular_velocity);
+        bd->angle = s.angle, bd->cos_a = c, bd->sin_a = sn;
+        bd->pos = pos;
         body_update_pose_cache(bd);
     }
+    return PP_OK;
 }
 
 static int32_t group_root(int32_t *parent, int32_t i)
@@ -655,7 +687,8 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             pp_contact *ct = &wd->contacts[c];
             ct->normal_impulse = (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h);
         }
-        sync_bodies(wd);
+        if ((st = sync_bodies(wd)))
+            return st;
         continuous_end(wd);
         if ((st = update_sleep(wd, h)))
             return st;

@@ -166,6 +166,9 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, p
 /* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
 
+/* PP_ERR_INVALID_ARGUMENT, naming the field, for a velocity past PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED. */
+pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w);
+
 /* Refresh cached trig and world bounds after a pose change. */
 void body_update_pose_cache(body *bd);
 

@@ -486,6 +486,9 @@ static void op_step(reader *r)
     else if (injected && st == PP_ERR_OUT_OF_MEMORY) { /* the step was not taken */
         pp_world_get_time(w, &time_after);
         FUZZ_CHECK(time_after == time_before, "a step that ran out of memory moved the clock");
+    } else if (st == PP_ERR_LIMIT) { /* a body past a float: the step was not taken */
+        pp_world_get_time(w, &time_after);
+        FUZZ_CHECK(time_after == time_before, "a step refused at the limits moved the clock");
     } else
         FUZZ_CHECK(st == PP_OK, "step: %d", (int)st);
     if (t && st == PP_OK) {
