@@ -31,6 +31,8 @@ USER_CFLAGS = $(CPPFLAGS) $(CFLAGS)
 # Each library object lists the headers it includes (build/*/*.d), so a header change rebuilds only those.
 DEPFLAGS := -MMD -MP
 SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
+# The sanitizer build also checks the internal invariants (PP_ASSERT, lib/check.h).
+SANFLAGS += -DPP_CHECKS
 
 LIB_SRC  := $(wildcard lib/*.c)
 GLSL_SRC := $(wildcard glsl/*.comp)
@@ -104,7 +106,7 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h include/physpix_plugin.h $(SHARED)
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h lib/handle.h include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
 	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lpthread
 

@@ -7,7 +7,8 @@
  * pixel (i, j) covering [i, i+1) × [j, j+1)) to the world: world = position + R(angle)·(local − pivot),
  * the pivot defaulting to the bitmap centre; the pose does not jump when an edit moves the centre of
  * mass. Velocities are those of the centre of mass. Handles (pp_world, pp_body) are values carrying a
- * slot and a generation: a destroyed or stale one is answered with PP_ERR_INVALID_HANDLE, never a crash.
+ * slot and a generation, and a body's names its world too: a destroyed or stale one, or a body of another
+ * world, is answered with PP_ERR_INVALID_HANDLE, never a crash.
  * Every call that can fail returns a pp_status and writes results through out-pointers; on failure
  * pp_last_error() says why, naming the argument, and the outputs are untouched. Def structs come from
  * their default function, which sets struct_size (a binding with a wrong layout gets PP_ERR_ABI). The
@@ -59,6 +60,21 @@ extern "C" {
 /// Largest scene file (pp_world_load_scene) or snapshot world.json accepted, in bytes.
 #define PP_MAX_SCENE_BYTES (64 * 1024 * 1024)
 
+/* Motion limits, as Box2D's maximum speed: far above any game's needs (at the default 100 px/m, 10 km/s and
+ * 100,000 g), low enough that no float overflows in a step. A value over one is refused where it comes in:
+ * gravity (pp_world_def), max_correction_speed, a body def's velocities, pp_body_set_velocity and the velocity
+ * pp_body_apply_impulse would give, each with PP_ERR_INVALID_ARGUMENT naming the field. What the solver makes
+ * beyond them (contacts, a split piece's share of a spin) is clamped by the step, after each substep, keeping
+ * the direction. A step that would still leave a pose or velocity non-finite or past ±FLT_MAX returns
+ * PP_ERR_LIMIT and leaves the world as it was before the step. */
+
+/// Largest speed of a body's centre of mass, px/s (refused on input, clamped by the step).
+#define PP_MAX_SPEED 1.0e6f
+/// Largest angular speed of a body, rad/s (refused on input, clamped by the step).
+#define PP_MAX_ANGULAR_SPEED 1.0e5f
+/// Largest magnitude of a world's gravity, px/s².
+#define PP_MAX_ACCELERATION 1.0e8f
+
 /// Result of every call that can fail; PP_OK is 0.
 typedef enum pp_status {
     PP_OK = 0,                   ///< success
@@ -68,7 +84,7 @@ typedef enum pp_status {
     PP_ERR_IO = 4,               ///< a file could not be read or written
     PP_ERR_FORMAT = 5,           ///< a file's contents are malformed
     PP_ERR_UNSUPPORTED = 6,      ///< the feature is not available here (e.g. no GPU)
-    PP_ERR_LIMIT = 7,            ///< a size over the documented PP_MAX_* limits
+    PP_ERR_LIMIT = 7,            ///< a size over the documented PP_MAX_* limits, or a step past what a float holds
     PP_ERR_ABI = 8,              ///< a def struct whose struct_size does not match this library
     PP_STATUS_FORCE_U32 = 0x7fffffff
 } pp_status;
@@ -129,9 +145,9 @@ typedef struct pp_world {
     uint64_t id; ///< slot index and generation; opaque
 } pp_world;
 
-/// A body handle; id 0 is never valid.
+/// A body handle; id 0 is never valid. It names its world: used with another, it is PP_ERR_INVALID_HANDLE.
 typedef struct pp_body {
-    uint64_t id; ///< slot index and generation; opaque
+    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
 } pp_body;
 
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
@@ -591,10 +607,14 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
  * folder: a target that is a symlink, or anything but a folder holding world.json, is refused as not a
  * snapshot, and one swapped for something else during the save is put back and the save fails (PP_ERR_IO),
  * so nothing outside the snapshot is ever written or removed. Loading reads world.json and the planes only
- * from inside the folder and only regular files, as pp_world_load_scene reads PNGs. A loaded world has the same body handles and continues with the same determinism hash as the
- * original. The last step's contacts are not saved (the next step makes them); the pairs touching at the last
- * substep are, so a loaded world does not report resting contacts as begun again and a body halfway through
- * a one-way platform is not stopped inside it. */
+ * from inside the folder and only regular files, as pp_world_load_scene reads PNGs. A loaded world continues
+ * with the same determinism hash as the original. Its bodies keep their slots and generations:
+ * pp_world_get_bodies lists them in the same order, and each handle differs from the saved world's only in
+ * the bits that name the world (a handle of the saved world is PP_ERR_INVALID_HANDLE in the loaded one). The
+ * last step's contacts are not saved (the next step makes them); the pairs touching at the last substep are,
+ * so a loaded world does not report resting contacts as begun again and a body halfway through a one-way
+ * platform is not stopped inside it. A world holding a number that is not finite, or past ±FLT_MAX (which
+ * the loader refuses), is refused with PP_ERR_LIMIT before anything is written. */
 
 /// Write the whole state of a world into a new folder (world.json and PNG planes), atomically by rename.
 PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder);

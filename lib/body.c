@@ -1,10 +1,10 @@
-/* Bodies: the handle table (slot + generation), creation from a def, poses and velocities.
- * A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
+/* Bodies: the handle table (slot + generation, and the world's tag: handle.h), creation from a def, poses
+ * and velocities. A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
 #include "alloc.h"
+#include "handle.h"
 #include "status.h"
 #include "world.h"
 
-#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,8 +25,9 @@ PP_API pp_body_def pp_body_def_default(void)
 
 body *body_find(const world *wd, pp_body b)
 {
-    const uint32_t slot = (uint32_t)(b.id & 0xffffffffu) - 1, gen = (uint32_t)(b.id >> 32);
-    if (b.id == 0 || slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen)
+    const uint32_t slot = handle_slot(b.id);
+    if (b.id == 0 || handle_tag(b.id) != wd->tag || slot >= (uint32_t)wd->body_capacity ||
+        wd->generations[slot] != handle_gen(b.id))
         return NULL;
     return wd->bodies[slot];
 }
@@ -34,10 +35,20 @@ body *body_find(const world *wd, pp_body b)
 body *body_lookup(world *wd, pp_body b, const char *fn)
 {
     body *bd = body_find(wd, b);
-    if (!bd)
+    if (bd)
+        return bd;
+    const uint64_t owner = b.id && handle_tag(b.id) != wd->tag ? world_id_of_tag(handle_tag(b.id)) : 0;
+    if (owner)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: body %#llx belongs to world %#llx, not %#llx", fn, (unsigned long long)b.id,
+                (unsigned long long)owner, (unsigned long long)wd->handle.id);
+    else if (b.id && handle_tag(b.id) != wd->tag)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: body %#llx belongs to a world that no longer exists (slot %u), not %#llx",
+                fn, (unsigned long long)b.id, (unsigned)tag_world_slot(handle_tag(b.id)),
+                (unsigned long long)wd->handle.id);
+    else
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: body handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)b.id);
-    return bd;
+    return NULL;
 }
 
 /* Look up both handles for a body call; returns the status to hand back. */
@@ -85,6 +96,17 @@ void body_free(world *wd, body *bd)
     pp_free(bd);
 }
 
+pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w)
+{
+    if (!(hypot(v.x, v.y) <= PP_MAX_SPEED))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s (%g, %g) px/s is faster than PP_MAX_SPEED (%g px/s)", fn,
+                       linear_name, v.x, v.y, PP_MAX_SPEED);
+    if (!(fabs(w) <= PP_MAX_ANGULAR_SPEED))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s %g rad/s is faster than PP_MAX_ANGULAR_SPEED (%g rad/s)", fn,
+                       angular_name, w, PP_MAX_ANGULAR_SPEED);
+    return PP_OK;
+}
+
 static pp_status check_body_def(const pp_body_def *d)
 {
     static const char *fn = "pp_body_create";
@@ -99,6 +121,10 @@ static pp_status check_body_def(const pp_body_def *d)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: pivot must be finite", fn);
     if (!finite2(d->linear_velocity.x, d->linear_velocity.y) || !isfinite(d->angular_velocity))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_velocity and angular_velocity must be finite", fn);
+    pp_status st = body_check_speed(fn, "linear_velocity", dv(d->linear_velocity.x, d->linear_velocity.y),
+                                    "angular_velocity", d->angular_velocity);
+    if (st)
+        return st;
     if (!(d->density > 0) || !isfinite(d->density))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: density must be finite and > 0, got %g", fn, d->density);
     if (!(d->friction >= 0) || !isfinite(d->friction))
@@ -229,7 +255,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         return st;
     }
     bd->index = slot;
-    bd->handle.id = ((uint64_t)wd->generations[slot] << 32) | (slot + 1);
+    bd->handle.id = handle_make(wd->tag, slot, wd->generations[slot]);
     wd->bodies[slot] = bd;
     wd->live_count++;
     bd->serial = wd->next_serial++;
@@ -242,6 +268,7 @@ void body_unmake(world *wd, body *bd)
     const uint32_t slot = bd->index;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
+    PP_ASSERT(wd->free_count < wd->body_capacity);
     wd->free_slots[wd->free_count++] = slot; /* back on top, where alloc_slot took it */
     wd->live_count--;
     wd->next_serial--;
@@ -253,8 +280,8 @@ void body_remove(world *wd, body *bd)
     const pp_body b = bd->handle;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
-    if (++wd->generations[slot] == 0)
-        wd->generations[slot] = 1;
+    wd->generations[slot] = handle_next_gen(wd->generations[slot]);
+    PP_ASSERT(wd->free_count < wd->body_capacity);
     wd->free_slots[wd->free_count++] = slot;
     wd->live_count--;
     /* Contacts of the last step may name this body; drop them so none is stale. */
@@ -348,6 +375,9 @@ PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, flo
         return st;
     if (!finite2(linear.x, linear.y) || !isfinite(angular))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_velocity: linear and angular velocity must be finite");
+    if ((st = body_check_speed("pp_body_set_velocity", "linear velocity", dv(linear.x, linear.y), "angular velocity",
+                               angular)))
+        return st;
     if (!bd->sb.body)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_velocity: a static body cannot move");
     solver_body_set_velocity(wd->solver, &bd->sb, dv(linear.x, linear.y), bd->fixed_rotation ? 0.0 : angular);
@@ -371,11 +401,11 @@ PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, p
     const dvec2 J = dv(impulse.x, impulse.y), r = dv_sub(dv(world_point.x, world_point.y), s.com_world);
     const dvec2 v = dv_add(s.velocity, dv_scale(J, 1.0 / bd->mass.mass));
     const double wz = bd->fixed_rotation ? 0.0 : s.angular_velocity + (r.x * J.y - r.y * J.x) / bd->mass.inertia;
-    /* Past a float, no call could read or set the velocity, a snapshot could not hold it, and ODE would step it to
-     * NaN (an impulse of 1e30 at 1e30 px from a small body gave 2e55 rad/s, found by fuzz_api). */
-    if (!(fabs(v.x) <= FLT_MAX && fabs(v.y) <= FLT_MAX && fabs(wz) <= FLT_MAX))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_apply_impulse: the velocity it gives (%g, %g px/s, %g rad/s) "
-                       "is past a float", v.x, v.y, wz);
+    /* Past the motion limits, refused as pp_body_set_velocity would refuse it (an impulse of 1e30 at 1e30 px from
+     * a small body gave 2e55 rad/s, which ODE stepped to NaN; found by fuzz_api). */
+    if ((st = body_check_speed("pp_body_apply_impulse", "the velocity the impulse gives,", v,
+                               "the angular velocity the impulse gives,", wz)))
+        return st;
     solver_body_set_velocity(wd->solver, &bd->sb, v, wz);
     solver_body_wake(&bd->sb);
     return PP_OK;

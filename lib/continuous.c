@@ -167,6 +167,7 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
 
 void continuous_end(world *wd)
 {
+    PP_ASSERT(wd->sweep_capacity >= wd->body_capacity); /* grown by continuous_begin */
     for (int32_t i = 0; i < wd->body_capacity; i++)
         if (wd->sweep_from[i].valid && wd->bodies[i] && solver_body_is_awake(&wd->bodies[i]->sb))
             sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);

@@ -166,7 +166,7 @@ static void job_commit(world *wd, edit_job *j)
     if (job_destroys(j)) {
         const pp_body gone = bd->handle;
         body_remove(wd, bd);
-        world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0}); /* room reserved */
+        world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_DESTROYED, .body = gone}); /* room reserved */
         return;
     }
     if (bd->sb.body)

@@ -87,7 +87,7 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     pp_status st = pp_body_create(wd->handle, &d, out);
     if (st)
         return st;
-    body *child = wd->bodies[(uint32_t)out->id - 1];
+    body *child = body_of(wd, *out);
     /* The float position may sit a hair off; the pose is exact in double. */
     child->pos = pos;
     child->angle = parent->angle, child->cos_a = parent->cos_a, child->sin_a = parent->sin_a;
@@ -198,8 +198,9 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
             }
         for (int32_t k = 0; k < p->count; k++)
             if (p->children[k].id) {
-                set_child_motion(wd, bd, wd->bodies[(uint32_t)p->children[k].id - 1]);
-                world_push_event(wd, PP_EVENT_BODY_SPLIT, bd->handle, p->children[k]); /* room reserved */
+                set_child_motion(wd, bd, body_of(wd, p->children[k]));
+                world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_SPLIT, .body = bd->handle,
+                                                 .other = p->children[k]}); /* room reserved */
             }
         raster_edit_done(r, e.y0, e.y1);
         if (bd->type == PP_BODY_DYNAMIC && bd->sums.w <= 0) {
@@ -207,7 +208,7 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
              * body an edit leaves without mass does; ODE aborts on a zero mass (found by fuzz_api). */
             const pp_body gone = bd->handle;
             body_remove(wd, bd);
-            world_push_event(wd, PP_EVENT_BODY_DESTROYED, gone, (pp_body){0}); /* room reserved */
+            world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_DESTROYED, .body = gone}); /* room reserved */
         } else {
             body_update_pose_cache(bd);
             if (bd->sb.body)
@@ -222,7 +223,7 @@ void fracture_cancel(world *wd, fracture_plan *p)
 {
     for (int32_t k = p->count - 1; k >= 0; k--) /* newest first, so slots and serials come back in order */
         if (p->children && p->children[k].id)
-            body_unmake(wd, wd->bodies[(uint32_t)p->children[k].id - 1]);
+            body_unmake(wd, body_of(wd, p->children[k]));
     pp_free(p->children);
     pp_free(p->label);
     pp_free(p->islands);

@@ -5,6 +5,7 @@
 #define _GNU_SOURCE /* renameat2 */
 #include "alloc.h"
 #include "files.h"
+#include "handle.h"
 #include "image.h"
 #include "scene_json.h"
 #include "status.h"
@@ -53,7 +54,7 @@ static cJSON *json_doubles(const double *v, int n)
     return arr;
 }
 
-/* Handles as hex text: 64-bit ids do not fit a JSON number exactly. */
+/* Handles as hex text: 64-bit ids do not fit a JSON number exactly. A body's is saved without its world. */
 static cJSON *json_handle(uint64_t id)
 {
     char text[24];
@@ -149,7 +150,8 @@ static pp_status write_body(const save_dir *dir, const body *bd, cJSON *arr)
     }
     cJSON *state = cJSON_CreateObject();
     const double pose[5] = {bd->pos.x, bd->pos.y, bd->angle, bd->pivot.x, bd->pivot.y};
-    bool ok = add(obj, "handle", json_handle(bd->handle.id)) && add(obj, "serial", json_number((double)bd->serial, false)) &&
+    bool ok = add(obj, "handle", json_handle(handle_saved(bd->handle.id))) &&
+              add(obj, "serial", json_number((double)bd->serial, false)) &&
               add(obj, "state", state) && add(state, "pose", json_doubles(pose, 5)) &&
               add(state, "user_data", json_handle(bd->user_data)) && add(state, "slow_time", json_number(bd->slow_time, false));
     if (ok && bd->sb.body) {
@@ -201,14 +203,16 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         pp_timed_edit ed = order[i].edit;
         ed.time = ed.time < 0 ? 0 : ed.time;
         cJSON *e = edit_to_json(&ed);
-        ok = e && cJSON_AddItemToArray(edits, e) && (ed.body.id == 0 || add(e, "body", json_handle(ed.body.id)));
+        ok = e && cJSON_AddItemToArray(edits, e) &&
+             (ed.body.id == 0 || add(e, "body", json_handle(handle_saved(ed.body.id))));
     }
     pp_free(order);
     for (int32_t i = 0; ok && i < wd->event_count; i++) {
         const pp_event *ev = &wd->events[i];
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
-             add(e, "body", json_handle(ev->body.id)) && add(e, "other", json_handle(ev->other.id));
+             add(e, "body", json_handle(handle_saved(ev->body.id))) &&
+             add(e, "other", json_handle(handle_saved(ev->other.id)));
         if (ok && (ev->type == PP_EVENT_CONTACT_BEGIN || ev->type == PP_EVENT_SENSOR_BEGIN)) {
             const double point[2] = {ev->point.x, ev->point.y}, normal[2] = {ev->normal.x, ev->normal.y};
             ok = add(e, "point", json_doubles(point, 2)) && add(e, "normal", json_doubles(normal, 2)) &&
@@ -232,12 +236,46 @@ static bool write_touching(const world *wd, cJSON *root)
     for (int32_t i = 0; ok && i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
         cJSON *e = cJSON_CreateObject();
-        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(t->a)) && add(e, "b", json_handle(t->b)) &&
+        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(t->a))) &&
+             add(e, "b", json_handle(handle_saved(t->b))) &&
              add(e, "flags", json_number(t->flags, false));
     }
     if (!ok)
         cJSON_Delete(arr);
     return ok && add(root, "touching", arr);
+}
+
+/* Whether world.json can hold every number (JSON has no inf or NaN) and the loader would take it back (its
+ * poses, velocities and event points are within ±FLT_MAX); PP_ERR_LIMIT naming the first that is not. */
+static pp_status check_savable(const world *wd)
+{
+    static const char *fn = "pp_world_save_snapshot";
+    for (int32_t i = 0; i < wd->body_capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (!bd)
+            continue;
+        solver_exact_state s = {0};
+        if (bd->sb.body)
+            solver_body_save(&bd->sb, &s);
+        const double v[] = {bd->pos.x, bd->pos.y, bd->angle, bd->pivot.x, bd->pivot.y, s.px, s.py, s.rotation_angle,
+                            s.vx, s.vy, s.wz, bd->slow_time};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+            if (!(fabs(v[k]) <= FLT_MAX))
+                return pp_fail(PP_ERR_LIMIT, "%s: body %#llx has a %s of %g, which a snapshot cannot hold; nothing "
+                               "was written", fn, (unsigned long long)bd->handle.id,
+                               k < 5 ? "pose" : k < 11 ? "solver state" : "sleep timer", v[k]);
+    }
+    for (int32_t i = 0; i < wd->event_count; i++) {
+        const pp_event *e = &wd->events[i];
+        const float v[] = {e->point.x, e->point.y, e->normal.x, e->normal.y, e->approach_speed};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+            if (!isfinite(v[k]))
+                return pp_fail(PP_ERR_LIMIT, "%s: event %d has a number that is not finite (%g); nothing was written",
+                               fn, (int)i, v[k]);
+    }
+    if (!isfinite(wd->time))
+        return pp_fail(PP_ERR_LIMIT, "%s: the world's time is %g s; nothing was written", fn, wd->time);
+    return PP_OK;
 }
 
 /* world.json's top level, then every body in creation order. */
@@ -335,6 +373,9 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
         return PP_ERR_INVALID_HANDLE;
     if (!folder || !folder[0])
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder is NULL or empty", fn);
+    pp_status st = check_savable(wd); /* before the old snapshot or anything beside it is touched */
+    if (st)
+        return st;
     char dest[PATH_MAX], parent_path[PATH_MAX], tmp[NAME_MAX + 1], tmp_shown[PATH_MAX + NAME_MAX + 2];
     if (snprintf(dest, sizeof dest, "%s", folder) >= (int)sizeof dest)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: folder path is too long", fn);
@@ -351,8 +392,7 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
     const int parent = open(parent_path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     const int tmp_fd = parent >= 0 ? files_make_temp_folder(parent, base, tmp, sizeof tmp) : -1;
     if (tmp_fd < 0) {
-        const pp_status st =
-            pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
+        st = pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
         if (parent >= 0)
             close(parent);
         return st;
@@ -360,7 +400,7 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
     snprintf(tmp_shown, sizeof tmp_shown, "%.*s%s", (int)(base - dest), dest, tmp);
     const save_dir dir = {tmp_fd, tmp_shown};
     cJSON *root = cJSON_CreateObject();
-    pp_status st = root ? write_world(&dir, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    st = root ? write_world(&dir, wd, root) : pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     char *text = st == PP_OK ? cJSON_Print(root) : NULL;
     if (st == PP_OK && !text)
         st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to print world.json", fn);
@@ -414,6 +454,17 @@ static pp_status read_handle(const json_ctx *c, const cJSON *obj, const char *wh
     return PP_OK;
 }
 
+/* A body handle as saved (handle.h), made one of the loaded world's. */
+static pp_status read_body_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                  bool optional, const world *wd, uint64_t *out)
+{
+    uint64_t saved = 0;
+    pp_status st = read_handle(c, obj, where, key, optional, &saved);
+    if (!st && !handle_from_saved(saved, wd->tag, out))
+        st = json_fail(c, PP_ERR_FORMAT, where, key, "no body handle has that slot and generation");
+    return st;
+}
+
 static pp_status read_required_int(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
                                    int64_t lo, int64_t hi, int64_t *out)
 {
@@ -449,7 +500,7 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
 {
     uint32_t *gens = NULL;
     int32_t n = 0;
-    pp_status st = read_int_array(c, root, "generations", 1, UINT32_MAX, &gens, &n);
+    pp_status st = read_int_array(c, root, "generations", 1, HANDLE_GEN_MAX, &gens, &n);
     if (st) {
         pp_free(gens);
         return st;
@@ -534,11 +585,12 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
     int64_t ser = 0;
     bitmap bm = {0};
     pp_status st = check_keys(c, obj, where, body_fields, body_snapshot_keys);
-    if (st || (st = parse_body_settings(c, obj, where, &d)) || (st = read_handle(c, obj, where, "handle", false, &id)) ||
+    if (st || (st = parse_body_settings(c, obj, where, &d)) ||
+        (st = read_body_handle(c, obj, where, "handle", false, wd, &id)) ||
         (st = read_required_int(c, obj, where, "serial", (int64_t)*serial, JSON_MAX_EXACT_INT, &ser)))
         return st;
-    const uint32_t slot = (uint32_t)(id & 0xffffffffu) - 1, gen = (uint32_t)(id >> 32);
-    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != gen || wd->bodies[slot])
+    const uint32_t slot = handle_slot(id);
+    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != handle_gen(id) || wd->bodies[slot])
         return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free slot of that generation");
     if ((st = parse_bitmap(c, obj, where, &bm))) {
         bitmap_free(&bm); /* parse_bitmap leaves what it loaded to the caller (a leak found by fuzz_snapshot) */
@@ -584,7 +636,7 @@ static pp_status restore_edits(const json_ctx *c, const cJSON *root, world *wd)
         snprintf(where, sizeof where, "edits[%d]", (int)i);
         pp_timed_edit e = {0};
         if (!(st = check_keys(c, it, where, edit_fields, extra)) && !(st = read_fields(c, it, where, edit_fields, &e)) &&
-            !(st = read_handle(c, it, where, "body", true, &e.body.id)) &&
+            !(st = read_body_handle(c, it, where, "body", true, wd, &e.body.id)) &&
             (st = pp_world_schedule_edit(wd->handle, &e)))
             st = json_fail_from_last(c, st, where, NULL);
     }
@@ -618,8 +670,8 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
         int32_t type = 0;
         pp_event ev = {0};
         if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
-            !(st = read_handle(c, it, where, "body", false, &ev.body.id)) &&
-            !(st = read_handle(c, it, where, "other", false, &ev.other.id))) {
+            !(st = read_body_handle(c, it, where, "body", false, wd, &ev.body.id)) &&
+            !(st = read_body_handle(c, it, where, "other", false, wd, &ev.other.id))) {
             ev.type = (pp_event_type)type;
             if (!type)
                 st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
@@ -647,12 +699,15 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
         snprintf(where, sizeof where, "touching[%d]", (int)i);
         touch *t = &wd->touching[i];
         int64_t flags = 0;
-        if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_handle(c, it, where, "a", false, &t->a)) &&
-            !(st = read_handle(c, it, where, "b", false, &t->b)))
+        if (!(st = check_keys(c, it, where, NULL, keys)) &&
+            !(st = read_body_handle(c, it, where, "a", false, wd, &t->a)) &&
+            !(st = read_body_handle(c, it, where, "b", false, wd, &t->b)))
             st = read_required_int(c, it, where, "flags", 0, TOUCH_SENSOR | TOUCH_SENSOR_B | TOUCH_PASSING, &flags);
         t->flags = (uint32_t)flags, t->reserved = 0;
         /* touch_find expects a in the lower slot */
-        if (!st && (uint32_t)t->a - 1 > (uint32_t)t->b - 1)
+        if (!st && (t->a == 0 || t->b == 0))
+            st = json_fail(c, PP_ERR_FORMAT, where, t->a ? "b" : "a", "expected a body, not 0");
+        if (!st && handle_slot(t->a) > handle_slot(t->b))
             st = json_fail(c, PP_ERR_FORMAT, where, "a", "must be in a lower slot than b");
     }
     if (st)

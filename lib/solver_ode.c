@@ -2,6 +2,7 @@
  * origin, a plane-2D joint each, contact joints from the raster contacts, QuickStep or Step.
  * Lengths are divided by pixels_per_meter so ODE's tolerances see metre-sized numbers. */
 #include "alloc.h"
+#include "check.h"
 #include "solver_ode.h"
 #include "status.h"
 
@@ -215,6 +216,7 @@ double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, doubl
 
 void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
 {
+    PP_ASSERT(k >= 0 && k < s->feedback_capacity); /* solver_reserve_feedback first */
     dContact ct = {0};
     ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
     ct.surface.mu = c->friction;

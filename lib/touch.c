@@ -10,8 +10,6 @@
  * direction: a body landing on it from above, not one entering from below or the side. */
 #define ONE_WAY_COS 0.5
 
-static uint32_t slot_of(uint64_t id) { return (uint32_t)id - 1; }
-
 static int touch_cmp(const void *x, const void *y)
 {
     const touch *p = x, *q = y;
@@ -36,7 +34,7 @@ const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 {
     if (wd->touch_count == 0)
         return NULL;
-    const touch key = slot_of(x) < slot_of(y) ? (touch){x, y, 0, 0} : (touch){y, x, 0, 0};
+    const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0} : (touch){y, x, 0, 0};
     return bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp);
 }
 
@@ -118,6 +116,7 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
 static bool untested(const world *wd, const touch *t)
 {
     const body *a = body_find(wd, (pp_body){t->a}), *b = body_find(wd, (pp_body){t->b});
+    PP_ASSERT(wd->proxy_capacity >= wd->body_capacity);
     return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
 }
 
@@ -134,6 +133,7 @@ pp_status touch_end(world *wd)
         if (listed(t, wd->touch_next, found))
             continue;
         if (untested(wd, t)) {
+            PP_ASSERT(wd->touch_next_count < wd->touch_next_capacity);
             wd->touch_next[wd->touch_next_count++] = *t;
             continue;
         }

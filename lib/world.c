@@ -2,15 +2,17 @@
  * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
 #include "alloc.h"
 #include "continuous.h"
+#include "handle.h"
 #include "world.h"
 #include "status.h"
 
+#include <float.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1). */
+/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1) (handle.h). */
 static world *worlds[PP_MAX_WORLDS];
 static uint32_t world_generations[PP_MAX_WORLDS];
 static pthread_mutex_t worlds_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -34,7 +36,7 @@ static double now_ms(void)
 
 world *world_lookup(pp_world w, const char *fn)
 {
-    const uint32_t slot = (uint32_t)(w.id & 0xffffffffu) - 1, gen = (uint32_t)(w.id >> 32);
+    const uint32_t slot = world_id_slot(w.id), gen = world_id_gen(w.id);
     world *wd = NULL;
     pthread_mutex_lock(&worlds_lock);
     if (w.id != 0 && slot < PP_MAX_WORLDS && world_generations[slot] == gen)
@@ -44,6 +46,17 @@ world *world_lookup(pp_world w, const char *fn)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: world handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)w.id);
     return wd;
+}
+
+uint64_t world_id_of_tag(uint32_t tag)
+{
+    const uint32_t slot = tag_world_slot(tag);
+    uint64_t id = 0;
+    pthread_mutex_lock(&worlds_lock);
+    if (worlds[slot] && worlds[slot]->tag == tag)
+        id = worlds[slot]->handle.id;
+    pthread_mutex_unlock(&worlds_lock);
+    return id;
 }
 
 PP_API pp_world_def pp_world_def_default(void)
@@ -110,6 +123,10 @@ static pp_status check_world_def(const pp_world_def *d)
 {
     if (!finite2(d->gravity.x, d->gravity.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: gravity must be finite");
+    if (!(hypot(d->gravity.x, d->gravity.y) <= PP_MAX_ACCELERATION))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "pp_world_create: gravity (%g, %g) px/s² is over PP_MAX_ACCELERATION (%g px/s²)", d->gravity.x,
+                       d->gravity.y, PP_MAX_ACCELERATION);
     if (d->substeps < 1 || d->substeps > 64)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: substeps must be 1..64, got %d", (int)d->substeps);
     if (d->solver_iterations < 1 || d->solver_iterations > 1000)
@@ -137,8 +154,10 @@ static pp_status check_world_def(const pp_world_def *d)
     if (d->worker_threads < 0 || d->worker_threads > 16)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: worker_threads must be 0 (one per CPU) or 1..16, got %d",
                        (int)d->worker_threads);
-    if (!(d->max_correction_speed > 0) || !isfinite(d->max_correction_speed))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: max_correction_speed must be finite and > 0");
+    if (!(d->max_correction_speed > 0 && d->max_correction_speed <= PP_MAX_SPEED))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "pp_world_create: max_correction_speed must be > 0 and at most PP_MAX_SPEED (%g px/s), got %g",
+                       PP_MAX_SPEED, d->max_correction_speed);
     if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
         !isfinite(d->sleep_linear_speed) || !isfinite(d->sleep_angular_speed) || !isfinite(d->sleep_time))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: sleep thresholds must be finite and ≥ 0");
@@ -190,7 +209,8 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
         world_generations[slot] = 1;
     worlds[slot] = wd;
     wd->slot = slot;
-    wd->handle.id = ((uint64_t)world_generations[slot] << 32) | (slot + 1);
+    wd->tag = world_tag(slot, world_generations[slot]);
+    wd->handle.id = world_id_make(slot, world_generations[slot]);
     pthread_mutex_unlock(&worlds_lock);
     wd->stats.backend = d.backend == PP_BACKEND_GPU ? PP_BACKEND_GPU : PP_BACKEND_CPU;
     *out = wd->handle;
@@ -371,6 +391,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     for (int32_t p = 0; p < wd->broad.pair_count; p++) {
         const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
         const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
+        PP_ASSERT(n < wd->pair_capacity);
         if (!np_pair_setup(&set, &va, &vb, &wd->pairs[n]))
             continue;
         cells += np_pair_cells(&wd->pairs[n]);
@@ -416,7 +437,7 @@ static void add_contact_joints(world *wd)
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const int32_t i = reversed ? wd->contact_count - 1 - k : k;
         const pp_contact *c = &wd->contacts[i];
-        const body *a = wd->bodies[(uint32_t)c->a.id - 1], *b = wd->bodies[(uint32_t)c->b.id - 1];
+        const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
@@ -426,8 +447,25 @@ static void add_contact_joints(world *wd)
     }
 }
 
-/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved). */
-static void sync_bodies(world *wd)
+static bool within_float(double x) { return fabs(x) <= FLT_MAX; } /* false for NaN too */
+
+/* Hold a body under the motion limits (physpix.h), as Box2D clamps speed: the direction is kept. A speed
+ * under them is left bit for bit as it is. */
+static void clamp_speed(world *wd, body *bd, solver_body_state *s)
+{
+    const double max_v = PP_MAX_SPEED, max_w = PP_MAX_ANGULAR_SPEED;
+    if (!(dv_dot(s->velocity, s->velocity) > max_v * max_v || fabs(s->angular_velocity) > max_w))
+        return;
+    const double speed = hypot(s->velocity.x, s->velocity.y);
+    if (speed > max_v)
+        s->velocity = dv_scale(s->velocity, max_v / speed);
+    s->angular_velocity = fmax(-max_w, fmin(max_w, s->angular_velocity));
+    solver_body_set_velocity(wd->solver, &bd->sb, s->velocity, s->angular_velocity);
+}
+
+/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved), its speed
+ * clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
+static pp_status sync_bodies(world *wd)
 {
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
@@ -436,13 +474,21 @@ static void sync_bodies(world *wd)
         solver_body_flatten(&bd->sb);
         solver_body_state s;
         solver_body_get_state(wd->solver, &bd->sb, &s);
-        bd->angle = s.angle;
-        bd->cos_a = cos(s.angle), bd->sin_a = sin(s.angle);
+        clamp_speed(wd, bd, &s);
+        const double c = cos(s.angle), sn = sin(s.angle);
         /* pivot = com − R(angle)·(com_local − pivot) */
-        const dvec2 arm = dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), bd->cos_a, bd->sin_a);
-        bd->pos = dv_sub(s.com_world, arm);
+        const dvec2 pos = dv_sub(s.com_world, dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), c, sn));
+        if (!within_float(pos.x) || !within_float(pos.y) || !isfinite(s.angle) || !within_float(s.velocity.x) ||
+            !within_float(s.velocity.y) || !isfinite(s.angular_velocity))
+            return pp_fail(PP_ERR_LIMIT,
+                           "pp_world_step: body %#llx would reach (%g, %g) px, %g rad, moving (%g, %g) px/s, %g rad/s: "
+                           "past what a float holds; the step is undone", (unsigned long long)bd->handle.id, pos.x,
+                           pos.y, s.angle, s.velocity.x, s.velocity.y, s.angular_velocity);
+        bd->angle = s.angle, bd->cos_a = c, bd->sin_a = sn;
+        bd->pos = pos;
         body_update_pose_cache(bd);
     }
+    return PP_OK;
 }
 
 static int32_t group_root(int32_t *parent, int32_t i)
@@ -466,6 +512,7 @@ static pp_status update_sleep(world *wd, double h)
         world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group, "sleep groups");
     if (st)
         return st;
+    PP_ASSERT(wd->group_capacity >= wd->body_capacity);
     int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         parent[i] = i, restless[i] = 0;
@@ -484,7 +531,7 @@ static pp_status update_sleep(world *wd, double h)
     if (!d->allow_sleep)
         return PP_OK;
     for (int32_t k = 0; k < wd->contact_count; k++) {
-        const uint32_t a = (uint32_t)wd->contacts[k].a.id - 1, b = (uint32_t)wd->contacts[k].b.id - 1;
+        const uint32_t a = handle_slot(wd->contacts[k].a.id), b = handle_slot(wd->contacts[k].b.id);
         if (wd->bodies[a]->type == PP_BODY_DYNAMIC && wd->bodies[b]->type == PP_BODY_DYNAMIC)
             parent[group_root(parent, (int32_t)a)] = group_root(parent, (int32_t)b);
     }
@@ -590,6 +637,7 @@ static pp_status apply_due_edits(world *wd, float dt)
 /* Save a movable body's part of the step, once a step. */
 static void save_body(step_undo *u, const body *bd)
 {
+    PP_ASSERT(bd->index < (uint32_t)u->body_capacity);
     step_saved_body *sv = &u->bodies[bd->index];
     if (!bd->sb.body || sv->step == u->step)
         return;
@@ -643,8 +691,8 @@ static pp_status step_save(world *wd)
 static void save_contact_bodies(world *wd)
 {
     for (int32_t k = 0; k < wd->contact_count; k++) {
-        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].a.id - 1]);
-        save_body(&wd->undo, wd->bodies[(uint32_t)wd->contacts[k].b.id - 1]);
+        save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
+        save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
     }
 }
 
@@ -652,6 +700,8 @@ static void save_contact_bodies(world *wd)
 static void step_restore(world *wd)
 {
     step_undo *u = &wd->undo;
+    PP_ASSERT(u->body_capacity >= wd->body_capacity && u->contact_count <= wd->contact_capacity &&
+              u->order_count <= wd->broad.order_cap && u->event_count <= wd->event_count);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
@@ -698,7 +748,8 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             pp_contact *ct = &wd->contacts[c];
             ct->normal_impulse = (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h);
         }
-        sync_bodies(wd);
+        if ((st = sync_bodies(wd)))
+            return st;
         continuous_end(wd);
         if ((st = update_sleep(wd, h)))
             return st;
@@ -803,15 +854,10 @@ pp_status world_reserve_events(world *wd, int32_t n)
     return PP_OK;
 }
 
-void world_queue_event(world *wd, pp_event ev) { wd->events[wd->event_count++] = ev; }
-
-pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other)
+void world_queue_event(world *wd, pp_event ev)
 {
-    pp_status st = world_reserve_events(wd, 1);
-    if (st)
-        return st;
-    world_queue_event(wd, (pp_event){.type = type, .body = b, .other = other});
-    return PP_OK;
+    PP_ASSERT(wd->event_count < wd->event_capacity);
+    wd->events[wd->event_count++] = ev;
 }
 
 PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count)

@@ -3,6 +3,8 @@
 #define PP_WORLD_H
 
 #include "broadphase.h"
+#include "check.h"
+#include "handle.h"
 #include "massprops.h"
 #include "math2d.h"
 #include "narrow_gpu.h"
@@ -82,6 +84,7 @@ typedef struct step_undo {
 
 typedef struct world {
     uint32_t slot;
+    uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
     pp_world handle;
     pp_world_def def;
     body **bodies;           /* by slot; NULL where free */
@@ -126,9 +129,19 @@ typedef struct world {
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* The id of the live world whose bodies carry this tag, or 0 (for a message naming a body's world). */
+uint64_t world_id_of_tag(uint32_t tag);
 body *body_lookup(world *wd, pp_body b, const char *fn);
 /* The same lookup without recording a failure: NULL for a null, destroyed or stale handle. */
 body *body_find(const world *wd, pp_body b);
+
+/* The body of a handle the world made and knows is live (a contact's, a new split piece's). */
+static inline body *body_of(const world *wd, pp_body b)
+{
+    body *bd = wd->bodies[handle_slot(b.id)];
+    PP_ASSERT(bd && bd->handle.id == b.id);
+    return bd;
+}
 
 /* Both lookups at once, as most body calls need them. */
 pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd);
@@ -144,10 +157,8 @@ void body_unmake(world *wd, body *bd);
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
 
-/* Queue an event for pp_world_get_events; never fails for n events after world_reserve_events(wd, n). */
-pp_status world_push_event(world *wd, pp_event_type type, pp_body b, pp_body other);
+/* Room for n more events for pp_world_get_events, then queue each into it (checked by PP_ASSERT). */
 pp_status world_reserve_events(world *wd, int32_t n);
-/* Queue a whole event into room reserved by world_reserve_events. */
 void world_queue_event(world *wd, pp_event ev);
 
 /* Grow an array of `size`-byte items to hold n, doubling; false (nothing changed) when out of memory. */
@@ -165,6 +176,9 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, p
 
 /* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
+
+/* PP_ERR_INVALID_ARGUMENT, naming the field, for a velocity past PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED. */
+pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w);
 
 /* Refresh cached trig and world bounds after a pose change. */
 void body_update_pose_cache(body *bd);

@@ -3,6 +3,8 @@
  * failure comes back as an ERROR variant with a status and a message. One lock serialises calls. */
 #include "plugin.h"
 
+#include "handle.h" /* the library's id layout (lib/), for the body slot that indexes body_objects */
+
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -155,7 +157,7 @@ void object_free(uint64_t id)
         world_cache_free(o->cache);
     } else if (o->kind == OBJECT_BODY) {
         plugin_object *w = object_get(o->world_object);
-        const uint32_t bslot = (uint32_t)(o->body.id & 0xffffffffu) - 1;
+        const uint32_t bslot = handle_slot(o->body.id);
         if (w && bslot < (uint32_t)w->cache->body_object_capacity && w->cache->body_objects[bslot] == id)
             w->cache->body_objects[bslot] = 0;
     }
@@ -171,7 +173,7 @@ void object_free(uint64_t id)
 uint64_t object_for_body(uint64_t world_object, pp_body body)
 {
     plugin_object *w = object_get(world_object);
-    const uint32_t bslot = (uint32_t)(body.id & 0xffffffffu) - 1;
+    const uint32_t bslot = handle_slot(body.id);
     world_cache *c = w->cache;
     if (bslot >= (uint32_t)c->body_object_capacity) {
         int32_t n = c->body_object_capacity ? c->body_object_capacity : 16;

@@ -1,7 +1,8 @@
 /* PhysPixWorld: a NativeScript class (base Reference) that gives GDScript one pp_world.
  * Owns the method table, the checking of every argument against it, the calls into PhysPix,
- * and the library's three entry points. Bodies are ints: the pp_body id's 64 bits, tagged with
- * how many times the object's world was replaced (see body_int). */
+ * and the library's three entry points. Bodies are ints: the pp_body id's 64 bits. An id names its
+ * world, so an int from before load_scene or load_snapshot replaced the object's world is refused by
+ * PhysPix itself (PP_ERR_INVALID_HANDLE). */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,24 +17,8 @@
 
 typedef struct world_inst {
     pp_world world;  /* id 0 if pp_world_create failed; every call then reports the stale handle */
-    uint32_t epoch;  /* how many times load_scene or load_snapshot replaced the world */
     char error[512]; /* why the last call failed, "" if it succeeded */
 } world_inst;
-
-/* A body's int is its pp_body id with the object's epoch (mod 4096) in bits 20..31, where no id
- * has a bit set: an id is (generation << 32) | (slot + 1), and slot + 1 <= PP_MAX_BODIES. A new
- * world's ids start over, so without the tag an int from before a load_scene or load_snapshot
- * would reach whichever new body has the same id; with it, such a call fails cleanly (until the
- * same object has been replaced 4096 more times). Epoch 0 has tag 0: a fresh object's ints are
- * the ids themselves. */
-#define EPOCH_SHIFT 20
-#define EPOCH_MASK ((uint64_t)0xfff << EPOCH_SHIFT)
-_Static_assert(PP_MAX_BODIES <= 1 << EPOCH_SHIFT, "body ids must leave bits 20..31 free for the epoch tag");
-
-static uint64_t epoch_tag(const world_inst *self)
-{
-    return ((uint64_t)self->epoch << EPOCH_SHIFT) & EPOCH_MASK;
-}
 
 /* One argument after its type was checked, read as its spec letter says. */
 typedef struct arg {
@@ -194,12 +179,7 @@ static bool read_arg(call *c, int i, char letter)
         if (t != GDN_INT)
             return wrong_type(c, i, letter == 'b' ? "a body (int)" : "int");
         a->i = gdn->godot_variant_as_int(a->var);
-        if (letter == 'b' && ((uint64_t)a->i & EPOCH_MASK) != epoch_tag(c->self))
-            return fail(c,
-                        "PP_ERR_INVALID_HANDLE: argument %d, %lld, is no body of this world (one from before "
-                        "load_scene or load_snapshot replaced it, or never a body)",
-                        i + 1, (long long)a->i);
-        a->body.id = (uint64_t)a->i & ~EPOCH_MASK;
+        a->body.id = (uint64_t)a->i;
         return true;
     case 'm':
         if (t != GDN_INT)
@@ -341,15 +321,15 @@ static bool body_def(call *c, int first, pp_body_def *def)
 }
 
 /* A body's int for GDScript (0 stays 0: "no body" in events). */
-static godot_variant body_int(const world_inst *self, pp_body b)
+static godot_variant body_int(pp_body b)
 {
-    return gdn_int(b.id ? (int64_t)(b.id | epoch_tag(self)) : 0);
+    return gdn_int((int64_t)b.id);
 }
 
 static godot_variant create_body(call *c, const pp_body_def *def)
 {
     pp_body b;
-    return ok(c, pp_body_create(c->self->world, def, &b)) ? body_int(c->self, b) : gdn_nil();
+    return ok(c, pp_body_create(c->self->world, def, &b)) ? body_int(b) : gdn_nil();
 }
 
 /* Creates a body whose width × height plane (mask if rgba is false, else RGBA) is a PoolByteArray. */
@@ -593,7 +573,7 @@ static godot_variant get_bodies(call *c)
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < n; i++)
-        gdn_array_put(&out, body_int(c->self, bodies[i]));
+        gdn_array_put(&out, body_int(bodies[i]));
     free(bodies);
     return gdn_array_variant(&out);
 }
@@ -609,8 +589,8 @@ static godot_variant get_contacts(call *c)
     for (int32_t i = 0; i < n; i++) {
         godot_dictionary d;
         gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "a", body_int(c->self, cs[i].a));
-        gdn_dict_put(&d, "b", body_int(c->self, cs[i].b));
+        gdn_dict_put(&d, "a", body_int(cs[i].a));
+        gdn_dict_put(&d, "b", body_int(cs[i].b));
         gdn_dict_put(&d, "point", gdn_vector2(cs[i].point.x, cs[i].point.y));
         gdn_dict_put(&d, "normal", gdn_vector2(cs[i].normal.x, cs[i].normal.y));
         gdn_dict_put(&d, "depth", gdn_real(cs[i].depth));
@@ -638,8 +618,8 @@ static godot_variant get_events(call *c)
                                                     EVENT_TYPE_NAMES[t]
                                                 ? EVENT_TYPE_NAMES[t]
                                                 : "unknown"));
-        gdn_dict_put(&d, "body", body_int(c->self, es[i].body));
-        gdn_dict_put(&d, "other", body_int(c->self, es[i].other));
+        gdn_dict_put(&d, "body", body_int(es[i].body));
+        gdn_dict_put(&d, "other", body_int(es[i].other));
         gdn_dict_put(&d, "point", gdn_vector2(es[i].point.x, es[i].point.y));
         gdn_dict_put(&d, "normal", gdn_vector2(es[i].normal.x, es[i].normal.y));
         gdn_dict_put(&d, "approach_speed", gdn_real(es[i].approach_speed));
@@ -666,7 +646,7 @@ static godot_variant raycast(call *c)
         return gdn_nil();
     godot_dictionary d;
     gdn->godot_dictionary_new(&d);
-    gdn_dict_put(&d, "body", body_int(c->self, h.body));
+    gdn_dict_put(&d, "body", body_int(h.body));
     gdn_dict_put(&d, "point", gdn_vector2(h.point.x, h.point.y));
     gdn_dict_put(&d, "normal", gdn_vector2(h.normal.x, h.normal.y));
     gdn_dict_put(&d, "fraction", gdn_real(h.fraction));
@@ -709,7 +689,7 @@ static godot_variant run_query(call *c, query_fn fn, uint32_t mask)
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < total && i < capacity; i++)
-        gdn_array_put(&out, body_int(c->self, found[i]));
+        gdn_array_put(&out, body_int(found[i]));
     free(found);
     return gdn_array_variant(&out);
 }
@@ -737,7 +717,6 @@ static godot_variant replace_world(call *c, pp_world loaded)
     if (c->self->world.id)
         pp_world_destroy(c->self->world);
     c->self->world = loaded;
-    c->self->epoch++;
     return gdn_bool(true);
 }
 

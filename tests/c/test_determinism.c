@@ -1,5 +1,6 @@
 /* The same scene stepped twice in one process gives bit-identical poses, also when other
- * worlds are stepped in between (ODE's random generator is process-wide). */
+ * worlds are stepped in between (ODE's random generator is process-wide), and the same pinned hash
+ * per preset in every build, on the CPU and on the GPU. */
 #include "helpers.h"
 
 PP_TEST_SUITE(determinism);
@@ -23,8 +24,8 @@ static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
     return h;
 }
 
-static void det_begin(det_scene *s) {
-    s->w = make_world(0, 980);
+static void det_begin_def(det_scene *s, const pp_world_def *def) {
+    s->w = make_world_def(def);
     add_rect(s->w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
     for (int i = 0; i < DET_BOXES; i++) {
         /* Boxes of three sizes, staggered so that they land on one another. */
@@ -35,6 +36,11 @@ static void det_begin(det_scene *s) {
     }
     s->hash = 1469598103934665603ull;
     s->max_contacts = 0;
+}
+
+static void det_begin(det_scene *s) {
+    const pp_world_def d = pp_world_def_default();
+    det_begin_def(s, &d);
 }
 
 static void det_step(det_scene *s) {
@@ -146,4 +152,61 @@ Test(determinism, worker_threads_give_the_result_of_one, .timeout = 60) {
     cr_assert_eq(h1, h4, "1 thread: %016llx, 4 threads: %016llx", (unsigned long long)h1, (unsigned long long)h4);
     cr_assert_eq(h1, h_auto, "1 thread: %016llx, one per CPU: %016llx", (unsigned long long)h1,
                  (unsigned long long)h_auto);
+}
+
+/* The hash of the scene above per preset, pinned: a change that moves any body of it by one bit in any step
+ * changes them. Pinned on x86-64 with Debian's ODE 0.16 (double precision) and glibc's libm. */
+static const struct {
+    pp_preset preset;
+    const char *name;
+    uint64_t hash;
+} golden[] = {
+    {PP_PRESET_FAST, "FAST", 0xcd45e0ca60ef7067ull},
+    {PP_PRESET_BALANCED, "BALANCED", 0xf9155e25d4fa3423ull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0xa4907bd0a64bf9e2ull},
+};
+
+static uint64_t golden_run(pp_preset preset, pp_backend backend) {
+    pp_world_def d = pp_world_def_preset(preset);
+    d.backend = backend;
+    det_scene s;
+    det_begin_def(&s, &d);
+    for (int k = 0; k < DET_STEPS; k++) det_step(&s);
+    pp_step_stats st;
+    PP_OK_OR_FAIL(pp_world_get_stats(s.w, &st));
+    cr_assert_eq(st.backend, backend, "the scene ran on backend %d, not %d", (int)st.backend, (int)backend);
+    cr_assert_geq(s.max_contacts, 4, "the boxes made only %d contacts: the scene tests nothing", s.max_contacts);
+    pp_world_destroy(s.w);
+    return s.hash;
+}
+
+static void expect_golden(pp_backend backend, const char *backend_name) {
+    for (size_t i = 0; i < sizeof golden / sizeof golden[0]; i++) {
+        const uint64_t h = golden_run(golden[i].preset, backend);
+        cr_log_info("golden %s %s: %#018llx", backend_name, golden[i].name, (unsigned long long)h);
+        cr_expect_eq(h, golden[i].hash,
+                     "%s on the %s backend hashes to %#018llx, pinned %#018llx: the scene moves differently. "
+                     "If this change is meant to alter the physics, re-pin the value in tests/c/test_determinism.c "
+                     "(and say so in the commit); if not, it is a regression.",
+                     golden[i].name, backend_name, (unsigned long long)h, (unsigned long long)golden[i].hash);
+    }
+}
+
+Test(determinism, the_cpu_backend_gives_the_pinned_hash_per_preset, .timeout = 120) {
+    expect_golden(PP_BACKEND_CPU, "CPU");
+}
+
+/* The GPU makes the CPU's decisions pixel for pixel, so the pinned values hold there too. */
+Test(determinism, the_gpu_backend_gives_the_pinned_hash_per_preset, .timeout = 300) {
+    pp_world_def d = pp_world_def_default();
+    d.backend = PP_BACKEND_GPU;
+    pp_world w = {0};
+    const pp_status st = pp_world_create(&d, &w);
+    if (st != PP_OK) {
+        cr_assert_eq(st, PP_ERR_UNSUPPORTED, "a failed GPU world must say UNSUPPORTED, got %s", pp_status_name(st));
+        fprintf(stderr, "gpu golden hash skipped: %s\n", pp_last_error());
+        cr_skip_test("no GLES 3.1 compute context: %s", pp_last_error());
+    }
+    pp_world_destroy(w);
+    expect_golden(PP_BACKEND_GPU, "GPU");
 }

@@ -4,6 +4,8 @@
  * no failure. */
 #include "helpers.h"
 
+#include "handle.h" /* handle_saved: a body's handle without its world */
+
 #include <pthread.h>
 #include <stdbool.h>
 
@@ -407,7 +409,8 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Every body's handle, pose, velocity, sleep, mass and mask; the contacts, time and pending edits. */
+/* Every body's handle (slot and generation: its world differs from run to run), pose, velocity, sleep, mass and
+ * mask; the contacts, time and pending edits. */
 static uint64_t world_hash(uint64_t h, pp_world w)
 {
     if (w.id == 0)
@@ -430,7 +433,8 @@ static uint64_t world_hash(uint64_t h, pp_world w)
         PP_OK_OR_FAIL(pp_body_get_size(w, bodies[i], &bw, &bh));
         uint8_t *mask = malloc((size_t)bw * bh);
         PP_OK_OR_FAIL(pp_body_read_mask(w, bodies[i], mask, (int64_t)bw * bh));
-        h = fnv(h, &bodies[i], sizeof bodies[i]);
+        const uint64_t saved = handle_saved(bodies[i].id);
+        h = fnv(h, &saved, sizeof saved);
         h = fnv(h, &p, sizeof p), h = fnv(h, &a, sizeof a), h = fnv(h, &v, sizeof v), h = fnv(h, &omega, sizeof omega);
         h = fnv(h, mass, sizeof mass), h = fnv(h, &com, sizeof com), h = fnv(h, &awake, sizeof awake), h = fnv(h, mask, (size_t)bw * bh);
         free(mask);
@@ -438,6 +442,8 @@ static uint64_t world_hash(uint64_t h, pp_world w)
     pp_contact contacts[64];
     int32_t nc = 0, ne = 0;
     PP_OK_OR_FAIL(pp_world_get_contacts(w, contacts, 64, &nc));
+    for (int32_t i = 0; i < nc && i < 64; i++)
+        contacts[i].a.id = handle_saved(contacts[i].a.id), contacts[i].b.id = handle_saved(contacts[i].b.id);
     h = fnv(h, &nc, sizeof nc);
     h = fnv(h, contacts, (size_t)(nc < 64 ? nc : 64) * sizeof *contacts);
     PP_OK_OR_FAIL(pp_world_get_scheduled_edits(w, NULL, 0, &ne));

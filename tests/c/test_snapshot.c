@@ -3,6 +3,8 @@
  * folder appears whole or not at all, and broken snapshots are refused with their reason. */
 #include "helpers.h"
 
+#include "handle.h" /* handle_saved: a handle without its world, which a loaded world keeps */
+
 #include <dirent.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -19,7 +21,8 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Every live body's handle, pose, velocity and sleep state, in slot order. */
+/* Every live body's slot and generation (its handle but for the world), pose, velocity and sleep state, in slot
+ * order. */
 static uint64_t world_hash(pp_world w, uint64_t h)
 {
     pp_body bodies[64];
@@ -35,7 +38,8 @@ static uint64_t world_hash(pp_world w, uint64_t h)
         PP_OK_OR_FAIL(pp_body_get_angle(w, bodies[i], &a));
         PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &v, &av));
         PP_OK_OR_FAIL(pp_body_is_awake(w, bodies[i], &awake));
-        h = fnv(h, &bodies[i].id, sizeof bodies[i].id);
+        const uint64_t saved = handle_saved(bodies[i].id);
+        h = fnv(h, &saved, sizeof saved);
         h = fnv(h, &p, sizeof p), h = fnv(h, &a, sizeof a), h = fnv(h, &v, sizeof v), h = fnv(h, &av, sizeof av);
         h = fnv(h, &awake, sizeof awake);
     }
@@ -141,6 +145,11 @@ Test(snapshot, a_loaded_world_continues_bit_for_bit, .timeout = 120)
     pp_world back;
     PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
     cr_assert_eq(world_hash(back, 0), world_hash(w, 0), "the loaded state differs before stepping");
+    /* The loaded bodies are in the same slots, but their handles name the loaded world. */
+    pp_body loaded[64];
+    int32_t nl = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(back, loaded, 64, &nl));
+    cr_assert_eq(nl, nb);
     const uint64_t h_orig = run_hashed(w, 180), h_back = run_hashed(back, 180);
     cr_log_info("snapshot: %d bodies (%d asleep) at save; continuation hash %016llx", (int)nb, (int)asleep,
                 (unsigned long long)h_orig);
@@ -154,8 +163,9 @@ Test(snapshot, a_loaded_world_continues_bit_for_bit, .timeout = 120)
     for (int32_t i = 0; i < ne && i < 16; i++)
         splits += ev[i].type == PP_EVENT_BODY_SPLIT;
     cr_assert_gt(splits, 1, "the split at build time and the later blast should both show");
+    EXPECT_ERR(pp_body_get_user_data(back, bodies[1], &(uint64_t){0}), PP_ERR_INVALID_HANDLE, "belongs to world");
     uint64_t user;
-    PP_OK_OR_FAIL(pp_body_get_user_data(back, bodies[1], &user));
+    PP_OK_OR_FAIL(pp_body_get_user_data(back, loaded[1], &user));
     cr_assert_eq(user, 0xfeedface00000000ull);
     pp_world_destroy(w);
     pp_world_destroy(back);

@@ -1,7 +1,7 @@
-# libFuzzer targets (tests/fuzz/): the library built with clang, ASan and UBSan, and one binary per target.
-# `make fuzz` fuzzes every target for FUZZ_SECONDS on a working copy of its corpus (`make -j2 fuzz` runs two at
-# a time); `make test-fuzz` replays the committed corpus and regressions, then fuzzes each target briefly
-# with a fixed seed. Both fail on any crash, leak, timeout or sanitizer report. CPU backend only.
+# libFuzzer targets (tests/fuzz/): the library built with clang, ASan, UBSan and its PP_ASSERT checks, and one
+# binary per target. `make fuzz` fuzzes every target for FUZZ_SECONDS on a working copy of its corpus (`make -j2
+# fuzz` runs two at a time); `make test-fuzz` replays the committed corpus and regressions, then fuzzes each target
+# briefly with a fixed seed. Both fail on any crash, leak, timeout or sanitizer report. CPU backend only.
 FUZZ_CC           ?= clang
 FUZZ_SECONDS      ?= 600
 FUZZ_TEST_SECONDS ?= 15
@@ -11,7 +11,7 @@ FUZZ_TARGETS      := fuzz_png fuzz_scene fuzz_snapshot fuzz_api
 FUZZ_BINS         := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/%)
 FUZZ_OBJ          := $(LIB_SRC:lib/%.c=$(FUZZ_DIR)/obj/%.o) $(FUZZ_DIR)/obj/glsl_sources.o
 FUZZ_SAN          := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-FUZZ_CFLAGS       := $(PP_CFLAGS) -O1 -g $(FUZZ_SAN)
+FUZZ_CFLAGS       := $(PP_CFLAGS) -O1 -g $(FUZZ_SAN) -DPP_CHECKS
 FUZZ_HDR          := tests/fuzz/fuzz_common.h tests/fuzz/fuzz_archive.h include/physpix.h
 # Per target: the longest input, and the dictionary of the JSON targets. Every target: 10 s and 256 MB in one
 # malloc at most (no legitimate input of the harnesses comes near either).

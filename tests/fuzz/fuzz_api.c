@@ -138,16 +138,21 @@ static pp_world pick_world(reader *r, tracked_world **t)
     return (pp_world){(uint64_t)u32(r) << 32 | u32(r)};
 }
 
-/* A body handle of world t: mostly one it made (maybe destroyed), sometimes zero or random. *stale tells
- * whether the harness destroyed it. */
+/* A body handle of world t: mostly one it made (maybe destroyed), sometimes another world's (which t must
+ * refuse), zero or random. *stale tells whether t must refuse it. */
 static pp_body pick_body(reader *r, tracked_world *t, int *stale)
 {
     const uint8_t k = u8(r);
     *stale = 0;
-    if (t && t->nbodies && k < 220) {
+    if (t && t->nbodies && k < 210) {
         const int i = k % t->nbodies;
         *stale = !t->body_live[i];
         return t->bodies[i];
+    }
+    const tracked_world *o = &worlds[k % MAX_WORLDS]; /* live: its slot is not t's */
+    if (k < 220 && o != t && o->live && o->nbodies) {
+        *stale = 1;
+        return o->bodies[k % o->nbodies];
     }
     if (k < 240)
         return (pp_body){0};
@@ -481,6 +486,9 @@ static void op_step(reader *r)
     else if (injected && st == PP_ERR_OUT_OF_MEMORY) { /* the step was not taken */
         pp_world_get_time(w, &time_after);
         FUZZ_CHECK(time_after == time_before, "a step that ran out of memory moved the clock");
+    } else if (st == PP_ERR_LIMIT) { /* a body past a float: the step was not taken */
+        pp_world_get_time(w, &time_after);
+        FUZZ_CHECK(time_after == time_before, "a step refused at the limits moved the clock");
     } else
         FUZZ_CHECK(st == PP_OK, "step: %d", (int)st);
     if (t && st == PP_OK) {

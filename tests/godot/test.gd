@@ -375,6 +375,13 @@ func _init():
 		"load_snapshot(\"\") refused: %s" % sw.get_last_error())
 	check(sw.save_snapshot(tmp) == null and sw.get_last_error().find("save_snapshot") >= 0,
 		"save_snapshot into a folder that is no snapshot refused: %s" % sw.get_last_error())
+	# Loaded again, the object's world takes the first world's slot back: ints of both earlier worlds stay stale.
+	check(sw.load_scene(tmp_user + "/scene.json") == true, "load_scene again: %s" % sw.get_last_error())
+	check(sw.get_position(old) == null and sw.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"an int from two worlds ago is stale: %s" % sw.get_last_error())
+	check(sw.get_position(scene_crate) == null and sw.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"an int from the last world is stale: %s" % sw.get_last_error())
+	check(body_of_mass(sw, 1024.0) != null, "the new world's crate answers")
 
 	# A snapshot after 30 steps, loaded into a second object, continues exactly as the original.
 	var orig = PhysPixWorld.new()

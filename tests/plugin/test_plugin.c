@@ -538,7 +538,9 @@ Test(methods, misuse_of_objects_and_levels_gets_a_status_and_a_message)
     uint64_t other_box, other_ground;
     const uint64_t other = make_scene(&other_box, &other_ground);
     ret = call(world, "collide", (pp_variant[]){V_OBJ(box), V_OBJ(other_ground)}, 2);
-    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "both bodies must belong to this world");
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "belongs to world");
+    ret = call(world, "debug_collision", (pp_variant[]){V_OBJ(other_box), V_OBJ(ground)}, 2);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "pp_world_debug_collision: body");
     plugin.api.object_destroy(other, &ret);
     ret = call(world, "get_contact_point", (pp_variant[]){V_INT(1000)}, 1);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "index 1000 is outside");

@@ -28,6 +28,15 @@ def test_destroyed_body_is_an_invalid_handle(world):
     assert world.bodies() == [keep]
 
 
+def test_a_body_of_another_world_is_an_invalid_handle(world):
+    with physpix.World() as other:
+        theirs, ours = rect(other, 8, 8), rect(world, 8, 8)
+        raises_from_library(physpix.InvalidHandleError, ["belongs to world"], world.collide, theirs, ours)
+        raises_from_library(physpix.InvalidHandleError, ["belongs to world"], world.schedule_paint, 1.0, theirs,
+                            (0, 0), 2)
+        assert world.scheduled_edits() == [] and theirs.position == (0.0, 0.0)
+
+
 def test_context_manager_destroys_the_world():
     with physpix.World() as w:
         b = rect(w, 8, 8)
