@@ -19,6 +19,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "handle.h" /* handle_saved: ids compared across worlds */
 #include "physpix.h"
 
 enum {
@@ -105,7 +106,8 @@ static uint64_t hash_world(run *t, pp_world w, uint64_t h)
         float a = 0;
         OK(pp_body_get_position(w, bodies[i], &p));
         OK(pp_body_get_angle(w, bodies[i], &a));
-        h = fnv1a(h, &bodies[i].id, sizeof bodies[i].id);
+        const uint64_t id = handle_saved(bodies[i].id); /* the same in every world: slot and generation */
+        h = fnv1a(h, &id, sizeof id);
         h = fnv1a(h, &p, sizeof p);
         h = fnv1a(h, &a, sizeof a);
     }
@@ -166,7 +168,9 @@ static uint64_t after_step(run *t, pp_world w, uint64_t h, int k)
     for (int32_t i = 0; i < n && i < 16; i++) {
         t->events++;
         t->splits += ev[i].type == PP_EVENT_BODY_SPLIT;
-        h = fnv1a(h, &ev[i], sizeof ev[i]);
+        pp_event e = ev[i]; /* its handles without the bits that name this world */
+        e.body.id = handle_saved(e.body.id), e.other.id = handle_saved(e.other.id);
+        h = fnv1a(h, &e, sizeof e);
     }
     pp_contact contacts[256];
     OK(pp_world_get_contacts(w, contacts, 256, &n));
