@@ -35,7 +35,7 @@ check-tsan: $(TSAN_BIN)
 
 # The demo's scene with the CPU backend named (AUTO could open EGL for a big batch), beside copies of its PNGs:
 # a scene reads files only from inside its own folder.
-$(DEEP_SCENE): demo/scene.json $(wildcard demo/*.png) | $(DEEP_OUT)
+$(DEEP_SCENE): demo/scene.json $(wildcard demo/*.png) tests/deep/deep.mk | $(DEEP_OUT)
 	cp demo/*.png $(DEEP_OUT)/
 	sed -e 's|"allow_sleep": true|"allow_sleep": true, "backend": "cpu"|' $< > $@
 	grep -q '"backend": "cpu"' $@
