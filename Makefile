@@ -225,6 +225,11 @@ $(BUILD)/bench/bench_tunnel: tests/bench/tunnel/main.c tests/bench/machine.h $(S
 	mkdir -p $(BUILD)/bench
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
+# Crowded spawns: n bodies created at one point against a settled pile of n (the contact budget).
+$(BUILD)/bench/bench_spawn: tests/bench/spawn/main.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+
 # What a scene pays for the features it does not use.
 $(BUILD)/bench/bench_features: tests/bench/features/main.c tests/bench/machine.h $(STATIC)
 	mkdir -p $(BUILD)/bench
@@ -256,7 +261,7 @@ $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/b
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
-	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load
+	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
@@ -267,6 +272,7 @@ bench: deps
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
 	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv
+	$(BUILD)/bench/bench_spawn --csv $(BUILD)/bench/spawn.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
 	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }

@@ -59,6 +59,13 @@ extern "C" {
 #define PP_MAX_CONTACTS_PER_PAIR 2
 /// Largest scene file (pp_world_load_scene) or snapshot world.json accepted, in bytes.
 #define PP_MAX_SCENE_BYTES (64 * 1024 * 1024)
+/// Contact pairs a crowded dynamic body keeps in a substep. A body touching more than this many bodies whose
+/// overlaps with it add up to over twice its solid pixels (bodies spawned into one spot, never a resting pile)
+/// gives the solver only its this-many deepest pairs with other crowded bodies (ties: the partner nearer in
+/// slot, then the lower), and collides only its twice-this-many largest box overlaps with them, so a step
+/// costs a bounded multiple of a settled pile's. Until the pile spreads, pairs past the first bound get no
+/// contact, and pairs past the second are not collided (no contact events).
+#define PP_CROWDED_CONTACT_PAIRS 8
 
 /* Motion limits, as Box2D's maximum speed: far above any game's needs (at the default 100 px/m, 10 km/s and
  * 100,000 g), low enough that no float overflows in a step. A value over one is refused where it comes in:
@@ -258,7 +265,8 @@ typedef struct pp_contact {
  *   queues CONTACT_BEGIN, a pair gone CONTACT_END. `body` is the pair's body in the lower slot, as in
  *   pp_contact. Pairs of sleeping bodies are not tested and not ended, so a pile that falls asleep keeps
  *   its pairs; destroying a body (or emptying it) ends its pairs at the next substep. Switched on, pairs
- *   already touching begin at the next substep; switched off, recorded pairs end without an event.
+ *   already touching begin at the next substep; switched off, recorded pairs end without an event. Among
+ *   crowded bodies (PP_CROWDED_CONTACT_PAIRS) only the pairs the budget collides are seen.
  * Sensors (pp_body_def.is_sensor): a pair with a sensor runs the narrowphase but makes no contact:
  *   SENSOR_BEGIN/END with the sensor as `body`, with or without contact_events. Continuous collision,
  *   rays and queries ignore sensors; two sensors do not sense each other; a body moves through a sensor

@@ -171,6 +171,7 @@ void np_pair_finish(const np_settings *set, const np_body *a, const np_body *b, 
         const dvec2 l = np_grid_to_local(p, pts[k].x, pts[k].y);
         const dvec2 w = dv_add(A->pos, dv_rot(dv_sub(l, A->pivot), A->c, A->s));
         pp_contact *c = &out->contacts[k];
+        *c = (pp_contact){0}; /* reserved is zero, as the header says, not what the caller's stack held */
         c->point = (pp_vec2){(float)w.x, (float)w.y};
         c->normal = (pp_vec2){(float)(sign * nw.x), (float)(sign * nw.y)};
         c->depth = (float)depth[k];

@@ -33,7 +33,7 @@ PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *
     if (np_pair_setup(&set, &va, &vb, &wd->pairs[0])) {
         pp_backend ran;
         int32_t threads;
-        if ((st = world_run_cores(wd, fn, 1, np_pair_cells(&wd->pairs[0]), &ran, &threads)))
+        if ((st = world_run_cores(wd, fn, 0, 1, np_pair_cells(&wd->pairs[0]), &ran, &threads)))
             return st;
         np_pair_finish(&set, &va, &vb, &wd->pairs[0], &wd->cores[0], &r);
     }

@@ -256,6 +256,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->undo.touching);
     pp_free(wd->touching);
     pp_free(wd->touch_next);
+    crowd_free(&wd->crowd);
     pp_free(wd);
     return PP_OK;
 }
@@ -343,15 +344,60 @@ static pp_backend choose_backend(world *wd, int64_t cells)
     return wd->gpu && !gpu_narrow_is_software(wd->gpu) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
 }
 
-pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran, int32_t *threads)
+pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
+                          int32_t *threads)
 {
     const np_settings set = world_np_settings(wd);
     *ran = choose_backend(wd, cells);
     *threads = 0;
     if (*ran == PP_BACKEND_GPU)
-        return gpu_narrow_run(wd->gpu, fn, &set, wd->pairs, n, &wd->scratch, wd->cores);
+        return gpu_narrow_run(wd->gpu, fn, &set, wd->pairs + first, n, &wd->scratch, wd->cores + first);
     const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
-    return workers_run(&wd->workers, wanted, &set, wd->pairs, n, &wd->scratch, wd->cores, threads);
+    return workers_run(&wd->workers, wanted, &set, wd->pairs + first, n, &wd->scratch, wd->cores + first, threads);
+}
+
+/* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells. */
+static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
+{
+    const np_settings set = world_np_settings(wd);
+    for (int32_t p = 0; p < wd->broad.pair_count; p++) {
+        if (!crowd_wants(wd, p, pass))
+            continue;
+        pp_status st = pass ? world_reserve_pairs(wd, "pp_world_step", *n + 1) : PP_OK;
+        if (st)
+            return st;
+        const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
+        const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
+        PP_ASSERT(*n < wd->pair_capacity);
+        if (!np_pair_setup(&set, &va, &vb, &wd->pairs[*n]))
+            continue;
+        *cells += np_pair_cells(&wd->pairs[*n]);
+        wd->pair_bodies[2 * *n] = ia, wd->pair_bodies[2 * *n + 1] = ib;
+        ++*n;
+        if (pass)
+            crowd_set_up(wd, p);
+    }
+    return PP_OK;
+}
+
+/* Set up and run the cores of the substep's pairs: one batch, or crowd.c's two passes, the second after
+ * the first has proved which bodies are crowded. *n pairs set up, the first pass's *first of them. */
+static pp_status collide_pairs(world *wd, int32_t *n, int32_t *first, int64_t *cells)
+{
+    const int first_pass = wd->crowd.split ? 1 : 0, last_pass = wd->crowd.split ? 2 : 0;
+    for (int pass = first_pass; pass <= last_pass; pass++) {
+        const int32_t from = *n;
+        const int64_t cells_from = *cells;
+        pp_status st = set_up_pairs(wd, pass, n, cells);
+        if (!st && (pass == 0 || *n > from)) /* an empty second pass leaves the first one's stats */
+            st = world_run_cores(wd, "pp_world_step", from, *n - from, *cells - cells_from, &wd->stats.backend,
+                                 &wd->stats.threads);
+        if (st)
+            return st;
+        if (pass == 1)
+            crowd_prove(wd, *first = *n);
+    }
+    return PP_OK;
 }
 
 /* Broadphase and narrowphase at the current poses; fills wd->contacts. */
@@ -380,30 +426,23 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
         st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
     else
         wd->broad.pair_count = 0;
-    if (st || (st = world_reserve_pairs(wd, fn, wd->broad.pair_count)))
+    if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
         return st;
     const double t1 = now_ms();
 
-    /* Set every pair up, run the cores as one batch, then turn them into contacts. */
+    /* Set every pair up and run the cores as one batch (or, with crowded bodies, in crowd.c's two
+     * passes), then turn them into contacts in the broadphase's order. */
     const np_settings set = world_np_settings(wd);
-    int32_t n = 0;
+    int32_t n = 0, first = 0;
     int64_t cells = 0;
-    for (int32_t p = 0; p < wd->broad.pair_count; p++) {
-        const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
-        const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
-        PP_ASSERT(n < wd->pair_capacity);
-        if (!np_pair_setup(&set, &va, &vb, &wd->pairs[n]))
-            continue;
-        cells += np_pair_cells(&wd->pairs[n]);
-        wd->pair_bodies[2 * n] = ia, wd->pair_bodies[2 * n + 1] = ib;
-        n++;
-    }
-    if ((st = world_run_cores(wd, fn, n, cells, &wd->stats.backend, &wd->stats.threads)))
+    const int32_t *order = NULL;
+    if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
         return st;
     wd->contact_count = 0;
     const bool track = touch_needed(wd, special);
     touch_begin(wd);
-    for (int32_t k = 0; k < n; k++) {
+    for (int32_t i = 0; i < n; i++) {
+        const int32_t k = order ? order[i] : i;
         const body *a = wd->bodies[wd->pair_bodies[2 * k]], *b = wd->bodies[wd->pair_bodies[2 * k + 1]];
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
@@ -418,7 +457,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                 return st;
         }
     }
-    if (track && (st = touch_end(wd)))
+    if ((track && (st = touch_end(wd))) || (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;

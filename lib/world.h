@@ -4,6 +4,7 @@
 
 #include "broadphase.h"
 #include "check.h"
+#include "crowd.h"
 #include "handle.h"
 #include "massprops.h"
 #include "math2d.h"
@@ -125,6 +126,7 @@ typedef struct world {
     touch *touch_next;       /* the substep's list being built */
     int32_t touch_next_count, touch_next_capacity;
     step_undo undo;
+    crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
 } world;
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
@@ -170,9 +172,10 @@ timed_edit *world_edits_in_order(const world *wd);
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
 
-/* The integer cores of wd->pairs[0, n) (`cells` samples in all) on the backend the world asked
+/* The integer cores of wd->pairs[first, first + n) (`cells` samples in all) on the backend the world asked
  * for; says which one ran and on how many threads (0 on the GPU). */
-pp_status world_run_cores(world *wd, const char *fn, int32_t n, int64_t cells, pp_backend *ran, int32_t *threads);
+pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
+                          int32_t *threads);
 
 /* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);

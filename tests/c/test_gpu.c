@@ -183,6 +183,43 @@ Test(gpu, a_600_step_scene_hashes_the_same_on_both_backends, .timeout = 120) {
                  (unsigned long long)hg);
 }
 
+/* 150 boxes spawned into one spot: the contact budget's choices (crowd.c) come from contacts and slots, so
+ * both backends keep the same pairs; poses over 15 steps, hashed. */
+static uint64_t crowd_hash(pp_backend backend, int *gpu_steps) {
+    pp_world_def d = pp_world_def_default();
+    d.backend = backend;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 1000, 1010, 0), 8000, 20);
+    pp_body b[150];
+    for (int i = 0; i < 150; i++)
+        b[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 1000.0f + (i % 5) * 0.5f, 900.0f, 0.1f * (i % 7)), 8, 8);
+    uint64_t h = 1469598103934665603ull;
+    *gpu_steps = 0;
+    for (int s = 0; s < 15; s++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        pp_step_stats st;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+        *gpu_steps += st.backend == PP_BACKEND_GPU;
+        for (int i = 0; i < 150; i++) {
+            pp_vec2 p = body_pos(w, b[i]);
+            const unsigned char *bytes = (const unsigned char *)&p;
+            for (size_t j = 0; j < sizeof p; j++) h = (h ^ bytes[j]) * 1099511628211ull;
+        }
+    }
+    pp_world_destroy(w);
+    return h;
+}
+
+Test(gpu, a_crowded_spawn_keeps_the_same_contacts_on_both_backends, .timeout = 120) {
+    SKIP_WITHOUT_GPU();
+    int cpu_gpu_steps, gpu_steps;
+    const uint64_t hc = crowd_hash(PP_BACKEND_CPU, &cpu_gpu_steps), hg = crowd_hash(PP_BACKEND_GPU, &gpu_steps);
+    cr_assert_eq(cpu_gpu_steps, 0, "a CPU world reported the GPU backend");
+    cr_assert_eq(gpu_steps, 15, "%d of 15 steps ran on the GPU", gpu_steps);
+    cr_assert_eq(hc, hg, "the backends diverge on a crowded spawn: CPU %016llx, GPU %016llx", (unsigned long long)hc,
+                 (unsigned long long)hg);
+}
+
 /* Without a usable EGL the GPU world is refused with the reason; CPU and AUTO worlds still work. */
 Test(gpu, without_egl_gpu_is_unsupported_and_auto_runs_on_the_cpu) {
     setenv("PHYSPIX_LIBEGL", "/nonexistent/libEGL.so.1", 1);

@@ -41,11 +41,12 @@ static void failing_free(void *ptr, void *user) { free(ptr); }
 
 /* ---- the script: a scene's set-up and first steps, one API call an op -------------------------- */
 
-enum { MAX_BODIES = 16 };
+enum { MAX_BODIES = 32, CROWD = 20 };
 
 typedef struct script {
     pp_world w, loaded;            /* the scene, and its snapshot loaded back */
-    pp_body terrain, block, giant, disc, shelf, bar, crates[4], extra;
+    pp_body terrain, block, giant, disc, shelf, bar, crates[4], extra, crowd[CROWD];
+    int crowd_count;
     uint8_t *terrain_mask, *terrain_weights, *crate_rgba, *block_mask, *giant_mask, *disc_mask, *shelf_mask, *bar_mask;
     char dir[64], snapshot[96], scene[96], png[96];
 } script;
@@ -94,6 +95,17 @@ static pp_status op_low_crate(script *s)
     pp_body_def d = crate_def(s, 0);
     d.position = v2(128, 26);
     return pp_body_create(s->w, &d, &s->extra);
+}
+
+/* One more 8 px box at the crowd's one spot: together they are crowded (the contact budget, crowd.c). */
+static pp_status op_crowd(script *s)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 128, 10, 0);
+    d.width = d.height = 8;
+    d.mask = s->block_mask; /* all solid: its first 64 bytes make the 8 × 8 box */
+    const pp_status st = pp_body_create(s->w, &d, &s->crowd[s->crowd_count]);
+    s->crowd_count += st == PP_OK;
+    return st;
 }
 
 static pp_status op_disc(script *s)
@@ -385,6 +397,13 @@ static const op gameplay_ops[] = {
     OP(op_step), OP(op_step), OP(op_check_gameplay), OP(op_save_snapshot),
 };
 
+/* Twenty boxes created at one spot: the two-pass narrowphase and the contact budget of crowded bodies. */
+#define OP_CROWD4 OP(op_crowd), OP(op_crowd), OP(op_crowd), OP(op_crowd)
+static const op crowd_ops[] = {
+    OP(op_create_world), OP(op_terrain), OP_CROWD4, OP_CROWD4, OP_CROWD4, OP_CROWD4, OP_CROWD4,
+    OP(op_step), OP(op_step), OP(op_step), OP(op_step), OP(op_save_snapshot),
+};
+
 typedef struct script_ops {
     const op *ops;
     int count;
@@ -630,6 +649,13 @@ Test(out_of_memory, every_allocation_of_contact_events_sensors_and_one_way_platf
 {
     static const char *const must_fail[] = {"op_step", "op_load_snapshot"};
     const script_ops so = {gameplay_ops, (int)(sizeof gameplay_ops / sizeof *gameplay_ops), false};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
+}
+
+Test(out_of_memory, every_allocation_of_a_crowded_spawn_can_fail_and_changes_nothing, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_crowd", "op_step"};
+    const script_ops so = {crowd_ops, (int)(sizeof crowd_ops / sizeof *crowd_ops), false};
     fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
 }
 
