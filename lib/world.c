@@ -350,10 +350,13 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     const np_settings set = world_np_settings(wd);
     *ran = choose_backend(wd, cells);
     *threads = 0;
+    /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
+    np_pair *pairs = first ? wd->pairs + first : wd->pairs;
+    np_core *cores = first ? wd->cores + first : wd->cores;
     if (*ran == PP_BACKEND_GPU)
-        return gpu_narrow_run(wd->gpu, fn, &set, wd->pairs + first, n, &wd->scratch, wd->cores + first);
+        return gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
     const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
-    return workers_run(&wd->workers, wanted, &set, wd->pairs + first, n, &wd->scratch, wd->cores + first, threads);
+    return workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
 }
 
 /* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells. */
