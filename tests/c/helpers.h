@@ -214,6 +214,16 @@ static inline double quantile(double *v, int n, double q) {
     return v[k];
 }
 
+/* How many entries a folder holds, "." and ".." aside; -1 if it cannot be opened. */
+static inline int count_entries(const char *dir) {
+    DIR *d = opendir(dir);
+    if (!d) return -1;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+    closedir(d);
+    return n;
+}
+
 /* Remove a folder a test wrote, with everything in it. */
 static inline void remove_tree(const char *dir) {
     DIR *d = opendir(dir);

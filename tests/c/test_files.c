@@ -52,18 +52,6 @@ static void write_png(const char *path, int w, int h)
     PP_OK_OR_FAIL(pp_image_save(path, px, w, h));
 }
 
-static int entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));)
-        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
-    closedir(d);
-    return n;
-}
-
 /* A small world worth saving: a ground, two boxes, one weighted. */
 static pp_world small_world(void)
 {
@@ -101,7 +89,7 @@ static void decoy_make(const char *dir)
 /* Asserts the decoy holds exactly its files with their texts. */
 static void decoy_check(const char *dir, const char *when)
 {
-    cr_assert_eq(entries(dir), DECOY_FILES, "%s: the decoy holds %d entries, not %d", when, entries(dir), DECOY_FILES);
+    cr_assert_eq(count_entries(dir), DECOY_FILES, "%s: the decoy holds %d entries, not %d", when, count_entries(dir), DECOY_FILES);
     char path[600], want[64], got[64];
     for (int i = 0; i < DECOY_FILES; i++) {
         if (i == 0)
@@ -212,8 +200,8 @@ Test(files, a_replaced_snapshot_holding_a_subfolder_or_a_link_is_removed_whole)
     cr_assert_eq(symlink(at("decoy/world.json"), path), 0);
     PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
-    cr_assert_eq(entries(at("snaps")), 1, "the replaced snapshot left %d entries beside the new one",
-                 entries(at("snaps")) - 1);
+    cr_assert_eq(count_entries(at("snaps")), 1, "the replaced snapshot left %d entries beside the new one",
+                 count_entries(at("snaps")) - 1);
     snprintf(path, sizeof path, "%s/extra", snap);
     cr_assert_neq(access(path, F_OK), 0, "the new snapshot holds the old one's subfolder");
     decoy_check(decoy, "after replacing a snapshot that linked to it");
@@ -235,7 +223,7 @@ Test(files, a_link_at_the_target_is_not_followed)
     decoy_check(decoy, "after a save at a link to it");
     struct stat sb;
     cr_assert(lstat(at("slot"), &sb) == 0 && S_ISLNK(sb.st_mode), "the link is gone");
-    cr_assert_eq(entries(root), 2, "a refused save left its temporary folder");
+    cr_assert_eq(count_entries(root), 2, "a refused save left its temporary folder");
     pp_world_destroy(w);
     root_close();
 }

@@ -206,18 +206,6 @@ Test(limits, a_step_that_would_leave_a_number_past_a_float_is_undone)
     PP_OK_OR_FAIL(pp_world_destroy(w));
 }
 
-static int entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));)
-        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
-    closedir(d);
-    return n;
-}
-
 static char *read_text(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -259,7 +247,7 @@ Test(limits, a_snapshot_refuses_a_number_it_cannot_hold_and_keeps_the_older_one)
 
     char *now = read_text(json);
     cr_assert_str_eq(now, old, "a refused save changed the older snapshot");
-    cr_assert_eq(entries(dir), 1, "a refused save left something beside the snapshot");
+    cr_assert_eq(count_entries(dir), 1, "a refused save left something beside the snapshot");
     pp_world back;
     PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
     PP_OK_OR_FAIL(pp_world_destroy(back));

@@ -109,18 +109,6 @@ static void temp_dir(char *path)
     cr_assert_not_null(mkdtemp(path));
 }
 
-static int entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));)
-        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
-    closedir(d);
-    return n;
-}
-
 Test(snapshot, a_loaded_world_continues_bit_for_bit, .timeout = 120)
 {
     char dir[64], snap[96];
@@ -140,7 +128,7 @@ Test(snapshot, a_loaded_world_continues_bit_for_bit, .timeout = 120)
         asleep += type == PP_BODY_DYNAMIC && !awake;
     }
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
-    cr_assert_eq(entries(dir), 1, "only the snapshot folder is left beside it, no temporary");
+    cr_assert_eq(count_entries(dir), 1, "only the snapshot folder is left beside it, no temporary");
 
     pp_world back;
     PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
@@ -182,7 +170,7 @@ Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
     run_hashed(w, 30);
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap)); /* over the first */
-    cr_assert_eq(entries(dir), 1, "the old snapshot and the temporary are gone");
+    cr_assert_eq(count_entries(dir), 1, "the old snapshot and the temporary are gone");
     pp_world back;
     PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
     double t = 0;
@@ -196,8 +184,8 @@ Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
     fputs("precious", f);
     fclose(f);
     EXPECT_ERR(pp_world_save_snapshot(w, other), PP_ERR_IO, "not a snapshot");
-    cr_assert_eq(entries(other), 1, "the folder that is not a snapshot was touched");
-    cr_assert_eq(entries(dir), 2, "a refused save left its temporary behind");
+    cr_assert_eq(count_entries(other), 1, "the folder that is not a snapshot was touched");
+    cr_assert_eq(count_entries(dir), 2, "a refused save left its temporary behind");
     EXPECT_ERR(pp_world_save_snapshot(w, "/nonexistent-dir/snap"), PP_ERR_IO, "cannot create");
     EXPECT_ERR(pp_world_save_snapshot(w, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
     pp_world_destroy(w);
@@ -255,7 +243,7 @@ Test(snapshot, a_save_that_fails_part_way_keeps_the_previous_snapshot)
     step_n(w, DT, 30);
     PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
     const uint64_t saved = world_hash(w, 0);
-    const int files = entries(snap);
+    const int files = count_entries(snap);
     /* A noisy weight plane makes a body whose PNG cannot fit under the limit. */
     uint8_t *mask = rect_mask(256, 256), *weights = malloc(256 * 256);
     uint32_t x = 2463534242u; /* xorshift: noise that deflate cannot shrink */
@@ -272,8 +260,8 @@ Test(snapshot, a_save_that_fails_part_way_keeps_the_previous_snapshot)
     limit_file_size(16 * 1024);
     EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_IO, "cannot write|File too large");
     limit_file_size(RLIM_INFINITY);
-    cr_assert_eq(entries(snap), files, "the old snapshot lost or gained files");
-    cr_assert_eq(entries(dir), 1, "the failed save left %d entries beside the snapshot", entries(dir) - 1);
+    cr_assert_eq(count_entries(snap), files, "the old snapshot lost or gained files");
+    cr_assert_eq(count_entries(dir), 1, "the failed save left %d entries beside the snapshot", count_entries(dir) - 1);
     pp_world back = {0};
     PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &back));
     cr_assert_eq(world_hash(back, 0), saved, "the snapshot no longer loads to the state it was saved in");
@@ -304,7 +292,7 @@ Test(snapshot, an_image_save_that_fails_keeps_the_old_file)
     int32_t w = 0, h = 0;
     PP_OK_OR_FAIL(pp_image_load(path, back, (int64_t)sizeof back, &w, &h));
     cr_assert(w == 4 && h == 4 && memcmp(back, small, sizeof small) == 0, "the old image changed");
-    cr_assert_eq(entries(dir), 1, "the failed save left its temporary file");
+    cr_assert_eq(count_entries(dir), 1, "the failed save left its temporary file");
     free(noise);
     remove_tree(dir);
 }
