@@ -77,10 +77,16 @@ int files_open_beneath(int dir_fd, const char *name)
     }
 #ifdef SYS_openat2
     struct open_how how = {.flags = READ_FLAGS, .resolve = RESOLVE_BENEATH | RESOLVE_NO_MAGICLINKS};
-    const long fd = syscall(SYS_openat2, dir_fd, name, &how, sizeof how);
-    /* ENOSYS before Linux 5.6; EPERM from a seccomp filter that does not know the call. */
-    if (fd >= 0 || (errno != ENOSYS && errno != EPERM))
-        return keep_regular((int)fd);
+    /* EAGAIN: a rename anywhere on the system raced a ".." step, and the kernel asks for a retry; after a few,
+     * the walk (which needs no such guard) decides. */
+    for (int attempt = 0; attempt < 8; attempt++) {
+        const long fd = syscall(SYS_openat2, dir_fd, name, &how, sizeof how);
+        /* ENOSYS before Linux 5.6; EPERM from a seccomp filter that does not know the call. */
+        if (fd >= 0 || (errno != ENOSYS && errno != EPERM && errno != EAGAIN))
+            return keep_regular((int)fd);
+        if (errno != EAGAIN)
+            break;
+    }
 #endif
     return files_open_beneath_walk(dir_fd, name);
 }
