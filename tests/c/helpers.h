@@ -214,6 +214,14 @@ static inline double quantile(double *v, int n, double q) {
     return v[k];
 }
 
+/* FNV-1a's start value, and n bytes hashed onto h: the tests' hash of poses, states and contacts. */
+#define FNV_START 1469598103934665603ull
+static inline uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
 /* How many entries a folder holds, "." and ".." aside; -1 if it cannot be opened. */
 static inline int count_entries(const char *dir) {
     DIR *d = opendir(dir);

@@ -94,16 +94,6 @@ Test(crowd, a_1000_body_spawn_at_one_point_steps_in_bounded_time_and_separates, 
     pp_world_destroy(w);
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
 /* A crowded spawn's poses after 20 steps, hashed. */
 static uint64_t crowd_hash(int worker_threads, int jittered)
 {
@@ -112,7 +102,7 @@ static uint64_t crowd_hash(int worker_threads, int jittered)
     d.worker_threads = worker_threads;
     pp_world w = floor_world(&d);
     pp_body *b = spawn(w, N, jittered);
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     for (int k = 0; k < STEPS; k++) {
         PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
         for (int i = 0; i < N; i++) {

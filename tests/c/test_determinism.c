@@ -15,15 +15,6 @@ typedef struct det_scene {
     int max_contacts;
 } det_scene;
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
 static void det_begin_def(det_scene *s, const pp_world_def *def) {
     s->w = make_world_def(def);
     add_rect(s->w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
@@ -34,7 +25,7 @@ static void det_begin_def(det_scene *s, const pp_world_def *def) {
         d.angular_velocity = 0.3f * ((i % 2) ? 1 : -1);
         s->boxes[i] = add_rect(s->w, d, size, size);
     }
-    s->hash = 1469598103934665603ull;
+    s->hash = FNV_START;
     s->max_contacts = 0;
 }
 
@@ -125,7 +116,7 @@ static uint64_t threaded_run(int32_t worker_threads, int32_t *max_threads) {
     pp_body crates[CRATES];
     for (int i = 0; i < CRATES; i++)
         crates[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 60.0f + 80.0f * i, 520.0f - 20.0f * (i % 3), 0.1f * (i % 4)), 60, 60);
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     *max_threads = 0;
     for (int k = 0; k < 120; k++) {
         PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));

@@ -145,7 +145,7 @@ static uint64_t pile_hash(pp_backend backend, int *pair_steps, int *gpu_steps) {
         pp_body_def bd = body_def(PP_BODY_DYNAMIC, 200.0f + 37.0f * (i % 7), 300.0f - 50.0f * (i / 7), 0.2f * i);
         bodies[i] = (i % 4 == 3) ? add_disc(w, bd, 12 + i) : add_rect(w, bd, 16 + 3 * i, 20 + (i % 3) * 9);
     }
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     *pair_steps = *gpu_steps = 0;
     for (int s = 0; s < 600; s++) {
         PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
@@ -156,10 +156,7 @@ static uint64_t pile_hash(pp_backend backend, int *pair_steps, int *gpu_steps) {
         for (int i = 0; i < 14; i++) {
             pp_vec2 p = body_pos(w, bodies[i]);
             float a = body_angle(w, bodies[i]);
-            const unsigned char *bytes[2] = {(const unsigned char *)&p, (const unsigned char *)&a};
-            const size_t sizes[2] = {sizeof p, sizeof a};
-            for (int k = 0; k < 2; k++)
-                for (size_t j = 0; j < sizes[k]; j++) h = (h ^ bytes[k][j]) * 1099511628211ull;
+            h = fnv1a(fnv1a(h, &p, sizeof p), &a, sizeof a);
         }
     }
     /* Non-vacuous: the pile fell onto the ground. */
@@ -193,7 +190,7 @@ static uint64_t crowd_hash(pp_backend backend, int *gpu_steps) {
     pp_body b[150];
     for (int i = 0; i < 150; i++)
         b[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 1000.0f + (i % 5) * 0.5f, 900.0f, 0.1f * (i % 7)), 8, 8);
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     *gpu_steps = 0;
     for (int s = 0; s < 15; s++) {
         PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
@@ -201,9 +198,8 @@ static uint64_t crowd_hash(pp_backend backend, int *gpu_steps) {
         PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
         *gpu_steps += st.backend == PP_BACKEND_GPU;
         for (int i = 0; i < 150; i++) {
-            pp_vec2 p = body_pos(w, b[i]);
-            const unsigned char *bytes = (const unsigned char *)&p;
-            for (size_t j = 0; j < sizeof p; j++) h = (h ^ bytes[j]) * 1099511628211ull;
+            const pp_vec2 p = body_pos(w, b[i]);
+            h = fnv1a(h, &p, sizeof p);
         }
     }
     pp_world_destroy(w);

@@ -21,15 +21,14 @@ static pp_world box_world(pp_body *box, pp_body *ground)
 /* Everything a call could change in a world: poses, velocities, masses, pixels, edits, events. */
 static uint64_t state_hash(pp_world w)
 {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     pp_body bodies[8];
     int32_t n = 0, edits = 0, events = 0;
     PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 8, &n));
     PP_OK_OR_FAIL(pp_world_get_scheduled_edits(w, NULL, 0, &edits));
     PP_OK_OR_FAIL(pp_world_get_events(w, NULL, 0, &events));
     const int32_t counts[3] = {n, edits, events};
-    for (size_t k = 0; k < sizeof counts; k++)
-        h = (h ^ ((const uint8_t *)counts)[k]) * 1099511628211ull;
+    h = fnv1a(h, counts, sizeof counts);
     for (int32_t i = 0; i < n && i < 8; i++) {
         struct {
             pp_vec2 p, v;
@@ -47,8 +46,7 @@ static uint64_t state_hash(pp_world w)
         for (int32_t k = 0; k < bw * bh; k++)
             s.mask[k % 4] ^= (uint8_t)(mask[k] + k);
         free(mask);
-        for (size_t k = 0; k < sizeof s; k++)
-            h = (h ^ ((const uint8_t *)&s)[k]) * 1099511628211ull;
+        h = fnv1a(h, &s, sizeof s);
     }
     return h;
 }

@@ -130,7 +130,7 @@ static body *inside(pp_world w, pp_body b)
 /* Everything a step changes, seen from outside: time, poses, velocities, contacts, events. */
 static uint64_t outside_hash(pp_world w)
 {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     double t = 0;
     PP_OK_OR_FAIL(pp_world_get_time(w, &t));
     pp_body bodies[8];
@@ -141,13 +141,8 @@ static uint64_t outside_hash(pp_world w)
     PP_OK_OR_FAIL(pp_world_get_events(w, NULL, 0, &ne));
     cr_assert(nb <= 8 && nc <= 16);
     const int32_t counts[3] = {nb, nc, ne};
-    for (size_t k = 0; k < sizeof t; k++)
-        h = (h ^ ((const uint8_t *)&t)[k]) * 1099511628211ull;
-    for (size_t k = 0; k < sizeof counts; k++)
-        h = (h ^ ((const uint8_t *)counts)[k]) * 1099511628211ull;
-    for (int32_t i = 0; i < nc; i++)
-        for (size_t k = 0; k < sizeof contacts[i]; k++)
-            h = (h ^ ((const uint8_t *)&contacts[i])[k]) * 1099511628211ull;
+    h = fnv1a(fnv1a(h, &t, sizeof t), counts, sizeof counts);
+    h = fnv1a(h, contacts, (size_t)nc * sizeof contacts[0]);
     for (int32_t i = 0; i < nb; i++) {
         struct {
             pp_vec2 p, v;
@@ -156,8 +151,7 @@ static uint64_t outside_hash(pp_world w)
         PP_OK_OR_FAIL(pp_body_get_position(w, bodies[i], &s.p));
         PP_OK_OR_FAIL(pp_body_get_angle(w, bodies[i], &s.a));
         PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &s.v, &s.av));
-        for (size_t k = 0; k < sizeof s; k++)
-            h = (h ^ ((const uint8_t *)&s)[k]) * 1099511628211ull;
+        h = fnv1a(h, &s, sizeof s);
     }
     return h;
 }

@@ -13,14 +13,6 @@ PP_TEST_SUITE(snapshot);
 
 #define DT (1.0f / 60.0f)
 
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
 /* Every live body's slot and generation (its handle but for the world), pose, velocity and sleep state, in slot
  * order. */
 static uint64_t world_hash(pp_world w, uint64_t h)
@@ -29,7 +21,7 @@ static uint64_t world_hash(pp_world w, uint64_t h)
     int32_t n = 0;
     PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 64, &n));
     cr_assert_leq(n, 64);
-    h = fnv(h, &n, sizeof n);
+    h = fnv1a(h, &n, sizeof n);
     for (int32_t i = 0; i < n; i++) {
         pp_vec2 p, v;
         float a, av;
@@ -39,9 +31,9 @@ static uint64_t world_hash(pp_world w, uint64_t h)
         PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &v, &av));
         PP_OK_OR_FAIL(pp_body_is_awake(w, bodies[i], &awake));
         const uint64_t saved = handle_saved(bodies[i].id);
-        h = fnv(h, &saved, sizeof saved);
-        h = fnv(h, &p, sizeof p), h = fnv(h, &a, sizeof a), h = fnv(h, &v, sizeof v), h = fnv(h, &av, sizeof av);
-        h = fnv(h, &awake, sizeof awake);
+        h = fnv1a(h, &saved, sizeof saved);
+        h = fnv1a(h, &p, sizeof p), h = fnv1a(h, &a, sizeof a), h = fnv1a(h, &v, sizeof v), h = fnv1a(h, &av, sizeof av);
+        h = fnv1a(h, &awake, sizeof awake);
     }
     return h;
 }
@@ -49,7 +41,7 @@ static uint64_t world_hash(pp_world w, uint64_t h)
 /* Step n times, hashing the world after each step. */
 static uint64_t run_hashed(pp_world w, int n)
 {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = FNV_START;
     for (int i = 0; i < n; i++) {
         PP_OK_OR_FAIL(pp_world_step(w, DT));
         h = world_hash(w, h);
