@@ -19,6 +19,8 @@ VERSION := $(SOMAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 # git clones the repository for the fresh-clone test; python3-venv gives Debian's python3 its venv module.
 DEPS := gcc g++ make pkg-config binutils git libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 \
         libgl1-mesa-dri libpng-dev libcjson-dev godot3-server python3 python3-venv clang libclang-rt-14-dev valgrind
+# Box2D 2.4 and Chipmunk 7 are the stability benchmark's peers only (tests/bench/stability); no library or test links them.
+DEPS += libbox2d-dev libchipmunk-dev
 # The interpreter the project's virtual environment (build/venv, see plugin/python/python.mk) is made from.
 PYTHON ?= python3
 
@@ -258,10 +260,23 @@ $(BUILD)/bench/bench_scale: $(SCALE_SRC) tests/bench/scale/scale.h tests/bench/b
 	mkdir -p $(BUILD)/bench
 	$(CC) $(PP_CFLAGS) -Itests/bench -O2 -g $(USER_CFLAGS) -o $@ $(SCALE_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
 
+# Stacks, rolling, bouncing, friction and wall shots on the presets against Box2D 2.4 and Chipmunk 7 (issue 22).
+# The Box2D peer is C++ (its own object); the rest is C11.
+STAB_SRC := $(wildcard tests/bench/stability/*.c) tests/bench/settings.c
+STAB_HDR := $(wildcard tests/bench/stability/*.h) tests/bench/bench.h tests/bench/machine.h
+$(BUILD)/bench/peer_box2d.o: tests/bench/stability/peer_box2d.cpp $(STAB_HDR) include/physpix.h
+	mkdir -p $(BUILD)/bench
+	$(CXX) -std=c++17 $(filter-out -Wstrict-prototypes,$(WARN)) -Iinclude -O2 -g $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+$(BUILD)/bench/bench_stability: $(STAB_SRC) $(STAB_HDR) $(BUILD)/bench/peer_box2d.o $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -Itests/bench -O2 -g $(USER_CFLAGS) -o $@ $(STAB_SRC) $(BUILD)/bench/peer_box2d.o $(STATIC) \
+	  $(LDFLAGS) -lbox2d -lchipmunk -lstdc++ $(LIBS)
+
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
-	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn
+	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
@@ -273,6 +288,7 @@ bench: deps
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
 	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv
 	$(BUILD)/bench/bench_spawn --csv $(BUILD)/bench/spawn.csv
+	$(BUILD)/bench/bench_stability --csv $(BUILD)/bench/stability.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
 	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
