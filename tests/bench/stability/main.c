@@ -89,11 +89,11 @@ static void print_header(const options *o, const stab_engine *engines, int n, do
     printf("peers: Box2D (b2_version %s; 8 velocity, 3 position iterations; polygon cores inside its 1 px skin),\n"
            "       Chipmunk %s (10 or 30 iterations, as named; no CCD)\n",
            stab_box2d_version(), stab_chipmunk_version());
-    printf("PhysPix rows (sleep off):");
+    printf("PhysPix rows (substeps x iterations, sleep off):");
     for (int i = 0; i < n; i++)
         if (strncmp(engines[i].name, "PhysPix", 7) == 0)
-            printf(" %s %d substeps x %d iterations%s%s;", engines[i].name + 8, engines[i].world_def.substeps,
-                   engines[i].world_def.solver_iterations, engines[i].world_def.exact_solver ? " (exact)" : "",
+            printf(" %s %dx%d%s%s", engines[i].name + 8, engines[i].world_def.substeps,
+                   engines[i].world_def.solver_iterations, engines[i].world_def.exact_solver ? " exact" : "",
                    engines[i].world_def.contact_mode == PP_CONTACT_CENTROID ? " centroid" : "");
     printf("\n100 px = 1 m, gravity (0, %.0f) px/s^2, dt 1/60 s, one step a frame, sleep off in every engine;\n"
            "stacks settle 1 s, then are watched %.0f s: 'stands' = no body moved over 1/4 of its size (its longest\n"
