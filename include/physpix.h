@@ -175,6 +175,9 @@ typedef struct pp_body {
  * pp_step_stats.swept_stops counts the stops. Only fast bodies pay. How it all works, and what it
  * costs: tests/bench/README.md. */
 
+/// Largest pp_world_def.exact_island_rows: the exact solver's cost grows with the cube of an island's rows.
+#define PP_MAX_EXACT_ISLAND_ROWS 1024
+
 /// Settings of a world; fill from pp_world_def_default(). Zero in substeps, solver_iterations or raster_stride means its default.
 typedef struct pp_world_def {
     uint32_t struct_size;           ///< sizeof(pp_world_def), set by pp_world_def_default
@@ -201,6 +204,8 @@ typedef struct pp_world_def {
     int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0: one per CPU, at most 16 (default 0);
                                     ///< started only when a step's pairs are big enough to need them
     uint32_t contact_events;        ///< nonzero: PP_EVENT_CONTACT_BEGIN/END are queued for pp_world_get_events (default 0)
+    int32_t exact_island_rows;      ///< islands of at most this many constraint rows (2 a contact point) are solved
+                                    ///< by ODE's exact dWorldStep, larger ones by QuickStep; 0: none (default 128)
 } pp_world_def;
 
 /// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.

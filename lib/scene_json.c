@@ -216,6 +216,7 @@ const field world_fields[] = {
     F_FLOAT(pp_world_def, max_correction_speed, NUM_POSITIVE),
     F_INT(pp_world_def, worker_threads, 0, 16),
     F_BOOL(pp_world_def, contact_events),
+    F_INT(pp_world_def, exact_island_rows, 0, PP_MAX_EXACT_ISLAND_ROWS),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 

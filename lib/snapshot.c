@@ -238,7 +238,7 @@ static bool write_touching(const world *wd, cJSON *root)
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(t->a))) &&
              add(e, "b", json_handle(handle_saved(t->b))) &&
-             add(e, "flags", json_number(t->flags, false));
+             add(e, "flags", json_number(t->flags, false)) && add(e, "anchor", json_doubles(t->anchor, 3));
     }
     if (!ok)
         cJSON_Delete(arr);
@@ -685,7 +685,7 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
 /* The touching pairs; absent in snapshots from before contact events. */
 static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *wd)
 {
-    static const char *const keys[] = {"a", "b", "flags", NULL};
+    static const char *const keys[] = {"a", "b", "flags", "anchor", NULL};
     const cJSON *arr;
     pp_status st = read_section(c, root, "", "touching", true, &arr);
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
@@ -702,8 +702,18 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
         if (!(st = check_keys(c, it, where, NULL, keys)) &&
             !(st = read_body_handle(c, it, where, "a", false, wd, &t->a)) &&
             !(st = read_body_handle(c, it, where, "b", false, wd, &t->b)))
-            st = read_required_int(c, it, where, "flags", 0, TOUCH_SENSOR | TOUCH_SENSOR_B | TOUCH_PASSING, &flags);
+            st = read_required_int(c, it, where, "flags", 0, TOUCH_FLAGS, &flags);
         t->flags = (uint32_t)flags, t->reserved = 0;
+        /* Before friction anchors, only pairs with events, sensors or one-way bodies were kept, and every
+         * contact pair kept with events on had begun. Such a pair anchors at the next substep. */
+        const bool anchored = cJSON_GetObjectItemCaseSensitive(it, "anchor") != NULL;
+        if (!st && anchored)
+            st = read_doubles(c, it, where, "anchor", t->anchor, 3);
+        else if (!st) {
+            t->flags |= TOUCH_UNANCHORED;
+            if (wd->def.contact_events && !(t->flags & (TOUCH_SENSOR | TOUCH_PASSING)))
+                t->flags |= TOUCH_BEGUN;
+        }
         /* touch_find expects a in the lower slot */
         if (!st && (t->a == 0 || t->b == 0))
             st = json_fail(c, PP_ERR_FORMAT, where, t->a ? "b" : "a", "expected a body, not 0");

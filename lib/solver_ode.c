@@ -17,7 +17,6 @@ struct pp_solver {
     dJointGroupID contacts;
     double ppm, inv_ppm;
     double erp, cfm, bounce_vel;  /* bounce_vel in m/s */
-    bool exact;
     uint64_t steps;               /* seeds QuickStep's constraint shuffle */
     dJointFeedback *feedback;     /* by contact: the forces ODE's step applied */
     int32_t feedback_capacity;
@@ -69,7 +68,6 @@ pp_status solver_create(const pp_world_def *def, pp_solver **out)
     s->erp = def->contact_erp;
     s->cfm = def->contact_cfm;
     s->bounce_vel = def->bounce_threshold * s->inv_ppm;
-    s->exact = def->exact_solver != 0;
     s->world = dWorldCreate();
     s->contacts = dJointGroupCreate(0);
     dWorldSetGravity(s->world, def->gravity.x * s->inv_ppm, def->gravity.y * s->inv_ppm, 0);
@@ -131,10 +129,13 @@ pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_bod
         dBodySetAngularDamping(b, d->angular_damping);
     }
     dBodySetData(b, d->user);
-    dJointID plane = dJointCreatePlane2D(s->world, 0);
-    dJointAttach(plane, b, 0);
+    /* Every force and row is in the plane (contacts' normals and friction directions, gravity), so a body
+     * never leaves it: no plane-2D joint, whose three rows a body would cost every step. A body that must
+     * not turn keeps one for its angle motor, holding ω = 0 with unbounded torque. */
+    dJointID plane = NULL;
     if (d->fixed_rotation) {
-        /* The plane-2D angle motor holding ω = 0 with unbounded torque. */
+        plane = dJointCreatePlane2D(s->world, 0);
+        dJointAttach(plane, b, 0);
         dJointSetPlane2DAngleParam(plane, dParamVel, 0);
         dJointSetPlane2DAngleParam(plane, dParamFMax, dInfinity);
     }
@@ -218,8 +219,17 @@ void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
 {
     PP_ASSERT(k >= 0 && k < s->feedback_capacity); /* solver_reserve_feedback first */
     dContact ct = {0};
-    ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    /* One friction row, along the in-plane tangent: ODE's second direction would be z, where nothing moves. */
+    ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM | dContactMu2 | dContactFDir1;
     ct.surface.mu = c->friction;
+    ct.surface.mu2 = 0;
+    ct.fdir1[0] = -c->normal.y;
+    ct.fdir1[1] = c->normal.x;
+    if (c->tangent_speed != 0) {
+        ct.surface.mode |= dContactMotion1;
+        /* Attached as (0, b), ODE swaps the bodies and flips the normal but not fdir1: the row then reads b past a. */
+        ct.surface.motion1 = (c->a ? c->tangent_speed : -c->tangent_speed) * s->inv_ppm;
+    }
     if (c->restitution > 0) {
         ct.surface.mode |= dContactBounce;
         ct.surface.bounce = c->restitution;
@@ -281,15 +291,43 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in)
 uint64_t solver_get_steps(const pp_solver *s) { return s->steps; }
 void solver_set_steps(pp_solver *s, uint64_t steps) { s->steps = steps; }
 
-bool solver_step(pp_solver *s, double h, bool anything_awake)
+static void set_enabled(solver_body *const *list, int32_t n, bool enabled)
 {
-    if (!anything_awake) {
+    for (int32_t i = 0; i < n; i++)
+        if (enabled)
+            dBodyEnable((dBodyID)list[i]->body);
+        else
+            dBodyDisable((dBodyID)list[i]->body);
+}
+
+/* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding one method's bodies
+ * while the other runs steps each island once, by its own method. dWorldStep wakes every body of its
+ * islands, so all of them are hidden from QuickStep. */
+static int step_methods(pp_solver *s, double h, const solver_islands *is)
+{
+    if (is->exact_count == 0)
+        return dWorldQuickStep(s->world, h);
+    if (is->quick_count == 0)
+        return dWorldStep(s->world, h);
+    set_enabled(is->quick, is->quick_count, false);
+    const int ok = dWorldStep(s->world, h);
+    set_enabled(is->quick, is->quick_count, true);
+    set_enabled(is->exact, is->exact_count, false);
+    const int ok_quick = dWorldQuickStep(s->world, h);
+    set_enabled(is->exact, is->exact_count, true);
+    return ok && ok_quick;
+}
+
+bool solver_step(pp_solver *s, double h, const solver_islands *islands)
+{
+    if (islands->exact_count + islands->quick_count == 0) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
+        dJointGroupEmpty(s->contacts);
         return true;
     }
     pthread_mutex_lock(&ode_step_lock);
     dRandSetSeed((unsigned long)(s->steps * 2654435761u + 12345u));
-    const int ok = s->exact ? dWorldStep(s->world, h) : dWorldQuickStep(s->world, h);
+    const int ok = step_methods(s, h, islands);
     pthread_mutex_unlock(&ode_step_lock);
     s->steps++;
     dJointGroupEmpty(s->contacts);

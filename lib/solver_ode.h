@@ -46,6 +46,7 @@ typedef struct solver_contact {
     dvec2 point, normal;       /* px, unit */
     double depth;              /* px */
     double friction, restitution;
+    double tangent_speed;      /* px/s the friction row drives a's point past b's along (−normal.y, normal.x) */
 } solver_contact;
 
 pp_status solver_create(const pp_world_def *def, pp_solver **out);
@@ -85,9 +86,16 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in);
 uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
-/* Advance by h seconds (one substep) and drop the contact joints. `anything_awake` false (no dynamic
- * or kinematic body awake) skips ODE, which would change nothing but still walk every body.
- * False when ODE could not get memory for its step. */
-bool solver_step(pp_solver *s, double h, bool anything_awake);
+/* The bodies of one substep's awake islands, by the method that solves them. */
+typedef struct solver_islands {
+    solver_body **exact;   /* every body of the islands ODE's exact dWorldStep solves */
+    int32_t exact_count;
+    solver_body **quick;   /* the awake bodies of the islands QuickStep solves */
+    int32_t quick_count;
+} solver_islands;
+
+/* Advance by h seconds (one substep) and drop the contact joints. Nothing awake skips ODE, which
+ * would change nothing but still walk every body. False when ODE could not get memory for its step. */
+bool solver_step(pp_solver *s, double h, const solver_islands *islands);
 
 #endif

@@ -4,7 +4,9 @@
 #include "status.h"
 #include "world.h"
 
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* A one-way platform keeps a contact whose normal (platform to other body) is within 60° of its
  * direction: a body landing on it from above, not one entering from below or the side. */
@@ -34,13 +36,43 @@ const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 {
     if (wd->touch_count == 0)
         return NULL;
-    const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0} : (touch){y, x, 0, 0};
+    const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0, {0}} : (touch){y, x, 0, 0, {0}};
     return bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp);
 }
 
+/* A pair re-anchors (its static friction gave way) when a contact point has slipped this far, or the
+ * bodies have turned this far against each other (a rolling body's contact moves round it). */
+#define ANCHOR_SLIP_PX 0.5
+#define ANCHOR_TURN_RAD 0.05
+
 bool touch_needed(const world *wd, int32_t special_bodies)
 {
-    return wd->def.contact_events || special_bodies > 0 || wd->touch_count > 0;
+    (void)wd, (void)special_bodies;
+    return true; /* every pair keeps its friction anchor */
+}
+
+static void relative_pose(const body *a, const body *b, double out[3])
+{
+    const dvec2 q = dv_unrot(dv_sub(b->pos, a->pos), a->cos_a, a->sin_a);
+    out[0] = q.x, out[1] = q.y, out[2] = b->angle - a->angle;
+}
+
+dvec2 touch_anchor_slip(const touch *t, const body *a, const body *b, dvec2 p)
+{
+    const dvec2 x = dv_unrot(dv_sub(p, b->pos), b->cos_a, b->sin_a); /* the point in b's bitmap frame */
+    const dvec2 then = dv_add(dv(t->anchor[0], t->anchor[1]), dv_rot(x, cos(t->anchor[2]), sin(t->anchor[2])));
+    return dv_sub(p, dv_add(a->pos, dv_rot(then, a->cos_a, a->sin_a)));
+}
+
+/* Keep the old anchor while every contact point is within ANCHOR_SLIP_PX of it and the pair has not turned. */
+static void set_anchor(const touch *old, const body *a, const body *b, const np_result *r, touch *t)
+{
+    double now[3];
+    relative_pose(a, b, now);
+    bool keep = old && !(old->flags & TOUCH_UNANCHORED) && fabs(now[2] - old->anchor[2]) <= ANCHOR_TURN_RAD;
+    for (int32_t c = 0; keep && c < r->count; c++)
+        keep = dv_norm(touch_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y))) <= ANCHOR_SLIP_PX;
+    memcpy(t->anchor, keep ? old->anchor : now, sizeof now);
 }
 
 void touch_begin(world *wd) { wd->touch_next_count = 0; }
@@ -87,12 +119,11 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
         return PP_OK;
     }
     const bool sensor = a->is_sensor || b->is_sensor, one_way = a->one_way || b->one_way;
-    if (!sensor && !one_way && !wd->def.contact_events)
-        return PP_OK;
     const touch *old = touch_find(wd, a->handle.id, b->handle.id);
-    touch t = {a->handle.id, b->handle.id, sensor ? TOUCH_SENSOR | (a->is_sensor ? 0 : TOUCH_SENSOR_B) : 0, 0};
+    touch t = {a->handle.id, b->handle.id, sensor ? TOUCH_SENSOR | (a->is_sensor ? 0 : TOUCH_SENSOR_B) : 0, 0, {0}};
+    set_anchor(old, a, b, r, &t);
     if (old)
-        t.flags = old->flags;
+        t.flags = old->flags & ~(uint32_t)TOUCH_UNANCHORED;
     else if (!sensor && one_way && one_way_passes(a, b, r))
         t.flags |= TOUCH_PASSING;
     *keep = !(t.flags & (TOUCH_SENSOR | TOUCH_PASSING));
@@ -101,14 +132,20 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
     if (st || !world_room((void **)&wd->touch_next, wd->touch_next_count + 1, &wd->touch_next_capacity, sizeof t))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs",
                                  (int)wd->touch_next_count + 1);
-    wd->touch_next[wd->touch_next_count++] = t;
-    if (old || (t.flags & TOUCH_PASSING))
+    touch *rec = &wd->touch_next[wd->touch_next_count++];
+    *rec = t;
+    if (t.flags & TOUCH_PASSING)
         return PP_OK;
-    if (sensor) /* the sensor is the event's body */
-        world_queue_event(wd, a->is_sensor ? begin_event(wd, PP_EVENT_SENSOR_BEGIN, a, b, a, r)
-                                           : begin_event(wd, PP_EVENT_SENSOR_BEGIN, b, a, a, r));
-    else if (wd->def.contact_events)
+    if (sensor) { /* the sensor is the event's body */
+        if (!old)
+            world_queue_event(wd, a->is_sensor ? begin_event(wd, PP_EVENT_SENSOR_BEGIN, a, b, a, r)
+                                               : begin_event(wd, PP_EVENT_SENSOR_BEGIN, b, a, a, r));
+    } else if (!wd->def.contact_events) {
+        rec->flags &= ~(uint32_t)TOUCH_BEGUN; /* switched off: ends silently, begins again if switched on */
+    } else if (!(t.flags & TOUCH_BEGUN)) { /* new, or touching since events were switched on */
         world_queue_event(wd, begin_event(wd, PP_EVENT_CONTACT_BEGIN, a, b, a, r));
+        rec->flags |= TOUCH_BEGUN;
+    }
     return PP_OK;
 }
 
@@ -143,7 +180,7 @@ pp_status touch_end(world *wd)
         const pp_body first = {b_first ? t->b : t->a}, second = {b_first ? t->a : t->b};
         if (t->flags & TOUCH_SENSOR)
             world_queue_event(wd, (pp_event){PP_EVENT_SENSOR_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
-        else if (wd->def.contact_events)
+        else if (wd->def.contact_events && (t->flags & TOUCH_BEGUN))
             world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
     }
     if (wd->touch_next_count > found) /* kept pairs went on the end */

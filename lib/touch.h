@@ -3,6 +3,7 @@
 #ifndef PP_TOUCH_H
 #define PP_TOUCH_H
 
+#include "math2d.h"
 #include "narrowphase.h"
 
 #include <stdbool.h>
@@ -16,13 +17,17 @@ enum {
     TOUCH_SENSOR = 1,   /* one body is a sensor: events, no contacts */
     TOUCH_SENSOR_B = 2, /* with TOUCH_SENSOR: the sensor is b */
     TOUCH_PASSING = 4,  /* a one-way platform let the other body in from the wrong side: no contacts until they part */
+    TOUCH_BEGUN = 8,    /* its PP_EVENT_CONTACT_BEGIN was queued: its END will be */
+    TOUCH_UNANCHORED = 16, /* loaded from a snapshot without anchors: anchors at its next substep */
+    TOUCH_FLAGS = 31,   /* every flag */
 };
 
 /* One touching pair: a is the body in the lower slot (the broadphase's order). */
 typedef struct touch {
-    uint64_t a, b;   /* body handle ids */
-    uint32_t flags;  /* TOUCH_* */
+    uint64_t a, b;     /* body handle ids */
+    uint32_t flags;    /* TOUCH_* */
     uint32_t reserved;
+    double anchor[3];  /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
 } touch;
 
 /* Whether this substep's pairs must be tracked: contact events asked for, a sensor or a one-way body
@@ -39,6 +44,10 @@ pp_status touch_pair(struct world *wd, const struct body *a, const struct body *
 /* After every pair: queue the END of each recorded pair that no longer touches, unless neither body
  * was awake to be tested (a sleeping stack still touches), and make the substep's list current. */
 pp_status touch_end(struct world *wd);
+
+/* How far b's material point at world point p has moved relative to a since the pair's anchor, px:
+ * the slip that static friction has let through and the solver should undo. */
+dvec2 touch_anchor_slip(const touch *t, const struct body *a, const struct body *b, dvec2 p);
 
 /* The recorded pair of two bodies (either order), or NULL. */
 const touch *touch_find(const struct world *wd, uint64_t x, uint64_t y);

@@ -3,6 +3,7 @@
 #include "alloc.h"
 #include "continuous.h"
 #include "handle.h"
+#include "island.h"
 #include "world.h"
 #include "status.h"
 
@@ -83,6 +84,7 @@ PP_API pp_world_def pp_world_def_default(void)
     d.continuous = 1;
     d.max_correction_speed = 300.0f;
     d.worker_threads = 0; /* one per CPU */
+    d.exact_island_rows = 128;
     return d;
 }
 
@@ -154,6 +156,9 @@ static pp_status check_world_def(const pp_world_def *d)
     if (d->worker_threads < 0 || d->worker_threads > 16)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: worker_threads must be 0 (one per CPU) or 1..16, got %d",
                        (int)d->worker_threads);
+    if (d->exact_island_rows < 0 || d->exact_island_rows > PP_MAX_EXACT_ISLAND_ROWS)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_create: exact_island_rows must be 0..%d, got %d",
+                       PP_MAX_EXACT_ISLAND_ROWS, (int)d->exact_island_rows);
     if (!(d->max_correction_speed > 0 && d->max_correction_speed <= PP_MAX_SPEED))
         return pp_fail(PP_ERR_INVALID_ARGUMENT,
                        "pp_world_create: max_correction_speed must be > 0 and at most PP_MAX_SPEED (%g px/s), got %g",
@@ -245,6 +250,8 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->proxies);
     pp_free(wd->sweep_from);
     pp_free(wd->group);
+    pp_free(wd->island_bodies);
+    pp_free(wd->island_kind);
     pp_free(wd->bodies);
     pp_free(wd->generations);
     pp_free(wd->free_slots);
@@ -473,7 +480,23 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
 /* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
  * pairs each have two points leans toward the point solved first. The order flips every solver
  * step (by the step count, so snapshots keep it), and the biases cancel. */
-static void add_contact_joints(world *wd)
+/* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
+ * pair's friction anchor (touch.c); Coulomb's bound still caps the force, so a sliding body slides.
+ * Only QuickStep's stacks slip unasked (their solve stops short); an exact or lone-body solve does not. */
+static double anchor_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double h)
+{
+    if (wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_QUICK_STACK)
+        return 0;
+    const touch *t = touch_find(wd, a->handle.id, b->handle.id);
+    if (!t || handle_slot(t->a) != a->index)
+        return 0;
+    const dvec2 slip = touch_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
+    const double along = dv_dot(slip, dv(-c->normal.y, c->normal.x));
+    const double v = wd->def.contact_erp * along / h, cap = wd->def.max_correction_speed;
+    return fmax(-cap, fmin(cap, v));
+}
+
+static void add_contact_joints(world *wd, double h)
 {
     const bool reversed = solver_get_steps(wd->solver) & 1;
     for (int32_t k = 0; k < wd->contact_count; k++) {
@@ -484,6 +507,7 @@ static void add_contact_joints(world *wd)
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
             sqrt(a->friction * b->friction), fmax(a->restitution, b->restitution),
+            anchor_speed(wd, a, b, c, h),
         };
         solver_add_contact(wd->solver, &sc, i);
     }
@@ -533,13 +557,6 @@ static pp_status sync_bodies(world *wd)
     return PP_OK;
 }
 
-static int32_t group_root(int32_t *parent, int32_t i)
-{
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
 /* A dynamic body slower than the sleep speeds for sleep_time may sleep, as under ODE's auto-disable,
  * but with its timer here so that a snapshot can save it. Bodies touching each other sleep together
  * or not at all: ODE wakes a sleeper that an awake body touches, so one that slept alone would be
@@ -575,17 +592,17 @@ static pp_status update_sleep(world *wd, double h)
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const uint32_t a = handle_slot(wd->contacts[k].a.id), b = handle_slot(wd->contacts[k].b.id);
         if (wd->bodies[a]->type == PP_BODY_DYNAMIC && wd->bodies[b]->type == PP_BODY_DYNAMIC)
-            parent[group_root(parent, (int32_t)a)] = group_root(parent, (int32_t)b);
+            parent[world_group_root(parent, (int32_t)a)] = world_group_root(parent, (int32_t)b);
     }
     /* A group with a body not yet ready stays awake. */
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         if (bd && bd->type == PP_BODY_DYNAMIC && bd->slow_time < d->sleep_time)
-            restless[group_root(parent, i)] = 1;
+            restless[world_group_root(parent, i)] = 1;
     }
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
-        if (bd && bd->type == PP_BODY_DYNAMIC && solver_body_is_awake(&bd->sb) && !restless[group_root(parent, i)]) {
+        if (bd && bd->type == PP_BODY_DYNAMIC && solver_body_is_awake(&bd->sb) && !restless[world_group_root(parent, i)]) {
             solver_body_sleep(&bd->sb);
             bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
         }
@@ -782,9 +799,12 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
             return st;
+        solver_islands islands; /* before the joints: a failure must leave ODE none */
+        if ((st = island_plan(wd, &islands)))
+            return st;
         save_contact_bodies(wd);
-        add_contact_joints(wd);
-        if (!solver_step(wd->solver, h, wd->awake_movers > 0))
+        add_contact_joints(wd, h);
+        if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
         for (int32_t c = 0; c < wd->contact_count; c++) {
             pp_contact *ct = &wd->contacts[c];

@@ -83,6 +83,9 @@ typedef struct step_undo {
     int32_t event_count;      /* events queued before the step */
 } step_undo;
 
+/* How a body's island is solved this substep (island.c). */
+enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
+
 typedef struct world {
     uint32_t slot;
     uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
@@ -121,6 +124,10 @@ typedef struct world {
     int32_t sweep_capacity;
     int32_t *group;          /* two per slot: union-find parents, then restless flags (bodies in contact sleep together) */
     int32_t group_capacity;
+    solver_body **island_bodies; /* this substep's islands for solver_step (island.c) … */
+    int32_t island_capacity;
+    uint8_t *island_kind;    /* … and by slot, how each body's island is solved (ISLAND_*) */
+    int32_t island_kind_capacity;
     touch *touching;         /* pairs touching at the last substep, sorted (touch.c) */
     int32_t touch_count, touch_capacity;
     touch *touch_next;       /* the substep's list being built */
@@ -128,6 +135,14 @@ typedef struct world {
     step_undo undo;
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
 } world;
+
+/* The root of i's set in a union-find forest of parents, halving the path as it goes. */
+static inline int32_t world_group_root(int32_t *parent, int32_t i)
+{
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);

@@ -152,9 +152,9 @@ static const struct {
     const char *name;
     uint64_t hash;
 } golden[] = {
-    {PP_PRESET_FAST, "FAST", 0xcd45e0ca60ef7067ull},
-    {PP_PRESET_BALANCED, "BALANCED", 0xf9155e25d4fa3423ull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0xa4907bd0a64bf9e2ull},
+    {PP_PRESET_FAST, "FAST", 0x7f5aec197fe0fc83ull},
+    {PP_PRESET_BALANCED, "BALANCED", 0xb4da813b3d0ce18aull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0x3fab54fb42b658ffull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {

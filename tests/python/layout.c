@@ -39,7 +39,7 @@ int main(void)
     F(pp_world_def, contact_cfm); F(pp_world_def, bounce_threshold); F(pp_world_def, allow_sleep);
     F(pp_world_def, sleep_linear_speed); F(pp_world_def, sleep_angular_speed); F(pp_world_def, sleep_time);
     F(pp_world_def, continuous); F(pp_world_def, max_correction_speed);
-    F(pp_world_def, worker_threads); F(pp_world_def, contact_events);
+    F(pp_world_def, worker_threads); F(pp_world_def, contact_events); F(pp_world_def, exact_island_rows);
     end();
 
     S(pp_body_def);

@@ -51,6 +51,7 @@ class pp_world_def(ctypes.Structure):
         ("max_correction_speed", c_float),
         ("worker_threads", c_int32),
         ("contact_events", c_uint32),
+        ("exact_island_rows", c_int32),
     ]
 
 

@@ -1,0 +1,124 @@
+/* Stacks that stand (issue 22): the cheap scenes of build/bench/bench_stability, held by the exact
+ * solver on small islands and by friction anchors on QuickStep's large ones. Sleep is off so that the
+ * solver alone holds them. */
+#include "helpers.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+PP_TEST_SUITE(stacking);
+
+#define DT (1.0f / 60.0f)
+#define GROUND_TOP 500.0f
+
+static pp_world stack_world(pp_world_def d)
+{
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    return w;
+}
+
+/* A column of n boxes of `size` px touching exactly; densities[i] (bottom up), or 1. */
+static void add_column(pp_world w, pp_body *out, int n, int size, const float *densities)
+{
+    for (int i = 0; i < n; i++) {
+        pp_body_def d = body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - size * (i + 0.5f), 0);
+        d.density = densities ? densities[i] : 1.0f;
+        d.friction = 0.6f;
+        out[i] = add_rect(w, d, size, size);
+    }
+}
+
+/* Settle 1 s, then the largest move of any box from its settled place over `seconds`, px (the bench's
+ * "stands" is under a quarter of a box). */
+static double drift_after_settle(pp_world w, const pp_body *b, int n, double seconds)
+{
+    step_n(w, DT, 60);
+    pp_vec2 ref[32];
+    for (int i = 0; i < n; i++) ref[i] = body_pos(w, b[i]);
+    double worst = 0;
+    for (int k = 0; k < (int)(seconds * 60); k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        for (int i = 0; i < n; i++) {
+            const pp_vec2 p = body_pos(w, b[i]);
+            const double d = hypot(p.x - ref[i].x, p.y - ref[i].y);
+            worst = fmax(worst, isfinite(d) ? d : INFINITY); /* NaN is a fall */
+        }
+    }
+    return worst;
+}
+
+Test(stacking, a_20_box_tower_of_16px_boxes_stands, .timeout = 120)
+{
+    pp_world w = stack_world(pp_world_def_default());
+    pp_body b[20];
+    add_column(w, b, 20, 16, NULL);
+    const double drift = drift_after_settle(w, b, 20, 20.0);
+    cr_log_info("20-box tower, BALANCED: drift %.2f px over 20 s", drift);
+    cr_assert_lt(drift, 4.0, "the 20-box tower moved %.2f px (fell before issue 22 at 1.9 s)", drift);
+    pp_world_destroy(w);
+}
+
+Test(stacking, a_heavy_box_100_to_1_on_three_light_ones_stands, .timeout = 60)
+{
+    const float dens[4] = {1, 1, 1, 100};
+    pp_world w = stack_world(pp_world_def_default());
+    pp_body b[4];
+    add_column(w, b, 4, 16, dens);
+    const double drift = drift_after_settle(w, b, 4, 20.0);
+    cr_log_info("100:1 on three light boxes: drift %.3f px", drift);
+    cr_assert_lt(drift, 1.0, "heavy on light moved %.3f px", drift);
+    pp_world_destroy(w);
+}
+
+Test(stacking, the_1_10_100_1000_chain_stands_by_either_lever, .timeout = 60)
+{
+    /* Fell within 0.1 s before issue 22. Its island is small enough for the exact solver; with that off,
+     * QuickStep's friction anchors hold it too. */
+    const float dens[4] = {1, 10, 100, 1000};
+    for (int exact = 0; exact < 2; exact++) {
+        pp_world_def d = pp_world_def_default();
+        d.exact_island_rows = exact ? d.exact_island_rows : 0;
+        pp_world w = stack_world(d);
+        pp_body b[4];
+        add_column(w, b, 4, 16, dens);
+        const double drift = drift_after_settle(w, b, 4, 10.0);
+        cr_log_info("1:10:100:1000 chain, %s: drift %.3f px", exact ? "exact" : "QuickStep", drift);
+        cr_assert_lt(drift, 1.0, "the chain moved %.3f px (%s)", drift, exact ? "exact" : "QuickStep");
+        pp_world_destroy(w);
+    }
+}
+
+Test(stacking, friction_anchors_hold_a_quickstep_pyramid, .timeout = 120)
+{
+    /* Ten rows of 16 px boxes, 2 px apart, with the exact solver off so QuickStep holds the island. */
+    pp_world_def d = pp_world_def_preset(PP_PRESET_FAST);
+    d.exact_island_rows = 0;
+    pp_world w = stack_world(d);
+    pp_body b[32];
+    int n = 0;
+    for (int r = 0; r < 7; r++)
+        for (int i = 0; i < 7 - r; i++) {
+            pp_body_def bd = body_def(PP_BODY_DYNAMIC, 400 + (i - (6 - r) / 2.0f) * 18, GROUND_TOP - 16 * (r + 0.5f), 0);
+            bd.friction = 0.6f;
+            b[n++] = add_rect(w, bd, 16, 16);
+        }
+    const double drift = drift_after_settle(w, b, n, 20.0);
+    cr_log_info("7-row pyramid, FAST with QuickStep alone: drift %.2f px", drift);
+    cr_assert_lt(drift, 4.0, "the pyramid crept %.2f px", drift);
+    pp_world_destroy(w);
+}
+
+Test(stacking, exact_island_rows_out_of_range_is_refused)
+{
+    pp_world_def d = pp_world_def_default();
+    pp_world w = {0};
+    d.exact_island_rows = -1;
+    EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_INVALID_ARGUMENT, "exact_island_rows");
+    d.exact_island_rows = PP_MAX_EXACT_ISLAND_ROWS + 1;
+    EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_INVALID_ARGUMENT, "exact_island_rows");
+    cr_assert_eq(w.id, 0);
+}
