@@ -164,6 +164,11 @@ typedef struct pp_body {
  * bit and runs are deterministic. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
  * (pixels_per_meter); contact joints with Coulomb friction μ = √(μa·μb) and restitution max(ea, eb) above
  * bounce_threshold; contact_cfm is relative to the pair's reduced mass, so it does not depend on body size.
+ * Each contact is two rows (the normal and one in-plane friction direction). An island of two or more
+ * dynamic bodies with at most exact_island_rows rows is solved by ODE's exact dWorldStep (towers, heavy on
+ * light), larger ones by QuickStep, whose unfinished solve would let a pile creep: there every touching
+ * pair keeps a friction anchor, and friction takes back what a contact slipped since (within Coulomb's
+ * bound; a slip over 0.5 px or a turn over 0.05 rad re-anchors).
  * QuickStep's random order is seeded from the world's step count before each step: the same scene gives
  * the same result in any run. Sleeping: bodies slower than sleep_linear_speed and sleep_angular_speed for
  * sleep_time sleep, and bodies in contact sleep together or not at all.
