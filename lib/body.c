@@ -518,3 +518,13 @@ PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t 
         }
     return PP_OK;
 }
+
+dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p)
+{
+    if (!bd->sb.body)
+        return dv(0, 0);
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    const dvec2 r = dv_sub(p, s.com_world);
+    return dv(s.velocity.x - s.angular_velocity * r.y, s.velocity.y + s.angular_velocity * r.x);
+}

@@ -77,17 +77,6 @@ static void set_anchor(const touch *old, const body *a, const body *b, const np_
 
 void touch_begin(world *wd) { wd->touch_next_count = 0; }
 
-/* Velocity of a body's material point at a world point, px/s; static bodies do not move. */
-static dvec2 point_velocity(const world *wd, const body *bd, dvec2 p)
-{
-    if (!bd->sb.body)
-        return dv(0, 0);
-    solver_body_state s;
-    solver_body_get_state(wd->solver, &bd->sb, &s);
-    const dvec2 r = dv_sub(p, s.com_world);
-    return dv(s.velocity.x - s.angular_velocity * r.y, s.velocity.y + s.angular_velocity * r.x);
-}
-
 /* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */
 static pp_event begin_event(const world *wd, pp_event_type type, const body *from, const body *to, const body *a,
                             const np_result *r)
@@ -96,7 +85,7 @@ static pp_event begin_event(const world *wd, pp_event_type type, const body *fro
     const double sign = from == a ? 1.0 : -1.0;
     const dvec2 p = dv(c->point.x, c->point.y), n = dv_scale(dv(c->normal.x, c->normal.y), sign);
     /* `to` closes on `from` when its velocity relative to `from` points against the normal. */
-    const dvec2 rel = dv_sub(point_velocity(wd, to, p), point_velocity(wd, from, p));
+    const dvec2 rel = dv_sub(body_point_velocity(wd, to, p), body_point_velocity(wd, from, p));
     const double closing = -dv_dot(rel, n);
     return (pp_event){type, 0, from->handle, to->handle, c->point, {(float)n.x, (float)n.y},
                       (float)(closing > 0 ? closing : 0), 0};

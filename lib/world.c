@@ -496,6 +496,25 @@ static double anchor_speed(const world *wd, const body *a, const body *b, const 
     return fmax(-cap, fmin(cap, v));
 }
 
+/* The contact is found a substep late, up to a substep's travel deep, and a bounce of e·v from there
+ * would rise e²·depth short. The coefficient handed to ODE instead gives the speed that, against the
+ * pair's gravity along the normal, reaches the slop depth at e times the speed the bodies met with:
+ * v_out² = e²·v² + 2·g·d·(1 − e²), d the depth past contact_slop. Never more than the approach speed. */
+static double bounce_for(const world *wd, const body *a, const body *b, const pp_contact *c, double e)
+{
+    if (e <= 0)
+        return 0;
+    const dvec2 p = dv(c->point.x, c->point.y), n = dv(c->normal.x, c->normal.y);
+    const double closing = -dv_dot(dv_sub(body_point_velocity(wd, b, p), body_point_velocity(wd, a, p)), n);
+    if (!(closing > wd->def.bounce_threshold))
+        return e; /* ODE bounces nothing this slow */
+    const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
+    const dvec2 ga = a->type == PP_BODY_DYNAMIC ? g : dv(0, 0), gb = b->type == PP_BODY_DYNAMIC ? g : dv(0, 0);
+    const double g_closing = -dv_dot(dv_sub(gb, ga), n), d = fmax(0.0, c->depth - wd->def.contact_slop);
+    const double v2 = e * e * closing * closing + 2.0 * fmax(0.0, g_closing) * d * (1.0 - e * e);
+    return fmin(fmax(e, sqrt(v2) / closing), fmax(e, 1.0));
+}
+
 static void add_contact_joints(world *wd, double h)
 {
     const bool reversed = solver_get_steps(wd->solver) & 1;
@@ -506,7 +525,7 @@ static void add_contact_joints(world *wd, double h)
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
-            sqrt(a->friction * b->friction), fmax(a->restitution, b->restitution),
+            sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, fmax(a->restitution, b->restitution)),
             anchor_speed(wd, a, b, c, h),
         };
         solver_add_contact(wd->solver, &sc, i);

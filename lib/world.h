@@ -170,6 +170,9 @@ void body_remove(world *wd, body *bd);
  * generation and the creation serial come back as they were. Newest first when undoing several. */
 void body_unmake(world *wd, body *bd);
 
+/* Velocity of a body's material point at a world point, px/s; static bodies do not move. */
+dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
+
 /* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
