@@ -121,13 +121,14 @@ typedef enum pp_contact_mode {
 /* Presets are named points on the measured speed/accuracy trade (figures: tests/bench/README.md, "Presets").
  * They differ only in solver work, the knob that decides whether stacks stand; all keep AREA_GRADIENT
  * normals, MANIFOLD contacts (two points a pair) and raster stride 1. BALANCED meets the accuracy targets
- * (normal error median ≤ 0.5°, 95th percentile ≤ 2°; depth error median ≤ 0.5 px) and holds a 10-row
- * pyramid and a 10-box tower for 60 s; FAST lets tall stacks fall and is for debris and loose piles. A
+ * (normal error median ≤ 0.5°, 95th percentile ≤ 2°; depth error median ≤ 0.5 px) and holds 20-box
+ * towers, 20-row pyramids, mass ratios of 1:1000, a card house and an arch for 60 s; FAST holds a 10-row
+ * pyramid and a 10-box tower, lets taller stacks fall and is for debris and loose piles. A
  * scene's "preset" key and Python's World.from_preset start from them; the other settings override. */
 
 /// A named point on the measured speed/accuracy trade; see pp_world_def_preset.
 typedef enum pp_preset {
-    PP_PRESET_FAST = 1,     ///< 1 substep × 10 iterations: cheapest, same contact errors; tall stacks fall
+    PP_PRESET_FAST = 1,     ///< 1 substep × 10 iterations: cheapest, same contact errors; 10-high stacks stand, taller fall
     PP_PRESET_BALANCED = 2, ///< the default, 4 substeps × 40 iterations: stacks stand, contact errors on target
     PP_PRESET_ACCURATE = 3, ///< 4 substeps × 80 iterations: the stiffest stacks measured, for more solver time
     PP_PRESET_FORCE_U32 = 0x7fffffff

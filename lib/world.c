@@ -91,8 +91,8 @@ PP_API pp_world_def pp_world_def_default(void)
 /* The presets differ only in the solver's work, the knob that decides whether stacks stand; the
  * figures behind each are in the README ("Presets") and come from build/bench/bench_accuracy.
  * FAST is the front's cheapest point without a coarse stride (stride 2 took the depth error from 0.26 to 1 px):
- * its stacks fall. One contact point a pair (CENTROID) holds stacks cheaply but lets a box tip
- * on a gentle slope, so every preset keeps two. */
+ * it holds 10-high stacks, not 20. One contact point a pair (CENTROID) lets a box tip on a gentle slope,
+ * so every preset keeps two. */
 PP_API pp_world_def pp_world_def_preset(pp_preset preset)
 {
     pp_world_def d = pp_world_def_default();
