@@ -19,7 +19,7 @@ pp_status island_plan(world *wd, solver_islands *out)
                                      sizeof *wd->island_bodies, "the islands")) ||
         (st = world_slot_array(wd, (void **)&wd->island_kind, &wd->island_kind_capacity, 1, "the islands")))
         return st;
-    /* Per root: rows, and (second half) dynamic bodies. */
+    /* Per root: the island's rows (the group array's second half) and its dynamic bodies. */
     int32_t *parent = wd->group, *rows = wd->group + wd->group_capacity;
     int32_t *dynamic = (int32_t *)wd->island_bodies; /* scratch until the lists are written */
     PP_ASSERT(sizeof *wd->island_bodies >= sizeof *dynamic);

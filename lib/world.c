@@ -477,9 +477,6 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     return PP_OK;
 }
 
-/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
- * pairs each have two points leans toward the point solved first. The order flips every solver
- * step (by the step count, so snapshots keep it), and the biases cancel. */
 /* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
  * pair's friction anchor (touch.c); Coulomb's bound still caps the force, so a sliding body slides.
  * Only QuickStep's stacks slip unasked (their solve stops short); an exact or lone-body solve does not. */
@@ -515,6 +512,9 @@ static double bounce_for(const world *wd, const body *a, const body *b, const pp
     return fmin(fmax(e, sqrt(v2) / closing), fmax(e, 1.0));
 }
 
+/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
+ * pairs each have two points leans toward the point solved first. The order flips every solver
+ * step (by the step count, so snapshots keep it), and the biases cancel. */
 static void add_contact_joints(world *wd, double h)
 {
     const bool reversed = solver_get_steps(wd->solver) & 1;
