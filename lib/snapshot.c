@@ -546,7 +546,7 @@ static const char *const body_snapshot_keys[] = {"handle", "serial", "sprite", "
 static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode", "awake", NULL};
 
 /* The exact state over a body made from its settings and planes. */
-static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, body *bd)
+static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, double ppm, body *bd)
 {
     const cJSON *state;
     char at[48];
@@ -569,6 +569,14 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
     bd->user_data = user;
     body_update_pose_cache(bd);
     if (bd->sb.body) {
+        /* The pose is ODE's state rounded: one that disagrees would hand the solver contacts found at the
+         * pose for a body elsewhere (fuzz_snapshot: 9e17 m away, and dWorldStep aborted in dNormalize4). */
+        const dvec2 com = body_com_world(bd), off = dv_sub(dv(ode[0] * ppm, ode[1] * ppm), com);
+        const double turn = remainder(ode[2] - pose[2], 2 * M_PI);
+        if (!(dv_norm(off) <= 1e-3 + 1e-9 * dv_norm(com) && fabs(turn) <= 1e-6))
+            return json_fail(c, PP_ERR_FORMAT, at, "ode",
+                             "the solver state (centre of mass at (%g, %g) px, %g rad) disagrees with the pose "
+                             "(%g, %g) px, %g rad", ode[0] * ppm, ode[1] * ppm, ode[2], com.x, com.y, pose[2]);
         const solver_exact_state s = {ode[0], ode[1], ode[2], ode[3], ode[4], ode[5], awake != 0};
         solver_body_restore(&bd->sb, &s);
     }
@@ -608,7 +616,7 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
     body *bd = wd->bodies[slot];
     bd->serial = (uint64_t)ser;
     *serial = (uint64_t)ser + 1;
-    return restore_state(c, obj, where, bd);
+    return restore_state(c, obj, where, wd->def.pixels_per_meter, bd);
 }
 
 static pp_status restore_bodies(const json_ctx *c, const cJSON *root, world *wd)
