@@ -187,7 +187,7 @@ static void op_world_create(reader *r)
         d = pp_world_def_preset((pp_preset)(k % 5));
     d.contact_events = k & 1;
     if (u8(r) < 40) { /* one field set to a fuzzed value */
-        switch (u8(r) % 12) {
+        switch (u8(r) % 13) {
         case 0: d.substeps = (int32_t)(int8_t)u8(r); break;
         case 1: d.solver_iterations = (int32_t)(int16_t)(u8(r) << 4); break;
         case 2: d.raster_stride = (int32_t)(int8_t)u8(r); break;
@@ -199,6 +199,7 @@ static void op_world_create(reader *r)
         case 8: d.contact_mode = (pp_contact_mode)(u8(r) % 3); break;
         case 9: d.max_correction_speed = f32(r, 500); break;
         case 10: d.struct_size = u32(r); break;
+        case 11: d.exact_island_rows = (int32_t)u8(r) * 8 - 8; break; /* -8..2032: the ends refused */
         default: d.exact_solver = 1, d.allow_sleep = u8(r) & 1, d.continuous = u8(r) & 1; break;
         }
     }
