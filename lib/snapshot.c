@@ -572,7 +572,7 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
         /* The pose is ODE's state rounded: one that disagrees would hand the solver contacts found at the
          * pose for a body elsewhere (fuzz_snapshot: 9e17 m away, and dWorldStep aborted in dNormalize4). */
         const dvec2 com = body_com_world(bd), off = dv_sub(dv(ode[0] * ppm, ode[1] * ppm), com);
-        const double turn = remainder(ode[2] - pose[2], 2 * M_PI);
+        const double turn = remainder(ode[2] - pose[2], 2 * PP_PI);
         if (!(dv_norm(off) <= 1e-3 + 1e-9 * dv_norm(com) && fabs(turn) <= 1e-6))
             return json_fail(c, PP_ERR_FORMAT, at, "ode",
                              "the solver state (centre of mass at (%g, %g) px, %g rad) disagrees with the pose "

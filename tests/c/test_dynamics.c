@@ -226,3 +226,57 @@ Test(dynamics, half_restitution_rebounds_to_a_quarter_at_any_substep_count, .tim
                            substeps[k], h);
     }
 }
+
+/* Acceleration along a 20° slope of a disc of radius r rolling from rest, least squares over 0.5–1.5 s,
+ * px/s²; *predicted is g·sin θ/(1 + I/(m r²)) from the pixel disc's own mass and inertia. */
+static double rolling_acceleration(int r, double *predicted) {
+    const double th = DEG2RAD(20.0), g = 980.0;
+    pp_world_def wd = pp_world_def_default();
+    wd.allow_sleep = 0;
+    pp_world w = make_world_def(&wd);
+    /* The slope's surface runs through the origin along (cos θ, sin θ), downhill to +x (y is down). */
+    pp_body_def sd = body_def(PP_BODY_STATIC, (float)(-20.0 * sin(th)), (float)(20.0 * cos(th)), (float)th);
+    sd.friction = 1.0f;
+    add_rect(w, sd, 3000, 40);
+    const double s0 = -800.0;
+    pp_body_def dd = body_def(PP_BODY_DYNAMIC, (float)(s0 * cos(th) + r * sin(th)), (float)(s0 * sin(th) - r * cos(th)), 0);
+    dd.friction = 1.0f;
+    pp_body disc = add_disc(w, dd, r);
+    float m, I;
+    pp_vec2 com;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, disc, &m, &com, &I));
+    *predicted = g * sin(th) / (1.0 + I / (m * r * r));
+    const pp_vec2 start = body_pos(w, disc);
+    double S[5] = {0}, Y[3] = {0};
+    for (int k = 1; k <= 90; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        const pp_vec2 p = body_pos(w, disc);
+        const double t = k / 60.0, s = (p.x - start.x) * cos(th) + (p.y - start.y) * sin(th);
+        if (k <= 30) continue;
+        double tp = 1;
+        for (int q = 0; q < 5; q++) S[q] += tp, tp *= t;
+        Y[0] += s, Y[1] += s * t, Y[2] += s * t * t;
+    }
+    pp_world_destroy(w);
+    /* s = s0 + v0·t + a·t²/2: the normal equations, by elimination */
+    double A[3][4] = {{S[0], S[1], S[2], Y[0]}, {S[1], S[2], S[3], Y[1]}, {S[2], S[3], S[4], Y[2]}};
+    for (int i = 0; i < 3; i++)
+        for (int j = i + 1; j < 3; j++) {
+            const double f = A[j][i] / A[i][i];
+            for (int k = i; k < 4; k++) A[j][k] -= f * A[i][k];
+        }
+    return 2.0 * A[2][3] / A[2][2];
+}
+
+Test(dynamics, a_disc_rolls_down_a_slope_within_3_percent_of_its_inertia, .timeout = 30) {
+    /* Before issue 22 the patch's two ends braked it: -46 % (r 16) and -21 % (r 32). */
+    const int radii[] = {16, 32};
+    for (int i = 0; i < 2; i++) {
+        double want;
+        const double a = rolling_acceleration(radii[i], &want);
+        cr_log_info("disc r = %d on 20 deg: %.2f px/s^2, its inertia predicts %.2f (%+.2f %%)", radii[i], a, want,
+                    100.0 * (a / want - 1.0));
+        cr_assert_float_eq(a, want, 0.03 * want, "disc r = %d rolled at %.2f px/s^2, predicted %.2f", radii[i], a,
+                           want);
+    }
+}
