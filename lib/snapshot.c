@@ -569,14 +569,15 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
     bd->user_data = user;
     body_update_pose_cache(bd);
     if (bd->sb.body) {
-        /* The pose is ODE's state rounded: one that disagrees would hand the solver contacts found at the
-         * pose for a body elsewhere (fuzz_snapshot: 9e17 m away, and dWorldStep aborted in dNormalize4). */
+        /* ODE's body lies within the bitmap of the pose (an edit may have moved the centre of mass inside
+         * it): one far from it would be handed contacts found at the pose (fuzz_snapshot: 9e17 m away, and
+         * dWorldStep's lever arm ended in ODE's abort in dNormalize4). */
         const dvec2 com = body_com_world(bd), off = dv_sub(dv(ode[0] * ppm, ode[1] * ppm), com);
-        const double turn = remainder(ode[2] - pose[2], 2 * PP_PI);
-        if (!(dv_norm(off) <= 1e-3 + 1e-9 * dv_norm(com) && fabs(turn) <= 1e-6))
+        const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
+        if (!(dv_norm(off) <= reach + 1e-9 * dv_norm(com)))
             return json_fail(c, PP_ERR_FORMAT, at, "ode",
-                             "the solver state (centre of mass at (%g, %g) px, %g rad) disagrees with the pose "
-                             "(%g, %g) px, %g rad", ode[0] * ppm, ode[1] * ppm, ode[2], com.x, com.y, pose[2]);
+                             "the solver state (centre of mass at (%g, %g) px) is %g px from the pose's (%g, %g) px, "
+                             "outside its bitmap", ode[0] * ppm, ode[1] * ppm, dv_norm(off), com.x, com.y);
         const solver_exact_state s = {ode[0], ode[1], ode[2], ode[3], ode[4], ode[5], awake != 0};
         solver_body_restore(&bd->sb, &s);
     }
