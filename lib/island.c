@@ -8,6 +8,14 @@
 /* Constraint rows a contact costs: the normal and one in-plane friction row. */
 enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4 };
 
+static bool within_reach(const world *wd, const body *bd)
+{
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
+    return dv_norm(dv_sub(s.com_world, body_com_world(bd))) <= reach;
+}
+
 pp_status island_plan(world *wd, solver_islands *out)
 {
     *out = (solver_islands){0};
@@ -40,6 +48,12 @@ pp_status island_plan(world *wd, solver_islands *out)
         }
         rows[rb >= 0 ? rb : ra] += ROWS_PER_CONTACT;
     }
+    /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
+     * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
+     * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i] && wd->bodies[i]->sb.body && !within_reach(wd, wd->bodies[i]))
+            dynamic[world_group_root(parent, i)] = INT32_MIN / 2;
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const int32_t r = world_group_root(parent, i);
         wd->island_kind[i] = !wd->bodies[i] || !wd->bodies[i]->sb.body ? ISLAND_NONE

@@ -546,7 +546,7 @@ static const char *const body_snapshot_keys[] = {"handle", "serial", "sprite", "
 static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode", "awake", NULL};
 
 /* The exact state over a body made from its settings and planes. */
-static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, double ppm, body *bd)
+static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, body *bd)
 {
     const cJSON *state;
     char at[48];
@@ -569,15 +569,6 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
     bd->user_data = user;
     body_update_pose_cache(bd);
     if (bd->sb.body) {
-        /* ODE's body lies within the bitmap of the pose (an edit may have moved the centre of mass inside
-         * it): one far from it would be handed contacts found at the pose (fuzz_snapshot: 9e17 m away, and
-         * dWorldStep's lever arm ended in ODE's abort in dNormalize4). */
-        const dvec2 com = body_com_world(bd), off = dv_sub(dv(ode[0] * ppm, ode[1] * ppm), com);
-        const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
-        if (!(dv_norm(off) <= reach + 1e-9 * dv_norm(com)))
-            return json_fail(c, PP_ERR_FORMAT, at, "ode",
-                             "the solver state (centre of mass at (%g, %g) px) is %g px from the pose's (%g, %g) px, "
-                             "outside its bitmap", ode[0] * ppm, ode[1] * ppm, dv_norm(off), com.x, com.y);
         const solver_exact_state s = {ode[0], ode[1], ode[2], ode[3], ode[4], ode[5], awake != 0};
         solver_body_restore(&bd->sb, &s);
     }
@@ -617,7 +608,7 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
     body *bd = wd->bodies[slot];
     bd->serial = (uint64_t)ser;
     *serial = (uint64_t)ser + 1;
-    return restore_state(c, obj, where, wd->def.pixels_per_meter, bd);
+    return restore_state(c, obj, where, bd);
 }
 
 static pp_status restore_bodies(const json_ctx *c, const cJSON *root, world *wd)
