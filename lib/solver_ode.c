@@ -1,5 +1,6 @@
 /* The ODE world: one ODE body per dynamic or kinematic body with its centre of mass at the body
- * origin, a plane-2D joint each, contact joints from the raster contacts, QuickStep or Step.
+ * origin (a plane-2D joint only for fixed rotation), contact joints from the raster contacts, each
+ * island stepped by Step or QuickStep (island.c).
  * Lengths are divided by pixels_per_meter so ODE's tolerances see metre-sized numbers. */
 #include "alloc.h"
 #include "check.h"

@@ -46,12 +46,6 @@ const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 #define ANCHOR_SLIP_PX 2.0
 #define ANCHOR_TURN_RAD 0.05
 
-bool touch_needed(const world *wd, int32_t special_bodies)
-{
-    (void)wd, (void)special_bodies;
-    return true; /* every pair keeps its friction anchor */
-}
-
 static void relative_pose(const body *a, const body *b, double out[3])
 {
     const dvec2 q = dv_unrot(dv_sub(b->pos, a->pos), a->cos_a, a->sin_a);

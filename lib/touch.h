@@ -1,5 +1,6 @@
-/* Pairs that touch from one substep to the next: what contact and sensor events report, and what
- * a one-way platform remembers of a body passing through it. */
+/* Pairs that touch from one substep to the next, every one of them: what contact and sensor events
+ * report, what a one-way platform remembers of a body passing through it, and each pair's friction
+ * anchor. */
 #ifndef PP_TOUCH_H
 #define PP_TOUCH_H
 
@@ -29,10 +30,6 @@ typedef struct touch {
     uint32_t reserved;
     double anchor[3];  /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
 } touch;
-
-/* Whether this substep's pairs must be tracked: contact events asked for, a sensor or a one-way body
- * present (`special_bodies`), or pairs still recorded whose end must be reported. */
-bool touch_needed(const struct world *wd, int32_t special_bodies);
 
 /* Start a substep's list. */
 void touch_begin(struct world *wd);

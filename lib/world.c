@@ -469,7 +469,6 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     if (st)
         return st;
     wd->awake_movers = 0;
-    int32_t special = 0; /* sensors and one-way platforms */
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
@@ -478,7 +477,6 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                                          true}
                             : (bp_proxy){.live = false};
         wd->awake_movers += bd && wd->proxies[i].awake;
-        special += bd && (bd->is_sensor || bd->one_way);
     }
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     if (wd->awake_movers > 0)
@@ -498,7 +496,6 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
     if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
         return st;
     wd->contact_count = 0;
-    const bool track = touch_needed(wd, special);
     touch_begin(wd);
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
@@ -509,7 +506,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;
-        if (track && r.count > 0 && (st = touch_pair(wd, a, b, &r, &keep)))
+        if (r.count > 0 && (st = touch_pair(wd, a, b, &r, &keep)))
             return st;
         for (int32_t c = 0; keep && c < r.count; c++) {
             r.contacts[c].a = a->handle;
@@ -518,7 +515,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                 return st;
         }
     }
-    if ((track && (st = touch_end(wd))) || (st = crowd_limit_contacts(wd)))
+    if ((st = touch_end(wd)) || (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
