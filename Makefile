@@ -247,6 +247,11 @@ $(BUILD)/bench/bench_load: tests/bench/load/main.c tests/bench/machine.h $(STATI
 	mkdir -p $(BUILD)/bench
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
+# What sleeping bodies cost, alone and beside a few awake ones.
+$(BUILD)/bench/bench_sleep: tests/bench/sleep/main.c tests/bench/machine.h $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c
 $(BUILD)/bench/bench_accuracy: $(ACC_SRC) $(wildcard tests/bench/accuracy/*.h) tests/bench/bench.h tests/bench/machine.h $(STATIC)
@@ -276,7 +281,8 @@ $(BUILD)/bench/bench_stability: $(STAB_SRC) $(STAB_HDR) $(BUILD)/bench/peer_box2
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
-	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability
+	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
+	  $(BUILD)/bench/bench_sleep
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
@@ -289,6 +295,7 @@ bench: deps
 	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv
 	$(BUILD)/bench/bench_spawn --csv $(BUILD)/bench/spawn.csv
 	$(BUILD)/bench/bench_stability --csv $(BUILD)/bench/stability.csv
+	$(BUILD)/bench/bench_sleep --csv $(BUILD)/bench/sleep.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
 	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }

@@ -1,6 +1,7 @@
 /* Bodies: the handle table (slot + generation, and the world's tag: handle.h), creation from a def, poses
  * and velocities. A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
 #include "alloc.h"
+#include "awake.h"
 #include "handle.h"
 #include "status.h"
 #include "world.h"
@@ -185,9 +186,12 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         return st;
     if (wd->free_count == 0 && wd->body_capacity >= PP_MAX_BODIES) /* before anything is allocated */
         return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
+    if ((st = awake_reserve(wd, wd->live_count + 1)))
+        return st;
     body *bd = pp_calloc(1, sizeof *bd);
     if (!bd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory");
+    bd->awake_at = -1;
     if ((st = raster_init(&bd->raster, def))) {
         pp_free(bd);
         return st;
@@ -259,6 +263,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     wd->bodies[slot] = bd;
     wd->live_count++;
     bd->serial = wd->next_serial++;
+    awake_add(wd, bd); /* its proxy is new */
     *out = bd->handle;
     return PP_OK;
 }
@@ -266,6 +271,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
 void body_unmake(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;
+    awake_forget(wd, bd);
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
     PP_ASSERT(wd->free_count < wd->body_capacity);
@@ -278,6 +284,8 @@ void body_remove(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;
     const pp_body b = bd->handle;
+    awake_forget(wd, bd);
+    wd->touch_body_gone = true;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
     wd->generations[slot] = handle_next_gen(wd->generations[slot]);
@@ -342,9 +350,10 @@ PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, 
     bd->angle = bd->fixed_rotation ? bd->angle : angle;
     bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
     body_update_pose_cache(bd);
+    awake_add(wd, bd);
     if (bd->sb.body) {
         solver_body_set_pose(wd->solver, &bd->sb, body_com_world(bd), bd->angle);
-        solver_body_wake(&bd->sb);
+        awake_wake(wd, bd);
     }
     return PP_OK;
 }
@@ -381,7 +390,7 @@ PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, flo
     if (!bd->sb.body)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_velocity: a static body cannot move");
     solver_body_set_velocity(wd->solver, &bd->sb, dv(linear.x, linear.y), bd->fixed_rotation ? 0.0 : angular);
-    solver_body_wake(&bd->sb);
+    awake_wake(wd, bd);
     return PP_OK;
 }
 
@@ -407,7 +416,7 @@ PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, p
                                "the angular velocity the impulse gives,", wz)))
         return st;
     solver_body_set_velocity(wd->solver, &bd->sb, v, wz);
-    solver_body_wake(&bd->sb);
+    awake_wake(wd, bd);
     return PP_OK;
 }
 

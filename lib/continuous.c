@@ -102,13 +102,17 @@ pp_status continuous_begin(world *wd)
 {
     pp_status st = world_slot_array(wd, (void **)&wd->sweep_from, &wd->sweep_capacity, sizeof *wd->sweep_from,
                                     "continuous collision");
-    if (st)
+    if (st || (st = world_slot_array(wd, (void **)&wd->swept, &wd->swept_capacity, sizeof *wd->swept,
+                                     "continuous collision")))
         return st;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    wd->swept_count = 0;
+    for (int32_t k = 0; k < wd->awake_count; k++) { /* in slot order: a bullet sees earlier sweeps' poses */
+        const int32_t i = wd->awake_slots[k];
         const body *bd = wd->bodies[i];
-        wd->sweep_from[i].valid = sweeps(wd, bd);
-        if (wd->sweep_from[i].valid)
-            wd->sweep_from[i].com = body_com_world(bd), wd->sweep_from[i].angle = bd->angle;
+        if (sweeps(wd, bd)) {
+            wd->sweep_from[i] = (continuous_pose){body_com_world(bd), bd->angle};
+            wd->swept[wd->swept_count++] = i;
+        }
     }
     return PP_OK;
 }
@@ -167,8 +171,9 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
 
 void continuous_end(world *wd)
 {
-    PP_ASSERT(wd->sweep_capacity >= wd->body_capacity); /* grown by continuous_begin */
-    for (int32_t i = 0; i < wd->body_capacity; i++)
-        if (wd->sweep_from[i].valid && wd->bodies[i] && solver_body_is_awake(&wd->bodies[i]->sb))
+    for (int32_t k = 0; k < wd->swept_count; k++) {
+        const int32_t i = wd->swept[k];
+        if (solver_body_is_awake(&wd->bodies[i]->sb))
             sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);
+    }
 }

@@ -3,6 +3,7 @@
  * moves to the new centre of mass with the velocity its material already had; the GPU mirror
  * rewrites only the dirty rows; bodies nearby wake; a body cut apart splits (fracture.c). */
 #include "alloc.h"
+#include "awake.h"
 #include "cover.h"
 #include "edit.h"
 #include "status.h"
@@ -41,7 +42,7 @@ void edit_update_solver_body(world *wd, body *bd)
     solver_body_set_mass(wd->solver, &bd->sb, bd->mass.mass, bd->mass.inertia);
     solver_body_set_pose(wd->solver, &bd->sb, com, bd->angle);
     solver_body_set_velocity(wd->solver, &bd->sb, v, s.angular_velocity);
-    solver_body_wake(&bd->sb);
+    awake_wake(wd, bd);
 }
 
 static bool boxes_overlap(pp_aabb a, pp_aabb b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; }
@@ -71,7 +72,7 @@ static void wake_around(world *wd, pp_aabb region)
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *o = wd->bodies[i];
         if (o && o->sb.body && boxes_overlap(o->aabb, region))
-            solver_body_wake(&o->sb);
+            awake_wake(wd, o);
     }
 }
 
@@ -162,6 +163,7 @@ static void job_commit(world *wd, edit_job *j)
         return;
     raster_edit_done(&bd->raster, e->y0, e->y1);
     body_update_pose_cache(bd);
+    awake_add(wd, bd); /* new bounds, even for a static body */
     wake_around(wd, edited_region(bd, e));
     if (job_destroys(j)) {
         const pp_body gone = bd->handle;

@@ -3,6 +3,7 @@
  * island becomes a new body moving as its material did (v + ω × r), with the parent's material and
  * filter. A static body's islands fall as dynamic bodies when its def asked for detach_islands. */
 #include "alloc.h"
+#include "awake.h"
 #include "edit.h"
 #include "status.h"
 
@@ -211,6 +212,7 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
             world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_DESTROYED, .body = gone}); /* room reserved */
         } else {
             body_update_pose_cache(bd);
+            awake_add(wd, bd); /* new bounds, even for a static body */
             if (bd->sb.body)
                 edit_update_solver_body(wd, bd);
         }

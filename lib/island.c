@@ -1,9 +1,13 @@
-/* ODE steps one method per world, so the islands are chosen here and solver_step hides the others
- * while each method runs. An island is what ODE's own walk will find: bodies with ODE bodies (dynamic
- * or kinematic) joined by contacts; static bodies join nothing. The exact solver takes an island of two
- * or more dynamic bodies (where QuickStep's unfinished solve lets stacks sag, creep and crush light
- * bodies) up to exact_island_rows; a lone body is QuickStep's either way, as it always was. */
+/* Islands: which bodies solve together and which sleep together. ODE steps one method per world, so the
+ * islands are chosen here and solver_step hides the others while each method runs. An island is what ODE's
+ * own walk will find: bodies with ODE bodies (dynamic or kinematic) joined by contacts; static bodies join
+ * nothing. The exact solver takes an island of two or more dynamic bodies (where QuickStep's unfinished
+ * solve lets stacks sag, creep and crush light bodies) up to exact_island_rows; a lone body is QuickStep's
+ * either way, as it always was.
+ * Both passes visit only the substep's nodes: the awake set's movable bodies and the contacts' movable
+ * bodies (a sleeper touched by an awake body). A sleeping island is never visited. */
 #include "island.h"
+#include "awake.h"
 
 /* Constraint rows a contact costs: the normal and one in-plane friction row. */
 enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4 };
@@ -16,26 +20,69 @@ static bool within_reach(const world *wd, const body *bd)
     return dv_norm(dv_sub(s.com_world, body_com_world(bd))) <= reach;
 }
 
+/* Make a movable body a node of this pass (once): its own root, value 0. */
+static void add_node(world *wd, const body *bd)
+{
+    const int32_t i = (int32_t)bd->index;
+    if (!bd->sb.body || wd->node_mark[i] == wd->node_pass)
+        return;
+    wd->node_mark[i] = wd->node_pass;
+    wd->nodes[wd->node_count++] = i;
+}
+
+/* The substep's nodes into wd->nodes, in slot order for the awake set's part. */
+static pp_status collect_nodes(world *wd)
+{
+    if (wd->body_capacity > wd->node_mark_capacity) {
+        const int32_t old = wd->node_mark_capacity;
+        pp_status st = world_slot_array(wd, (void **)&wd->node_mark, &wd->node_mark_capacity, sizeof *wd->node_mark,
+                                        "the islands");
+        if (st)
+            return st;
+        for (int32_t i = old; i < wd->node_mark_capacity; i++)
+            wd->node_mark[i] = 0;
+    }
+    pp_status st = world_slot_array(wd, (void **)&wd->nodes, &wd->node_capacity, sizeof *wd->nodes, "the islands");
+    if (st)
+        return st;
+    if (++wd->node_pass == 0) { /* wrapped: no mark may look current */
+        for (int32_t i = 0; i < wd->node_mark_capacity; i++)
+            wd->node_mark[i] = 0;
+        wd->node_pass = 1;
+    }
+    wd->node_count = 0;
+    for (int32_t k = 0; k < wd->awake_count; k++)
+        add_node(wd, wd->bodies[wd->awake_slots[k]]);
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        add_node(wd, body_of(wd, wd->contacts[k].a));
+        add_node(wd, body_of(wd, wd->contacts[k].b));
+    }
+    return PP_OK;
+}
+
 pp_status island_plan(world *wd, solver_islands *out)
 {
     *out = (solver_islands){0};
+    wd->node_count = 0;
     if (wd->body_capacity == 0)
         return PP_OK;
     pp_status st = world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group,
                                     "the islands");
     if (st || (st = world_slot_array(wd, (void **)&wd->island_bodies, &wd->island_capacity,
                                      sizeof *wd->island_bodies, "the islands")) ||
-        (st = world_slot_array(wd, (void **)&wd->island_kind, &wd->island_kind_capacity, 1, "the islands")))
+        (st = world_slot_array(wd, (void **)&wd->island_kind, &wd->island_kind_capacity, 1, "the islands")) ||
+        (st = collect_nodes(wd)))
         return st;
     /* Per root: the island's rows (the group array's second half) and its dynamic bodies. */
     int32_t *parent = wd->group, *rows = wd->group + wd->group_capacity;
     int32_t *dynamic = (int32_t *)wd->island_bodies; /* scratch until the lists are written */
     PP_ASSERT(sizeof *wd->island_bodies >= sizeof *dynamic);
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int32_t i = wd->nodes[n];
         const body *bd = wd->bodies[i];
         parent[i] = i;
-        rows[i] = bd && bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
-        dynamic[i] = bd && bd->type == PP_BODY_DYNAMIC;
+        rows[i] = bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
+        dynamic[i] = bd->type == PP_BODY_DYNAMIC;
     }
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
@@ -51,29 +98,24 @@ pp_status island_plan(world *wd, solver_islands *out)
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
      * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */
-    for (int32_t i = 0; i < wd->body_capacity; i++)
-        if (wd->bodies[i] && wd->bodies[i]->sb.body && !within_reach(wd, wd->bodies[i]))
-            dynamic[world_group_root(parent, i)] = INT32_MIN / 2;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const int32_t r = world_group_root(parent, i);
-        wd->island_kind[i] = !wd->bodies[i] || !wd->bodies[i]->sb.body ? ISLAND_NONE
-                             : dynamic[r] < 2                         ? ISLAND_QUICK_ALONE
-                             : ISLAND_QUICK_STACK;
+    for (int32_t n = 0; n < wd->node_count; n++)
+        if (!within_reach(wd, wd->bodies[wd->nodes[n]]))
+            dynamic[world_group_root(parent, wd->nodes[n])] = INT32_MIN / 2;
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int32_t i = wd->nodes[n];
+        wd->island_kind[i] = dynamic[world_group_root(parent, i)] < 2 ? ISLAND_QUICK_ALONE : ISLAND_QUICK_STACK;
     }
     /* An island is stepped if any of its bodies is awake (ODE wakes the rest); mark those roots. */
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (bd && bd->sb.body && solver_body_is_awake(&bd->sb))
-            rows[world_group_root(parent, i)] |= INT32_MIN;
-    }
+    for (int32_t n = 0; n < wd->node_count; n++)
+        if (awake_mover(wd->bodies[wd->nodes[n]]))
+            rows[world_group_root(parent, wd->nodes[n])] |= INT32_MIN;
     /* Exact islands fill the array from the front, QuickStep's awake bodies from the back. */
     const int32_t limit = wd->def.exact_island_rows;
     solver_body **list = wd->island_bodies;
     int32_t n_exact = 0, n_quick = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int32_t i = wd->nodes[n];
         body *bd = wd->bodies[i];
-        if (!bd || !bd->sb.body)
-            continue;
         const int32_t r = rows[world_group_root(parent, i)];
         if (r >= 0)
             continue; /* asleep */
@@ -81,9 +123,61 @@ pp_status island_plan(world *wd, solver_islands *out)
             wd->island_kind[i] = ISLAND_EXACT;
             list[n_exact++] = &bd->sb;
         }
-        else if (solver_body_is_awake(&bd->sb))
+        else if (awake_mover(bd))
             list[wd->body_capacity - 1 - n_quick++] = &bd->sb;
     }
     *out = (solver_islands){list, n_exact, list + wd->body_capacity - n_quick, n_quick};
     return PP_OK;
+}
+
+void island_list_woken(world *wd)
+{
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        body *bd = wd->bodies[wd->nodes[n]];
+        if (awake_mover(bd))
+            awake_add(wd, bd);
+    }
+}
+
+void island_sleep(world *wd, double h)
+{
+    const pp_world_def *d = &wd->def;
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        body *bd = wd->bodies[wd->awake_slots[k]];
+        if (bd->type != PP_BODY_DYNAMIC || !awake_mover(bd))
+            continue;
+        if (bd->slow_time > d->sleep_time)
+            bd->slow_time = 0; /* woken since it slept (the mark set below) */
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed &&
+                          fabs(s.angular_velocity) <= d->sleep_angular_speed;
+        /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
+        bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
+    }
+    if (!d->allow_sleep || wd->node_count == 0)
+        return; /* no node: nothing awake, and maybe no arrays yet */
+    /* Sleep groups: dynamic bodies joined by contacts, over the nodes island_plan collected (every body of a
+     * group with an awake body is one: awake, or a contact's). */
+    int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
+    for (int32_t n = 0; n < wd->node_count; n++)
+        parent[wd->nodes[n]] = wd->nodes[n], restless[wd->nodes[n]] = 0;
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
+            parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
+    }
+    /* A group with a body not yet ready stays awake. */
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const body *bd = wd->bodies[wd->nodes[n]];
+        if (bd->type == PP_BODY_DYNAMIC && bd->slow_time < d->sleep_time)
+            restless[world_group_root(parent, wd->nodes[n])] = 1;
+    }
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        body *bd = wd->bodies[wd->awake_slots[k]];
+        if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd) && !restless[world_group_root(parent, (int32_t)bd->index)]) {
+            solver_body_sleep(&bd->sb);
+            bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
+        }
+    }
 }

@@ -1,12 +1,20 @@
 /* Islands: the bodies this substep's contacts join, as ODE will step them, each sent to the exact
- * solver or to QuickStep by its size. */
+ * solver or to QuickStep by its size; and the groups that fall asleep together. */
 #ifndef PP_ISLAND_H
 #define PP_ISLAND_H
 
 #include "solver_ode.h"
 #include "world.h"
 
-/* Sort the awake islands into `out` (arrays owned by the world) for solver_step. */
+/* Collect the substep's nodes and sort the awake islands into `out` (arrays owned by the world) for
+ * solver_step. */
 pp_status island_plan(world *wd, solver_islands *out);
+
+/* After solver_step: list in the awake set every node ODE woke through a contact. */
+void island_list_woken(world *wd);
+
+/* Advance the awake dynamic bodies' sleep timers by h s and put to sleep each group of bodies in contact
+ * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. */
+void island_sleep(world *wd, double h);
 
 #endif

@@ -141,14 +141,33 @@ static bool untested(const world *wd, const touch *t)
     return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
 }
 
+/* Merge two sorted runs of pairs into out. */
+static void merge(const touch *x, int32_t nx, const touch *y, int32_t ny, touch *out)
+{
+    int32_t i = 0, j = 0, k = 0;
+    while (i < nx && j < ny)
+        out[k++] = touch_cmp(&x[i], &y[j]) <= 0 ? x[i++] : y[j++];
+    while (i < nx)
+        out[k++] = x[i++];
+    while (j < ny)
+        out[k++] = y[j++];
+}
+
 pp_status touch_end(world *wd)
 {
-    touch_sort(wd->touch_next, wd->touch_next_count);
-    /* Room for the worst case first (every old pair kept, or ended with an event): nothing below can fail. */
     const int32_t found = wd->touch_next_count, n = found + wd->touch_count;
+    /* Nothing awake, nothing found, no body gone: every recorded pair still touches, untested. */
+    if (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone)
+        return PP_OK;
+    touch_sort(wd->touch_next, found);
+    /* Room for the worst case first (every old pair kept, or ended with an event): nothing below can fail. */
     pp_status st = world_reserve_events(wd, wd->touch_count);
-    if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next))
+    if (!st)
+        st = world_save_touching(wd);
+    if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next) ||
+        !world_room((void **)&wd->touching, n, &wd->touch_capacity, sizeof *wd->touching))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
+    wd->touch_body_gone = false;
     for (int32_t i = 0; i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
         if (listed(t, wd->touch_next, found))
@@ -167,12 +186,9 @@ pp_status touch_end(world *wd)
         else if (wd->def.contact_events && (t->flags & TOUCH_BEGUN))
             world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
     }
-    if (wd->touch_next_count > found) /* kept pairs went on the end */
-        touch_sort(wd->touch_next, wd->touch_next_count);
-    /* The new list becomes current; the old one's buffer is reused for the next substep. */
-    touch *list = wd->touching;
-    const int32_t cap = wd->touch_capacity;
-    wd->touching = wd->touch_next, wd->touch_count = wd->touch_next_count, wd->touch_capacity = wd->touch_next_capacity;
-    wd->touch_next = list, wd->touch_next_count = 0, wd->touch_next_capacity = cap;
+    /* The found pairs and the kept ones (on the end, in the old list's order) merge into the current list. */
+    merge(wd->touch_next, found, wd->touch_next + found, wd->touch_next_count - found, wd->touching);
+    wd->touch_count = wd->touch_next_count;
+    wd->touch_next_count = 0;
     return PP_OK;
 }

@@ -1,6 +1,7 @@
 /* World lifetime, the handle tables, and the step loop:
  * broadphase → narrowphase per pair → ODE contact joints → ODE step, `substeps` times. */
 #include "alloc.h"
+#include "awake.h"
 #include "continuous.h"
 #include "handle.h"
 #include "island.h"
@@ -252,6 +253,10 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->group);
     pp_free(wd->island_bodies);
     pp_free(wd->island_kind);
+    pp_free(wd->node_mark);
+    pp_free(wd->nodes);
+    pp_free(wd->swept);
+    pp_free(wd->awake_slots);
     pp_free(wd->bodies);
     pp_free(wd->generations);
     pp_free(wd->free_slots);
@@ -464,20 +469,9 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
 {
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
-    pp_status st = world_slot_array(wd, (void **)&wd->proxies, &wd->proxy_capacity, sizeof *wd->proxies,
-                                    "the broadphase");
+    pp_status st = awake_refresh(wd);
     if (st)
         return st;
-    wd->awake_movers = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        wd->proxies[i] = bd ? (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
-                                         bd->type == PP_BODY_DYNAMIC,
-                                         bd->type != PP_BODY_STATIC && (!bd->sb.body || solver_body_is_awake(&bd->sb)),
-                                         true}
-                            : (bp_proxy){.live = false};
-        wd->awake_movers += bd && wd->proxies[i].awake;
-    }
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     if (wd->awake_movers > 0)
         st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
@@ -600,9 +594,9 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
  * clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
 static pp_status sync_bodies(world *wd)
 {
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        body *bd = wd->bodies[i];
-        if (!bd || !bd->sb.body || !solver_body_is_awake(&bd->sb))
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        body *bd = wd->bodies[wd->awake_slots[k]];
+        if (!awake_mover(bd))
             continue;
         solver_body_flatten(&bd->sb);
         solver_body_state s;
@@ -620,59 +614,6 @@ static pp_status sync_bodies(world *wd)
         bd->angle = s.angle, bd->cos_a = c, bd->sin_a = sn;
         bd->pos = pos;
         body_update_pose_cache(bd);
-    }
-    return PP_OK;
-}
-
-/* A dynamic body slower than the sleep speeds for sleep_time may sleep, as under ODE's auto-disable,
- * but with its timer here so that a snapshot can save it. Bodies touching each other sleep together
- * or not at all: ODE wakes a sleeper that an awake body touches, so one that slept alone would be
- * woken at once, its timer restarted, and a resting pile would never settle. */
-static pp_status update_sleep(world *wd, double h)
-{
-    const pp_world_def *d = &wd->def;
-    /* No slots yet: no group array either, and NULL + 0 below would be undefined behaviour (found by fuzz_snapshot). */
-    if (wd->body_capacity == 0)
-        return PP_OK;
-    pp_status st =
-        world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group, "sleep groups");
-    if (st)
-        return st;
-    PP_ASSERT(wd->group_capacity >= wd->body_capacity);
-    int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        parent[i] = i, restless[i] = 0;
-        body *bd = wd->bodies[i];
-        if (!bd || bd->type != PP_BODY_DYNAMIC || !solver_body_is_awake(&bd->sb))
-            continue;
-        if (bd->slow_time > d->sleep_time)
-            bd->slow_time = 0; /* woken since it slept (the mark set below) */
-        solver_body_state s;
-        solver_body_get_state(wd->solver, &bd->sb, &s);
-        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed &&
-                          fabs(s.angular_velocity) <= d->sleep_angular_speed;
-        /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
-        bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
-    }
-    if (!d->allow_sleep)
-        return PP_OK;
-    for (int32_t k = 0; k < wd->contact_count; k++) {
-        const uint32_t a = handle_slot(wd->contacts[k].a.id), b = handle_slot(wd->contacts[k].b.id);
-        if (wd->bodies[a]->type == PP_BODY_DYNAMIC && wd->bodies[b]->type == PP_BODY_DYNAMIC)
-            parent[world_group_root(parent, (int32_t)a)] = world_group_root(parent, (int32_t)b);
-    }
-    /* A group with a body not yet ready stays awake. */
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (bd && bd->type == PP_BODY_DYNAMIC && bd->slow_time < d->sleep_time)
-            restless[world_group_root(parent, i)] = 1;
-    }
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        body *bd = wd->bodies[i];
-        if (bd && bd->type == PP_BODY_DYNAMIC && solver_body_is_awake(&bd->sb) && !restless[world_group_root(parent, i)]) {
-            solver_body_sleep(&bd->sb);
-            bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
-        }
     }
     return PP_OK;
 }
@@ -788,14 +729,13 @@ static pp_status step_save(world *wd)
         u->body_capacity = wd->body_capacity;
     }
     if (!world_room((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts) ||
-        !world_room((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order) ||
-        !world_room((void **)&u->touching, wd->touch_count, &u->touch_capacity, sizeof *u->touching))
+        !world_room((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
     u->step++;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (bd && bd->sb.body && solver_body_is_awake(&bd->sb))
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        const body *bd = wd->bodies[wd->awake_slots[k]];
+        if (awake_mover(bd))
             save_body(u, bd);
     }
     if (wd->contact_count > 0)
@@ -804,12 +744,24 @@ static pp_status step_save(world *wd)
     if (wd->broad.order_count > 0)
         memcpy(u->order, wd->broad.order, (size_t)wd->broad.order_count * sizeof *u->order);
     u->order_count = wd->broad.order_count;
-    if (wd->touch_count > 0)
-        memcpy(u->touching, wd->touching, (size_t)wd->touch_count * sizeof *u->touching);
-    u->touch_count = wd->touch_count;
+    u->touch_saved = false; /* saved by touch_end before it first changes the list (world_save_touching) */
     u->event_count = wd->event_count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
+    return PP_OK;
+}
+
+pp_status world_save_touching(world *wd)
+{
+    step_undo *u = &wd->undo;
+    if (u->touch_saved)
+        return PP_OK;
+    if (!world_room((void **)&u->touching, wd->touch_count, &u->touch_capacity, sizeof *u->touching))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)wd->touch_count);
+    if (wd->touch_count > 0)
+        memcpy(u->touching, wd->touching, (size_t)wd->touch_count * sizeof *u->touching);
+    u->touch_count = wd->touch_count;
+    u->touch_saved = true;
     return PP_OK;
 }
 
@@ -846,11 +798,14 @@ static void step_restore(world *wd)
     wd->stats = u->stats;
     solver_set_steps(wd->solver, u->solver_steps);
     /* The saved pairs become the world's, its buffer the next save's: nothing to allocate. */
-    touch *list = wd->touching;
-    const int32_t cap = wd->touch_capacity;
-    wd->touching = u->touching, wd->touch_count = u->touch_count, wd->touch_capacity = u->touch_capacity;
-    u->touching = list, u->touch_capacity = cap;
+    if (u->touch_saved) {
+        touch *list = wd->touching;
+        const int32_t cap = wd->touch_capacity;
+        wd->touching = u->touching, wd->touch_count = u->touch_count, wd->touch_capacity = u->touch_capacity;
+        u->touching = list, u->touch_capacity = cap;
+    }
     wd->event_count = u->event_count;
+    awake_rebuild(wd); /* poses and sleep came back behind the set's back */
 }
 
 /* The substeps of one step; on failure the caller undoes them. */
@@ -873,6 +828,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         add_contact_joints(wd, h);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+        island_list_woken(wd);
         for (int32_t c = 0; c < wd->contact_count; c++) {
             pp_contact *ct = &wd->contacts[c];
             ct->normal_impulse = (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h);
@@ -880,8 +836,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         if ((st = sync_bodies(wd)))
             return st;
         continuous_end(wd);
-        if ((st = update_sleep(wd, h)))
-            return st;
+        island_sleep(wd, h);
         *t_solver += now_ms() - t0;
     }
     return PP_OK;
@@ -908,9 +863,8 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         return st;
     }
     int32_t awake = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
-        if (wd->bodies[i] && wd->bodies[i]->sb.body && solver_body_is_awake(&wd->bodies[i]->sb))
-            awake++;
+    for (int32_t k = 0; k < wd->awake_count; k++)
+        awake += awake_mover(wd->bodies[wd->awake_slots[k]]);
     wd->stats.broadphase_ms = (float)t_broad;
     wd->stats.narrowphase_ms = (float)t_narrow;
     wd->stats.solver_ms = (float)t_solver;

@@ -37,6 +37,7 @@ typedef struct body {
     pp_aabb aabb;            /* world bounds of the solid pixels */
     uint64_t user_data;
     uint64_t serial;         /* creation order; a snapshot recreates ODE bodies in it */
+    int32_t awake_at;        /* its place in the world's awake set (awake.h), or -1 */
     double slow_time;        /* s the body has stayed under the sleep speeds, at most sleep_time while awake;
                               * sleep_time + 1 while asleep */
     bool bullet;             /* swept against dynamic bodies too */
@@ -49,7 +50,6 @@ typedef struct body {
 typedef struct continuous_pose {
     dvec2 com;               /* px */
     double angle;            /* rad */
-    bool valid;              /* the body is swept this substep */
 } continuous_pose;
 
 /* A pending timed edit and when it was scheduled: among equal times, the earlier scheduled applies first. */
@@ -78,8 +78,9 @@ typedef struct step_undo {
     int32_t order_count, order_capacity;
     pp_step_stats stats;
     uint64_t solver_steps;
-    touch *touching;          /* the touching pairs; swapped back, not copied, so a restore cannot fail */
-    int32_t touch_count, touch_capacity;
+    touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
+    int32_t touch_count, touch_capacity; /* swapped back, not copied, so a restore cannot fail */
+    bool touch_saved;         /* touching holds this step's saved pairs */
     int32_t event_count;      /* events queued before the step */
 } step_undo;
 
@@ -100,8 +101,11 @@ typedef struct world {
     pp_contact *contacts;    /* the last substep's contacts */
     int32_t contact_count, contact_capacity;
     int32_t awake_movers;    /* dynamic or kinematic bodies awake at the last broadphase */
+    int32_t *awake_slots;    /* the awake set (awake.h): slots, sorted from each substep's start */
+    int32_t awake_count, awake_capacity;
+    bool awake_sorted;
     np_scratch scratch;
-    bp_proxy *proxies;       /* the broadphase's view of every slot, refilled each substep */
+    bp_proxy *proxies;       /* the broadphase's view of every slot, refreshed for the awake set's bodies */
     int32_t proxy_capacity;
     np_pair *pairs;          /* this substep's pairs that passed set-up … */
     np_core *cores;          /* … their integer cores … */
@@ -122,8 +126,15 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
-    int32_t *group;          /* two per slot: union-find parents, then restless flags (bodies in contact sleep together) */
+    int32_t *group;          /* two per slot: union-find parents, then each root's rows or restless flag (island.c) */
     int32_t group_capacity;
+    uint32_t *node_mark;     /* by slot: the island pass that last made it a node (island.c) */
+    int32_t node_mark_capacity;
+    uint32_t node_pass;
+    int32_t *nodes;          /* the substep's island nodes: awake bodies and contacts' movable bodies */
+    int32_t node_count, node_capacity;
+    int32_t *swept;          /* the slots continuous_begin recorded, in order */
+    int32_t swept_count, swept_capacity;
     solver_body **island_bodies; /* this substep's islands for solver_step (island.c) … */
     int32_t island_capacity;
     uint8_t *island_kind;    /* … and by slot, how each body's island is solved (ISLAND_*) */
@@ -132,6 +143,7 @@ typedef struct world {
     int32_t touch_count, touch_capacity;
     touch *touch_next;       /* the substep's list being built */
     int32_t touch_next_count, touch_next_capacity;
+    bool touch_body_gone;    /* a body was removed since the last touch_end: its pairs end there */
     step_undo undo;
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
 } world;
@@ -186,6 +198,9 @@ bool world_room(void **items, int32_t n, int32_t *capacity, size_t size);
 
 /* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */
 timed_edit *world_edits_in_order(const world *wd);
+
+/* Save the touching pairs for the step's undo, once a step, before touch_end first changes them. */
+pp_status world_save_touching(world *wd);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

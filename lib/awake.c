@@ -1,0 +1,104 @@
+/* The awake set (awake.h): a list of body slots with each listed body's place in it, so that adding and
+ * forgetting a body cost O(1); it is sorted by slot at each substep's start, when it changed. */
+#include "awake.h"
+#include "alloc.h"
+#include "status.h"
+
+#include <stdlib.h>
+
+pp_status awake_reserve(world *wd, int32_t n)
+{
+    if (!world_room((void **)&wd->awake_slots, n, &wd->awake_capacity, sizeof *wd->awake_slots))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for %d awake bodies", (int)n);
+    return PP_OK;
+}
+
+void awake_add(world *wd, body *bd)
+{
+    if (bd->awake_at >= 0)
+        return;
+    PP_ASSERT(wd->awake_count < wd->awake_capacity); /* awake_reserve at creation */
+    const int32_t n = wd->awake_count++;
+    wd->awake_slots[n] = (int32_t)bd->index;
+    bd->awake_at = n;
+    wd->awake_sorted = wd->awake_sorted && (n == 0 || wd->awake_slots[n - 1] < (int32_t)bd->index);
+}
+
+void awake_wake(world *wd, body *bd)
+{
+    solver_body_wake(&bd->sb);
+    awake_add(wd, bd);
+}
+
+void awake_forget(world *wd, body *bd)
+{
+    if (bd->index < (uint32_t)wd->proxy_capacity)
+        wd->proxies[bd->index].live = false;
+    const int32_t at = bd->awake_at;
+    if (at < 0)
+        return;
+    const int32_t last = wd->awake_slots[--wd->awake_count];
+    if (at < wd->awake_count) {
+        wd->awake_slots[at] = last;
+        wd->bodies[last]->awake_at = at;
+        wd->awake_sorted = false;
+    }
+    bd->awake_at = -1;
+}
+
+void awake_rebuild(world *wd)
+{
+    wd->awake_count = 0;
+    wd->awake_sorted = true;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i])
+            wd->bodies[i]->awake_at = -1;
+    for (int32_t i = 0; i < wd->body_capacity; i++)
+        if (wd->bodies[i])
+            awake_add(wd, wd->bodies[i]);
+}
+
+static int slot_order(const void *x, const void *y)
+{
+    const int32_t a = *(const int32_t *)x, b = *(const int32_t *)y;
+    return (a > b) - (a < b);
+}
+
+/* The broadphase's view of a body now. */
+static bp_proxy proxy_of(const body *bd)
+{
+    return (bp_proxy){bd->aabb, bd->category_bits, bd->mask_bits, bd->type != PP_BODY_STATIC,
+                      bd->type == PP_BODY_DYNAMIC, bd->type != PP_BODY_STATIC && (!bd->sb.body || awake_mover(bd)),
+                      true};
+}
+
+pp_status awake_refresh(world *wd)
+{
+    if (wd->body_capacity > wd->proxy_capacity) { /* new slots hold no body until one is listed */
+        bp_proxy *p = pp_realloc(wd->proxies, (size_t)wd->body_capacity * sizeof *p);
+        if (!p)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
+        for (int32_t i = wd->proxy_capacity; i < wd->body_capacity; i++)
+            p[i] = (bp_proxy){.live = false};
+        wd->proxies = p, wd->proxy_capacity = wd->body_capacity;
+    }
+    int32_t kept = 0, movers = 0;
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        const int32_t i = wd->awake_slots[k];
+        body *bd = wd->bodies[i];
+        wd->proxies[i] = proxy_of(bd);
+        movers += wd->proxies[i].awake;
+        if (awake_mover(bd))
+            wd->awake_slots[kept++] = i;
+        else
+            bd->awake_at = -1;
+    }
+    wd->awake_count = kept;
+    wd->awake_movers = movers;
+    if (!wd->awake_sorted && kept > 1)
+        qsort(wd->awake_slots, (size_t)kept, sizeof *wd->awake_slots, slot_order);
+    for (int32_t k = 0; k < kept; k++)
+        wd->bodies[wd->awake_slots[k]]->awake_at = k;
+    wd->awake_sorted = true;
+    return PP_OK;
+}

@@ -1,0 +1,32 @@
+/* The awake set: the bodies a substep must visit. It holds every awake dynamic or kinematic body, and any
+ * body whose pose or pixels changed since the last substep (its broadphase proxy is stale); a sleeping or
+ * static body leaves it once its proxy is refreshed. Every per-body pass of the step walks this set, not
+ * the body table, so a sleeping world steps without visiting its bodies. */
+#ifndef PP_AWAKE_H
+#define PP_AWAKE_H
+
+#include "world.h"
+
+/* Room for every live body and one more, so that awake_add cannot fail; call before creating a body. */
+pp_status awake_reserve(world *wd, int32_t n);
+
+/* List a body (if not listed): it is awake, or its proxy must be refreshed. */
+void awake_add(world *wd, body *bd);
+
+/* Wake a movable body's ODE body and list it. */
+void awake_wake(world *wd, body *bd);
+
+/* Forget a body that is being removed: out of the set, its slot's proxy dead. */
+void awake_forget(world *wd, body *bd);
+
+/* List every live body again (after a step is undone, which restores poses behind the set's back). */
+void awake_rebuild(world *wd);
+
+/* At a substep's start: refresh the listed bodies' proxies, drop those now asleep or static, sort the rest
+ * by slot (the order every pass visits them in) and count the awake movers into wd->awake_movers. */
+pp_status awake_refresh(world *wd);
+
+/* Whether a listed body is an awake movable body (the set may still hold one that fell asleep this substep). */
+static inline bool awake_mover(const body *bd) { return bd->sb.body && solver_body_is_awake(&bd->sb); }
+
+#endif

@@ -1,0 +1,117 @@
+/* The awake set: a step visits only awake bodies and bodies changed since the last one. These scenes
+ * check what it must not lose: a sleeping world stands still bit for bit, a touch wakes a sleeping stack,
+ * a static body moved between steps is met where it now is, and a body destroyed while everything
+ * sleeps ends its contacts. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "helpers.h"
+#include "physpix.h"
+
+PP_TEST_SUITE(awake);
+
+#define DT (1.0f / 60.0f)
+#define GROUND_TOP 500.0f
+
+static int32_t awake_bodies(pp_world w)
+{
+    pp_step_stats s;
+    PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
+    return s.awake_bodies;
+}
+
+/* Steps until no body is awake; fails after `most` steps. */
+static void settle(pp_world w, int most)
+{
+    for (int k = 0; k < most; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        if (awake_bodies(w) == 0)
+            return;
+    }
+    cr_assert_fail("still %d bodies awake after %d steps", (int)awake_bodies(w), most);
+}
+
+/* A ground and `stacks` stacks of four 16 px crates, 40 px apart from x = 100; crates[] gets them. */
+static void crate_stacks(pp_world w, int stacks, pp_body *crates)
+{
+    add_rect(w, body_def(PP_BODY_STATIC, 500, GROUND_TOP + 20, 0), 1000, 40);
+    for (int s = 0; s < stacks; s++)
+        for (int k = 0; k < 4; k++)
+            crates[4 * s + k] = add_rect(w, body_def(PP_BODY_DYNAMIC, 100.0f + 40.0f * s, GROUND_TOP - 8 - 16 * k, 0), 16, 16);
+}
+
+Test(awake, a_sleeping_world_stands_still_and_a_thrown_box_wakes_the_stack_it_lands_on)
+{
+    pp_world w = make_world(0, 980);
+    pp_body crates[20];
+    crate_stacks(w, 5, crates);
+    settle(w, 600);
+    pp_vec2 before[20];
+    for (int i = 0; i < 20; i++)
+        before[i] = body_pos(w, crates[i]);
+    step_n(w, DT, 120);
+    cr_assert_eq(awake_bodies(w), 0);
+    for (int i = 0; i < 20; i++) {
+        const pp_vec2 p = body_pos(w, crates[i]);
+        cr_assert(p.x == before[i].x && p.y == before[i].y, "crate %d moved while asleep", i);
+    }
+    /* A box dropped onto the third stack (x = 180) wakes its four crates through their contacts, and only them. */
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 180, GROUND_TOP - 64 - 40, 0), 16, 16);
+    int woke = 0;
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        woke = awake_bodies(w) > woke ? awake_bodies(w) : woke;
+    }
+    cr_assert_eq(woke, 5, "the box and the 4 crates under it wake, no more (got %d)", woke);
+    settle(w, 600);
+    /* It rests on the stack's top crate: its centre 16 px above that crate's, within the contact slop. */
+    const pp_vec2 top = body_pos(w, crates[11]), p = body_pos(w, box);
+    cr_assert(fabsf(p.y - (top.y - 16)) < 1.5f, "box at y %.2f, top crate at %.2f", p.y, top.y);
+    for (int i = 0; i < 20; i++)
+        if (i < 8 || i >= 12)
+            cr_assert(body_pos(w, crates[i]).x == before[i].x, "crate %d of another stack moved", i);
+    pp_world_destroy(w);
+}
+
+Test(awake, a_static_platform_moved_between_steps_catches_a_falling_box)
+{
+    pp_world w = make_world(0, 980);
+    pp_body crates[8];
+    crate_stacks(w, 2, crates);
+    settle(w, 600); /* the static bodies' boxes are left as they were: only the moved one is refreshed */
+    pp_body platform = add_rect(w, body_def(PP_BODY_STATIC, 900, 100, 0), 100, 20);
+    step_n(w, DT, 2);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 600, 100, 0), 16, 16);
+    step_n(w, DT, 10); /* falling: 49 px by now */
+    PP_OK_OR_FAIL(pp_body_set_transform(w, platform, v2(600, 300), 0));
+    step_n(w, DT, 120);
+    const pp_vec2 p = body_pos(w, box);
+    /* The platform's top is at y = 290; the box rests on it, not on the ground at 500. */
+    cr_assert(fabsf(p.y - (290 - 8)) < 1.5f, "box at y %.2f: the platform was not where it was moved to", p.y);
+    pp_world_destroy(w);
+}
+
+Test(awake, destroying_a_body_in_a_sleeping_world_ends_its_contact)
+{
+    pp_world_def d = pp_world_def_default();
+    d.contact_events = 1;
+    pp_world w = make_world_def(&d);
+    pp_body crates[4];
+    crate_stacks(w, 1, crates);
+    settle(w, 600);
+    pp_event ev[16];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n)); /* the four BEGINs */
+    cr_assert_eq(n, 4);
+    /* The top crate touches only the one under it: destroying it wakes nothing, yet the pair must end. */
+    PP_OK_OR_FAIL(pp_body_destroy(w, crates[3]));
+    step_n(w, DT, 1);
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert_eq(n, 1, "one END, got %d events", (int)n);
+    cr_assert_eq(ev[0].type, PP_EVENT_CONTACT_END);
+    cr_assert(ev[0].body.id == crates[3].id || ev[0].other.id == crates[3].id, "the END names the destroyed crate");
+    cr_assert_eq(awake_bodies(w), 0);
+    pp_world_destroy(w);
+}
