@@ -159,8 +159,8 @@ typedef struct pp_body {
 } pp_body;
 
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
- * sweep-and-prune on the solid pixels' world boxes (static–static, filtered and sleeping–sleeping pairs
- * are skipped), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
+ * a dynamic AABB tree of the solid pixels' world boxes, queried by the awake bodies only (static–static,
+ * filtered and sleeping–sleeping pairs are skipped; a sleeping body costs a step nothing), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
  * and contact points from the intersection raster, in integers, so the CPU and GPU backends agree bit for
  * bit and runs are deterministic. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
  * (pixels_per_meter); contact joints with Coulomb friction μ = √(μa·μb) and restitution max(ea, eb) above

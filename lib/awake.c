@@ -4,6 +4,7 @@
 #include "alloc.h"
 #include "status.h"
 
+
 #include <stdlib.h>
 
 pp_status awake_reserve(world *wd, int32_t n)
@@ -34,6 +35,7 @@ void awake_forget(world *wd, body *bd)
 {
     if (bd->index < (uint32_t)wd->proxy_capacity)
         wd->proxies[bd->index].live = false;
+    broadphase_remove(&wd->broad, bd->index);
     const int32_t at = bd->awake_at;
     if (at < 0)
         return;
@@ -82,11 +84,17 @@ pp_status awake_refresh(world *wd)
             p[i] = (bp_proxy){.live = false};
         wd->proxies = p, wd->proxy_capacity = wd->body_capacity;
     }
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        const int32_t i = wd->awake_slots[k];
+        wd->proxies[i] = proxy_of(wd->bodies[i]);
+        pp_status st = broadphase_update(&wd->broad, &wd->proxies[i], (uint32_t)i, wd->body_capacity);
+        if (st)
+            return st;
+    }
     int32_t kept = 0, movers = 0;
     for (int32_t k = 0; k < wd->awake_count; k++) {
         const int32_t i = wd->awake_slots[k];
         body *bd = wd->bodies[i];
-        wd->proxies[i] = proxy_of(bd);
         movers += wd->proxies[i].awake;
         if (awake_mover(bd))
             wd->awake_slots[kept++] = i;
@@ -100,5 +108,72 @@ pp_status awake_refresh(world *wd)
     for (int32_t k = 0; k < kept; k++)
         wd->bodies[wd->awake_slots[k]]->awake_at = k;
     wd->awake_sorted = true;
+    return PP_OK;
+}
+
+static bool boxes_meet(const pp_aabb *a, const pp_aabb *b)
+{
+    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
+}
+
+typedef struct box_visit {
+    world *wd;
+    pp_aabb box;
+    bool (*visit)(world *wd, body *bd, void *user);
+    void *user;
+    bool stopped;  /* a visit returned false */
+} box_visit;
+
+/* A leaf whose fat box meets the query: its body, unless it is listed (the set's loop takes those). */
+static bool visit_leaf(uint32_t slot, void *user)
+{
+    box_visit *v = user;
+    body *bd = v->wd->bodies[slot];
+    if (bd->awake_at >= 0 || !boxes_meet(&bd->aabb, &v->box) || v->visit(v->wd, bd, v->user))
+        return true;
+    v->stopped = true;
+    return false;
+}
+
+void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd, void *user), void *user)
+{
+    box_visit v = {wd, box, visit, user, false};
+    broadphase_query(&wd->broad, box, visit_leaf, &v);
+    const int32_t n = wd->awake_count; /* bodies a visit lists were visited from the tree */
+    for (int32_t k = 0; k < n && !v.stopped; k++) {
+        body *bd = wd->bodies[wd->awake_slots[k]];
+        if (boxes_meet(&bd->aabb, &box) && !visit(wd, bd, user))
+            return;
+    }
+}
+
+/* A growing list of slots. */
+typedef struct slot_list {
+    int32_t *slots;
+    int32_t count, capacity;
+    bool failed;
+} slot_list;
+
+static bool list_slot(world *wd, body *bd, void *user)
+{
+    slot_list *l = user;
+    if (!world_room((void **)&l->slots, l->count + 1, &l->capacity, sizeof *l->slots))
+        return l->failed = true, false;
+    l->slots[l->count++] = (int32_t)bd->index;
+    return true;
+}
+
+pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n)
+{
+    slot_list l = {NULL, 0, 0, false};
+    awake_each_in_box(wd, box, list_slot, &l);
+    if (l.failed) {
+        pp_free(l.slots);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the bodies near (%g, %g)", fn,
+                       0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1));
+    }
+    if (l.count > 1)
+        qsort(l.slots, (size_t)l.count, sizeof *l.slots, slot_order);
+    *slots = l.slots, *n = l.count;
     return PP_OK;
 }

@@ -22,9 +22,17 @@ void awake_forget(world *wd, body *bd);
 /* List every live body again (after a step is undone, which restores poses behind the set's back). */
 void awake_rebuild(world *wd);
 
-/* At a substep's start: refresh the listed bodies' proxies, drop those now asleep or static, sort the rest
+/* At a substep's start: refresh the listed bodies' proxies and tree leaves, drop those now asleep or static, sort the rest
  * by slot (the order every pass visits them in) and count the awake movers into wd->awake_movers. */
 pp_status awake_refresh(world *wd);
+
+/* Call visit for each live body whose world box meets `box` (closed), in no set order, until it returns false:
+ * the tree's leaves find the bodies it holds up to date, the awake set the rest. Cannot fail. */
+void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd, void *user), void *user);
+
+/* The live bodies whose world box meets `box` (closed), in slot order, as a list the caller frees with pp_free:
+ * awake_each_in_box's. PP_ERR_OUT_OF_MEMORY names `fn`. */
+pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n);
 
 /* Whether a listed body is an awake movable body (the set may still hold one that fell asleep this substep). */
 static inline bool awake_mover(const body *bd) { return bd->sb.body && solver_body_is_awake(&bd->sb); }

@@ -1,134 +1,408 @@
-/* Sweep-and-prune on x over the live bodies' world AABBs. The order array persists between
- * steps, so the insertion sort runs in near-linear time on a scene that moves a little. */
+/* A dynamic AABB tree (as in Box2D's b2DynamicTree): leaves hold fattened body boxes, an insert descends to
+ * the sibling that grows the tree's perimeter least, and AVL rotations keep it balanced. Pairs come from the
+ * awake bodies' queries and are sorted into one order that does not depend on the tree's shape, so a step
+ * is the same whatever history built the tree. */
 #include "alloc.h"
 #include "broadphase.h"
+#include "check.h"
 #include "status.h"
 
 #include <stdlib.h>
+#include <string.h>
 
-static pp_status grow(void **buf, int32_t *cap, int32_t need, size_t item)
+/* A leaf's box is its body's grown by this, px: a body that moves less keeps its leaf. */
+#define BP_MARGIN 4.0
+
+static pp_aabb combine(pp_aabb a, pp_aabb b)
+{
+    return (pp_aabb){a.x0 < b.x0 ? a.x0 : b.x0, a.y0 < b.y0 ? a.y0 : b.y0, a.x1 > b.x1 ? a.x1 : b.x1,
+                     a.y1 > b.y1 ? a.y1 : b.y1};
+}
+
+static double perimeter(pp_aabb b) { return 2.0 * ((b.x1 - b.x0) + (b.y1 - b.y0)); }
+
+static bool contains(pp_aabb outer, pp_aabb in)
+{
+    return outer.x0 <= in.x0 && outer.y0 <= in.y0 && in.x1 <= outer.x1 && in.y1 <= outer.y1;
+}
+
+static bool overlap(const pp_aabb *a, const pp_aabb *b)
+{
+    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
+}
+
+static int32_t max_i(int32_t a, int32_t b) { return a > b ? a : b; }
+
+/* Room for `need` items of `size` bytes, doubling; false (nothing changed) without memory. */
+static bool grow(void **buf, int32_t *cap, int32_t need, size_t size)
 {
     if (need <= *cap)
-        return PP_OK;
+        return true;
     int32_t n = *cap ? *cap : 64;
     while (n < need)
         n *= 2;
-    void *p = pp_realloc(*buf, (size_t)n * item);
+    void *p = pp_realloc(*buf, (size_t)n * size);
     if (!p)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d entries", (int)n);
+        return false;
     *buf = p;
     *cap = n;
+    return true;
+}
+
+/* ---- nodes ---- */
+
+/* At least n free nodes, or PP_ERR_OUT_OF_MEMORY with nothing changed. */
+static pp_status reserve_nodes(pp_broadphase *bp, int32_t n)
+{
+    if (bp->node_cap - bp->node_count >= n)
+        return PP_OK;
+    int32_t cap = bp->node_cap ? 2 * bp->node_cap : 64;
+    while (cap - bp->node_count < n)
+        cap *= 2;
+    bp_node *p = pp_realloc(bp->nodes, (size_t)cap * sizeof *p);
+    if (!p)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d tree nodes", (int)cap);
+    for (int32_t i = cap - 1; i >= bp->node_cap; i--) /* the new nodes, lowest first, on the free list */
+        p[i] = (bp_node){.parent = bp->free_node, .child1 = -1, .child2 = -1, .height = -1};
+    for (int32_t i = bp->node_cap; i < cap; i++)
+        p[i].parent = i + 1 < cap ? i + 1 : bp->free_node;
+    bp->free_node = bp->node_cap;
+    bp->nodes = p, bp->node_cap = cap;
     return PP_OK;
 }
 
+static int32_t take_node(pp_broadphase *bp)
+{
+    const int32_t i = bp->free_node;
+    PP_ASSERT(i >= 0); /* reserve_nodes first */
+    bp->free_node = bp->nodes[i].parent;
+    bp->nodes[i] = (bp_node){.parent = -1, .child1 = -1, .child2 = -1, .height = 0};
+    bp->node_count++;
+    return i;
+}
+
+static void give_node(pp_broadphase *bp, int32_t i)
+{
+    bp->nodes[i] = (bp_node){.parent = bp->free_node, .child1 = -1, .child2 = -1, .height = -1};
+    bp->free_node = i;
+    bp->node_count--;
+}
+
+/* ---- the tree ---- */
+
+static void replace_child(pp_broadphase *bp, int32_t parent, int32_t old, int32_t now)
+{
+    if (parent < 0)
+        bp->root = now;
+    else if (bp->nodes[parent].child1 == old)
+        bp->nodes[parent].child1 = now;
+    else
+        bp->nodes[parent].child2 = now;
+}
+
+/* If a's subtrees differ in height by more than one, lift the taller child over a; returns the subtree's root. */
+static int32_t balance(pp_broadphase *bp, int32_t ia)
+{
+    bp_node *n = bp->nodes, *a = &n[ia];
+    if (a->child1 < 0 || a->height < 2)
+        return ia;
+    const int32_t ib = a->child1, ic = a->child2;
+    const int32_t diff = n[ic].height - n[ib].height;
+    if (diff > 1 || diff < -1) {
+        /* up: the taller child; keep: the other child of a; its own taller child stays under it */
+        const int32_t up = diff > 1 ? ic : ib, keep = diff > 1 ? ib : ic;
+        const int32_t f = n[up].child1, g = n[up].child2;
+        const int32_t stay = n[f].height > n[g].height ? f : g, move = stay == f ? g : f;
+        n[up].parent = a->parent;
+        replace_child(bp, a->parent, ia, up);
+        a->parent = up;
+        n[up].child1 = ia, n[up].child2 = stay;
+        if (diff > 1)
+            a->child2 = move;
+        else
+            a->child1 = move;
+        n[move].parent = ia;
+        a->box = combine(n[keep].box, n[move].box);
+        a->height = 1 + max_i(n[keep].height, n[move].height);
+        n[up].box = combine(a->box, n[stay].box);
+        n[up].height = 1 + max_i(a->height, n[stay].height);
+        return up;
+    }
+    return ia;
+}
+
+/* Refit boxes and heights from i up to the root, balancing as it goes. */
+static void refit(pp_broadphase *bp, int32_t i)
+{
+    while (i >= 0) {
+        i = balance(bp, i);
+        bp_node *n = &bp->nodes[i];
+        n->box = combine(bp->nodes[n->child1].box, bp->nodes[n->child2].box);
+        n->height = 1 + max_i(bp->nodes[n->child1].height, bp->nodes[n->child2].height);
+        i = n->parent;
+    }
+}
+
+/* Hang a detached leaf beside the sibling that makes the tree's total perimeter grow least. */
+static void insert_leaf(pp_broadphase *bp, int32_t leaf)
+{
+    bp_node *n = bp->nodes;
+    if (bp->root < 0) {
+        bp->root = leaf, n[leaf].parent = -1;
+        return;
+    }
+    const pp_aabb box = n[leaf].box;
+    int32_t i = bp->root;
+    while (n[i].child1 >= 0) {
+        const double here = perimeter(n[i].box), joined = perimeter(combine(n[i].box, box));
+        const double cost = 2.0 * joined, inherited = 2.0 * (joined - here);
+        double child_cost[2];
+        for (int k = 0; k < 2; k++) {
+            const int32_t c = k ? n[i].child2 : n[i].child1;
+            const double grown = perimeter(combine(box, n[c].box));
+            child_cost[k] = (n[c].child1 < 0 ? grown : grown - perimeter(n[c].box)) + inherited;
+        }
+        if (cost < child_cost[0] && cost < child_cost[1])
+            break;
+        i = child_cost[0] <= child_cost[1] ? n[i].child1 : n[i].child2;
+    }
+    const int32_t parent = take_node(bp), old = n[i].parent;
+    n[parent] = (bp_node){combine(box, n[i].box), old, i, leaf, n[i].height + 1, 0};
+    replace_child(bp, old, i, parent);
+    n[i].parent = parent, n[leaf].parent = parent;
+    refit(bp, old);
+}
+
+/* Detach a leaf (kept allocated); its parent node goes back to the free list. */
+static void detach_leaf(pp_broadphase *bp, int32_t leaf)
+{
+    bp_node *n = bp->nodes;
+    if (leaf == bp->root) {
+        bp->root = -1;
+        return;
+    }
+    const int32_t parent = n[leaf].parent, grand = n[parent].parent;
+    const int32_t sibling = n[parent].child1 == leaf ? n[parent].child2 : n[parent].child1;
+    replace_child(bp, grand, parent, sibling);
+    n[sibling].parent = grand;
+    give_node(bp, parent);
+    refit(bp, grand);
+}
+
+static pp_status reserve_slots(pp_broadphase *bp, int32_t slots)
+{
+    if (slots <= bp->leaf_cap)
+        return PP_OK;
+    int32_t *leaf = pp_realloc(bp->leaf, (size_t)slots * sizeof *leaf);
+    if (leaf)
+        bp->leaf = leaf;
+    uint8_t *roused = pp_realloc(bp->roused, (size_t)slots);
+    if (roused)
+        bp->roused = roused;
+    if (!leaf || !roused)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d bodies", (int)slots);
+    for (int32_t i = bp->leaf_cap; i < slots; i++)
+        bp->leaf[i] = -1, bp->roused[i] = 0;
+    bp->leaf_cap = slots;
+    return PP_OK;
+}
+
+pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t slot, int32_t slots)
+{
+    if (bp->node_cap == 0)
+        bp->root = bp->free_node = -1;
+    pp_status st = reserve_slots(bp, slots);
+    if (st)
+        return st;
+    const pp_aabb b = proxy->box;
+    int32_t leaf = bp->leaf[slot];
+    if (!proxy->live || !(b.x0 <= b.x1 && b.y0 <= b.y1)) { /* dead, or no solid pixel: no leaf */
+        broadphase_remove(bp, slot);
+        return PP_OK;
+    }
+    if (leaf >= 0 && contains(bp->nodes[leaf].box, b))
+        return PP_OK;
+    /* A query's walk holds at most the root's height + 1 nodes, and an insert adds at most one level: room
+     * for both first, so that a query never allocates (and an edit's commit, which queries, cannot fail). */
+    const int32_t height = bp->root >= 0 ? bp->nodes[bp->root].height : 0;
+    if ((st = reserve_nodes(bp, 2)))
+        return st;
+    if (!grow((void **)&bp->stack, &bp->stack_cap, height + 3, sizeof *bp->stack))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for a query's walk");
+    if (leaf >= 0)
+        detach_leaf(bp, leaf);
+    else
+        leaf = bp->leaf[slot] = take_node(bp);
+    bp->nodes[leaf] = (bp_node){{b.x0 - BP_MARGIN, b.y0 - BP_MARGIN, b.x1 + BP_MARGIN, b.y1 + BP_MARGIN}, -1, -1, -1, 0,
+                                slot};
+    insert_leaf(bp, leaf);
+    return PP_OK;
+}
+
+void broadphase_remove(pp_broadphase *bp, uint32_t slot)
+{
+    if (slot >= (uint32_t)bp->leaf_cap || bp->leaf[slot] < 0)
+        return;
+    detach_leaf(bp, bp->leaf[slot]);
+    give_node(bp, bp->leaf[slot]);
+    bp->leaf[slot] = -1;
+}
+
+void broadphase_query(pp_broadphase *bp, pp_aabb box, bool (*visit)(uint32_t slot, void *user), void *user)
+{
+    if (bp->node_cap == 0 || bp->root < 0)
+        return;
+    PP_ASSERT(bp->stack_cap >= bp->nodes[bp->root].height + 2); /* broadphase_update keeps it so */
+    int32_t top = 0;
+    bp->stack[top++] = bp->root;
+    while (top > 0) {
+        const bp_node *n = &bp->nodes[bp->stack[--top]];
+        if (!overlap(&n->box, &box))
+            continue;
+        if (n->child1 < 0) {
+            if (!visit(n->slot, user))
+                return;
+        } else {
+            PP_ASSERT(top + 2 <= bp->stack_cap);
+            bp->stack[top++] = n->child1;
+            bp->stack[top++] = n->child2;
+        }
+    }
+}
+
+/* ---- pairs ---- */
+
+/* The order of a sweep along x: by the box's left edge, then by slot. */
 static bool before(const bp_proxy *p, uint32_t a, uint32_t b)
 {
     return p[a].box.x0 < p[b].box.x0 || (p[a].box.x0 == p[b].box.x0 && a < b);
 }
 
-/* `roused` marks sleeping bodies that share a pair with an awake one (NULL in the first sweep). */
-static bool may_touch(const bp_proxy *p, const bp_proxy *q, const uint8_t *roused, uint32_t ip, uint32_t iq)
+/* A pair's place in that sweep: its earlier body first. */
+typedef struct pair_key {
+    double x_first, x_second;
+    uint32_t first, second;
+} pair_key;
+
+static int key_order(const void *x, const void *y)
 {
-    if (!p->dynamic && !q->dynamic)
-        return false; /* static and kinematic never respond to each other */
-    if (roused) {
-        /* Second sweep: only a roused sleeper's pairs with static bodies. */
-        if (!((roused[ip] && !q->movable) || (roused[iq] && !p->movable)))
-            return false;
-    } else if (!p->awake && !q->awake) {
-        return false;
-    }
-    if (!(p->category_bits & q->mask_bits) || !(q->category_bits & p->mask_bits))
-        return false;
-    return p->box.y0 <= q->box.y1 && q->box.y0 <= p->box.y1;
+    const pair_key *p = x, *q = y;
+    if (p->x_first != q->x_first)
+        return p->x_first < q->x_first ? -1 : 1;
+    if (p->first != q->first)
+        return p->first < q->first ? -1 : 1;
+    if (p->x_second != q->x_second)
+        return p->x_second < q->x_second ? -1 : 1;
+    return (p->second > q->second) - (p->second < q->second);
 }
 
-/* Append the pairs of the sorted order that may touch. */
-static pp_status sweep(pp_broadphase *bp, const bp_proxy *proxies, const uint8_t *roused)
+/* Sort pairs [from, to) into the sweep's order. */
+static pp_status sort_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from, int32_t to)
 {
-    for (int32_t i = 0; i < bp->order_count; i++) {
-        const uint32_t ip = bp->order[i];
-        const bp_proxy *p = &proxies[ip];
-        for (int32_t j = i + 1; j < bp->order_count; j++) {
-            const uint32_t iq = bp->order[j];
-            const bp_proxy *q = &proxies[iq];
-            if (q->box.x0 > p->box.x1)
-                break;
-            if (!may_touch(p, q, roused, ip, iq))
-                continue;
-            pp_status st = grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof(bp_pair));
-            if (st)
-                return st;
-            bp->pairs[bp->pair_count++] = ip < iq ? (bp_pair){ip, iq} : (bp_pair){iq, ip};
-        }
+    const int32_t n = to - from;
+    if (n < 2)
+        return PP_OK;
+    pair_key *keys = pp_malloc((size_t)n * sizeof *keys);
+    if (!keys)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to sort %d pairs", (int)n);
+    for (int32_t k = 0; k < n; k++) {
+        const uint32_t a = bp->pairs[from + k].a, b = bp->pairs[from + k].b;
+        const uint32_t first = before(px, a, b) ? a : b, second = first == a ? b : a;
+        keys[k] = (pair_key){px[first].box.x0, px[second].box.x0, first, second};
     }
+    qsort(keys, (size_t)n, sizeof *keys, key_order);
+    for (int32_t k = 0; k < n; k++)
+        bp->pairs[from + k] = keys[k].first < keys[k].second ? (bp_pair){keys[k].first, keys[k].second}
+                                                             : (bp_pair){keys[k].second, keys[k].first};
+    pp_free(keys);
     return PP_OK;
 }
 
-/* A sleeping body paired with an awake one may be woken by ODE through their contact joint in this
- * very step, and would then move with nothing under it: the broadphase skipped its pairs with static
- * bodies while it slept. Such a sleeper gets those pairs too (its other sleeping neighbours stay out). */
-static pp_status rouse_sleepers(pp_broadphase *bp, const bp_proxy *proxies, int32_t n)
+typedef struct pair_search {
+    pp_broadphase *bp;
+    const bp_proxy *proxies;
+    uint32_t self;
+    bool roused;   /* the second pass: a roused sleeper's pairs with static bodies */
+    pp_status status;
+} pair_search;
+
+static bool may_touch(const bp_proxy *p, const bp_proxy *q)
 {
-    uint8_t *roused = NULL;
-    for (int32_t k = 0; k < bp->pair_count; k++) {
-        const uint32_t a = bp->pairs[k].a, b = bp->pairs[k].b;
-        const uint32_t sleeper = proxies[a].awake ? b : a, other = sleeper == a ? b : a;
-        if (!proxies[other].awake || proxies[sleeper].awake || !proxies[sleeper].dynamic)
-            continue;
-        if (!roused && !(roused = pp_calloc((size_t)n, 1)))
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory");
-        roused[sleeper] = 1;
-    }
-    if (!roused)
-        return PP_OK;
-    const pp_status st = sweep(bp, proxies, roused);
-    pp_free(roused);
-    return st;
+    if (!p->dynamic && !q->dynamic)
+        return false; /* static and kinematic never respond to each other */
+    if (!(p->category_bits & q->mask_bits) || !(q->category_bits & p->mask_bits))
+        return false;
+    return overlap(&p->box, &q->box);
 }
 
-pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t n)
+static bool add_candidate(uint32_t other, void *user)
 {
-    /* Rebuild the order from the previous one: keep live slots, append new ones. */
-    pp_status st = grow((void **)&bp->order, &bp->order_cap, n, sizeof(uint32_t));
-    if (st)
-        return st;
-    int32_t m = 0;
-    for (int32_t i = 0; i < bp->order_count; i++) {
-        const uint32_t s = bp->order[i];
-        if ((int32_t)s < n && proxies[s].live)
-            bp->order[m++] = s;
+    pair_search *s = user;
+    const bp_proxy *p = &s->proxies[s->self], *q = &s->proxies[other];
+    if (other == s->self)
+        return true;
+    if (s->roused ? q->movable : (q->awake && other < s->self)) /* two awake bodies: found from the lower slot */
+        return true;
+    if (!may_touch(p, q))
+        return true;
+    pp_broadphase *bp = s->bp;
+    if (!grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof *bp->pairs)) {
+        s->status = pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->pair_count + 1);
+        return false;
     }
-    /* Slots that were not in the order yet are those not seen; mark with a bitmap. */
-    uint8_t *seen = pp_calloc((size_t)n + 1, 1);
-    if (!seen)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory");
-    for (int32_t i = 0; i < m; i++)
-        seen[bp->order[i]] = 1;
-    for (int32_t s = 0; s < n; s++)
-        if (proxies[s].live && !seen[s])
-            bp->order[m++] = (uint32_t)s;
-    pp_free(seen);
-    bp->order_count = m;
+    bp->pairs[bp->pair_count++] = s->self < other ? (bp_pair){s->self, other} : (bp_pair){other, s->self};
+    return true;
+}
 
-    for (int32_t i = 1; i < m; i++) {
-        const uint32_t key = bp->order[i];
-        int32_t j = i - 1;
-        while (j >= 0 && before(proxies, key, bp->order[j])) {
-            bp->order[j + 1] = bp->order[j];
-            j--;
-        }
-        bp->order[j + 1] = key;
-    }
+static pp_status search(pp_broadphase *bp, const bp_proxy *proxies, uint32_t self, bool roused)
+{
+    pair_search s = {bp, proxies, self, roused, PP_OK};
+    broadphase_query(bp, proxies[self].box, add_candidate, &s);
+    return s.status;
+}
 
+/* A sleeping body paired with an awake one may be woken by ODE through their contact joint in this
+ * very step, and would then move with nothing under it: pairs skip two bodies that both sleep, and a
+ * static body sleeps. Such a sleeper gets its pairs with static bodies too (its sleeping neighbours stay out). */
+static uint32_t sleeper_of(const bp_proxy *px, bp_pair p)
+{
+    const uint32_t sleeper = px[p.a].awake ? p.b : p.a, other = sleeper == p.a ? p.b : p.a;
+    return px[other].awake && !px[sleeper].awake && px[sleeper].dynamic ? sleeper : UINT32_MAX;
+}
+
+pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                int32_t awake_count)
+{
     bp->pair_count = 0;
-    st = sweep(bp, proxies, NULL);
-    return st ? st : rouse_sleepers(bp, proxies, n);
+    pp_status st = reserve_slots(bp, slots);
+    for (int32_t k = 0; !st && k < awake_count; k++)
+        if (proxies[awake[k]].awake)
+            st = search(bp, proxies, (uint32_t)awake[k], false);
+    const int32_t first = bp->pair_count;
+    if (!st)
+        st = sort_pairs(bp, proxies, 0, first);
+    for (int32_t k = 0; k < first; k++) {
+        const uint32_t s = sleeper_of(proxies, bp->pairs[k]);
+        if (s == UINT32_MAX || bp->roused[s])
+            continue;
+        bp->roused[s] = 1;
+        if (!st)
+            st = search(bp, proxies, s, true);
+    }
+    for (int32_t k = 0; k < first; k++) { /* all zero again, whatever failed */
+        const uint32_t s = sleeper_of(proxies, bp->pairs[k]);
+        if (s != UINT32_MAX)
+            bp->roused[s] = 0;
+    }
+    return st ? st : sort_pairs(bp, proxies, first, bp->pair_count);
 }
 
 void broadphase_free(pp_broadphase *bp)
 {
-    pp_free(bp->order);
+    pp_free(bp->nodes);
+    pp_free(bp->leaf);
+    pp_free(bp->stack);
+    pp_free(bp->roused);
     pp_free(bp->pairs);
     *bp = (pp_broadphase){0};
 }

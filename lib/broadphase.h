@@ -1,4 +1,6 @@
-/* Candidate pairs: world AABBs of the solid pixels, sweep-and-prune along x. */
+/* Candidate pairs: a dynamic AABB tree over every live body's world box, each leaf fattened by a margin so
+ * that a body moving a little keeps its leaf. Only the awake bodies query it, so a step's broadphase costs
+ * in proportion to what is awake, not to the world; the same tree answers region queries. */
 #ifndef PP_BROADPHASE_H
 #define PP_BROADPHASE_H
 
@@ -11,7 +13,7 @@ typedef struct pp_aabb {
     double x0, y0, x1, y1;
 } pp_aabb;
 
-/* What the sweep needs of each body slot. */
+/* What the broadphase needs of each body slot. */
 typedef struct bp_proxy {
     pp_aabb box;
     uint32_t category_bits, mask_bits;
@@ -25,17 +27,45 @@ typedef struct bp_pair {
     uint32_t a, b;  /* body slots, a < b */
 } bp_pair;
 
+/* A tree node: a leaf holds a body slot; an inner node two children. */
+typedef struct bp_node {
+    pp_aabb box;            /* a leaf's: the body's box grown by BP_MARGIN; an inner node's: its children's union */
+    int32_t parent;         /* -1 at the root; the next free node while free */
+    int32_t child1, child2; /* -1 in a leaf */
+    int32_t height;         /* 0 for a leaf, -1 while free */
+    uint32_t slot;
+} bp_node;
+
 typedef struct pp_broadphase {
-    uint32_t *order;        /* live slots sorted by box.x0 */
-    int32_t order_count, order_cap;
+    bp_node *nodes;
+    int32_t node_count, node_cap, free_node, root;
+    int32_t *leaf;          /* by slot: its leaf, or -1 */
+    int32_t leaf_cap;
+    int32_t *stack;         /* the walk of a query */
+    int32_t stack_cap;
+    uint8_t *roused;        /* by slot, scratch of find_pairs; all zero between calls */
     bp_pair *pairs;
     int32_t pair_count, pair_cap;
 } pp_broadphase;
 
-/* Find the pairs among `proxies[0..n)` that can touch: overlapping boxes, passing the category
- * filter, at least one dynamic, at least one awake; and the static pairs of a sleeping body that
- * is paired with an awake one. Fills bp->pairs in a deterministic order. */
-pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t n);
+/* Bring slot's leaf in line with its proxy: insert it, keep it while its box stays inside the fat one, move
+ * it, or (dead or empty) remove it. `slots` is the world's slot count. */
+pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t slot, int32_t slots);
+
+/* Take slot's leaf out (its body is being removed); cannot fail. */
+void broadphase_remove(pp_broadphase *bp, uint32_t slot);
+
+/* Find the pairs that can touch: overlapping boxes, passing the category filter, at least one dynamic, at
+ * least one awake; and the static pairs of a sleeping body paired with an awake one. Every proxy's leaf must
+ * be up to date. `awake` lists the slots that may be awake (the awake set). Fills bp->pairs in the order a
+ * sweep along x would: by the pair's first body in (box.x0, slot) order, then its second. */
+pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                int32_t awake_count);
+
+/* Call visit(slot, user) for each slot whose fat box overlaps `box` (closed), in no particular order; stops
+ * early when visit returns false. Sees the leaves as the last update left them; never allocates. */
+void broadphase_query(pp_broadphase *bp, pp_aabb box, bool (*visit)(uint32_t slot, void *user), void *user);
+
 void broadphase_free(pp_broadphase *bp);
 
 #endif

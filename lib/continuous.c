@@ -5,6 +5,8 @@
  * rasters it could meet. At the first pose where its overlap with a body grows by more than one
  * pixel layer, refined by bisection to half a pixel of travel, the body is stopped; it keeps its
  * velocity, so the next substep's contact takes that velocity away (or bounces it) as usual. */
+#include "alloc.h"
+#include "awake.h"
 #include "continuous.h"
 #include "status.h"
 
@@ -87,11 +89,6 @@ static double first_hit(const sweep *sw, const body *other, int32_t thin, int32_
     return 1.0;
 }
 
-static bool aabb_overlap(const pp_aabb *a, const pp_aabb *b)
-{
-    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
-}
-
 static bool sweeps(const world *wd, const body *bd)
 {
     return bd && bd->type == PP_BODY_DYNAMIC && !bd->is_sensor && !raster_empty(&bd->raster) &&
@@ -130,7 +127,7 @@ static bool stops(const world *wd, const body *bd, const body *o, dvec2 dcom)
 }
 
 /* Sweep one body from its recorded pose to where the substep left it; stop it at its first hit. */
-static void sweep_body(world *wd, body *bd, const continuous_pose *from)
+static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
 {
     const pp_raster *r = &bd->raster;
     sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle,
@@ -143,23 +140,28 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
     const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
     const double spacing = fmax(1.0, 0.5 * thin);
     if (travel <= spacing)
-        return;
+        return PP_OK;
     const dvec2 end = dv_add(sw.com0, sw.dcom);
     const pp_aabb swept = {fmin(sw.com0.x, end.x) - reach, fmin(sw.com0.y, end.y) - reach,
                            fmax(sw.com0.x, end.x) + reach, fmax(sw.com0.y, end.y) + reach};
     const int32_t samples = (int32_t)fmin(ceil(travel / spacing), 1 << 20);
+    /* In slot order: first_hit stops at the hit found so far, so the order decides among near-equal hits. */
+    int32_t *near = NULL, n = 0;
+    pp_status st = awake_bodies_in_box(wd, "pp_world_step", swept, &near, &n);
+    if (st)
+        return st;
     double t = 1.0;
-    for (int32_t j = 0; j < wd->body_capacity; j++) {
-        const body *o = wd->bodies[j];
-        if (!o || o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet))
+    for (int32_t k = 0; k < n; k++) {
+        const body *o = wd->bodies[near[k]];
+        if (o == bd || raster_empty(&o->raster) || (o->type == PP_BODY_DYNAMIC && !bd->bullet))
             continue;
-        if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) ||
-            !aabb_overlap(&swept, &o->aabb) || !stops(wd, bd, o, sw.dcom))
+        if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !stops(wd, bd, o, sw.dcom))
             continue;
         t = fmin(t, first_hit(&sw, o, thin, samples, travel, t));
     }
+    pp_free(near);
     if (t >= 1.0)
-        return;
+        return PP_OK;
     dvec2 com;
     sweep_pose(&sw, t, &com, &bd->angle);
     bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
@@ -167,13 +169,16 @@ static void sweep_body(world *wd, body *bd, const continuous_pose *from)
     body_update_pose_cache(bd);
     solver_body_set_pose(wd->solver, &bd->sb, com, bd->angle);
     wd->stats.swept_stops++;
+    return PP_OK;
 }
 
-void continuous_end(world *wd)
+pp_status continuous_end(world *wd)
 {
-    for (int32_t k = 0; k < wd->swept_count; k++) {
+    pp_status st = PP_OK;
+    for (int32_t k = 0; k < wd->swept_count && !st; k++) {
         const int32_t i = wd->swept[k];
         if (solver_body_is_awake(&wd->bodies[i]->sb))
-            sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);
+            st = sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);
     }
+    return st;
 }

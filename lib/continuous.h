@@ -8,7 +8,8 @@
 /* Before a substep's solve: remember where every body that may be swept starts. */
 pp_status continuous_begin(world *wd);
 
-/* After the solve and the pose read-back: stop each fast body at its first hit along its path. */
-void continuous_end(world *wd);
+/* After the solve and the pose read-back: stop each fast body at its first hit along its path. Out of memory
+ * for the bodies near a path: PP_ERR_OUT_OF_MEMORY (the step is undone). */
+pp_status continuous_end(world *wd);
 
 #endif

@@ -45,8 +45,6 @@ void edit_update_solver_body(world *wd, body *bd)
     awake_wake(wd, bd);
 }
 
-static bool boxes_overlap(pp_aabb a, pp_aabb b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; }
-
 /* Bodies whose box comes within this many pixels of an edited pixel wake: one resting on the edited
  * pixels overlaps them already; the margin catches one just touching them, after rounding. */
 #define EDIT_WAKE_MARGIN 2.0
@@ -67,14 +65,14 @@ static pp_aabb edited_region(const body *bd, const edit_span *e)
 
 /* Wake every body that may rest on, or now overlap, the edited pixels. Only those: a crater deep
  * in a large terrain leaves the bodies sleeping on its surface asleep. */
-static void wake_around(world *wd, pp_aabb region)
+static bool wake_movable(world *wd, body *o, void *user)
 {
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        body *o = wd->bodies[i];
-        if (o && o->sb.body && boxes_overlap(o->aabb, region))
-            awake_wake(wd, o);
-    }
+    if (o->sb.body)
+        awake_wake(wd, o);
+    return true;
 }
+
+static void wake_around(world *wd, pp_aabb region) { awake_each_in_box(wd, region, wake_movable, NULL); }
 
 /* A body's part of one edit call. Everything that can fail (room for events, the split's new bodies)
  * happens between the pixel writes and the commit, and a failure puts the pixels back: an edit call
@@ -250,27 +248,21 @@ PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float r
         return st;
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
-    int32_t hit = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
-        hit += wd->bodies[i] && boxes_overlap(wd->bodies[i]->aabb, blast);
-    if (hit == 0) {
-        if (changed)
-            *changed = 0;
-        return PP_OK;
+    int32_t *hit = NULL, n_hit = 0;
+    if ((st = awake_bodies_in_box(wd, fn, blast, &hit, &n_hit)))
+        return st;
+    edit_job *jobs = n_hit > 0 ? pp_malloc((size_t)n_hit * sizeof *jobs) : NULL;
+    if (n_hit > 0 && !jobs) {
+        pp_free(hit);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)n_hit);
     }
-    edit_job *jobs = pp_malloc((size_t)hit * sizeof *jobs);
-    if (!jobs)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)hit);
-    /* Every body's writes and pieces first, then every commit: a failure takes them all back. Pieces
-     * made on the way are islands outside the circle, so the loop passes them by. */
-    const uint64_t before = wd->next_serial;
+    /* Every body's writes and pieces first, in slot order, then every commit: a failure takes them all back.
+     * Pieces made on the way are not on the list. */
     int32_t n = 0, events = 0;
-    for (int32_t i = 0; i < wd->body_capacity && !st; i++) {
-        body *bd = wd->bodies[i];
-        if (bd && bd->serial < before && boxes_overlap(bd->aabb, blast) &&
-            (st = erase_circle(wd, bd, world_center, radius, &jobs[n], &events)) == PP_OK)
+    for (int32_t k = 0; k < n_hit && !st; k++)
+        if ((st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, &jobs[n], &events)) == PP_OK)
             n++;
-    }
+    pp_free(hit);
     if (st) {
         while (n > 0)
             job_cancel(wd, &jobs[--n]);

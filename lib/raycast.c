@@ -3,6 +3,7 @@
  * surface from the mask around the pixel it meets; the point, box and circle queries read only the
  * bitmap rows their shape covers. Bodies are filtered by category bits; sensors are passed by. */
 #include "alloc.h"
+#include "awake.h"
 #include "cover.h"
 #include "status.h"
 #include "world.h"
@@ -265,28 +266,45 @@ static int candidate_order(const void *pa, const void *pb)
     return a->t < b->t ? -1 : a->t > b->t ? 1 : (a->slot > b->slot) - (a->slot < b->slot);
 }
 
-/* Collect the bodies whose world box the segment from + t·d, t ∈ [0, 1], meets, up to cap of them; returns
- * how many there are. The segment's own box rejects most bodies before the slab test. */
-static int32_t ray_candidates(const world *wd, dvec2 from, dvec2 d, uint32_t mask_bits, ray_candidate *c, int32_t cap)
+/* Of the bodies near the segment from + t·d, t ∈ [0, 1] (`near`, n of them), those passing the filter whose
+ * world box the segment meets, into c; returns how many. */
+static int32_t ray_candidates(const world *wd, dvec2 from, dvec2 d, uint32_t mask_bits, const int32_t *near, int32_t n,
+                              ray_candidate *c)
 {
-    const double sx0 = fmin(from.x, from.x + d.x) - QUERY_SLACK, sx1 = fmax(from.x, from.x + d.x) + QUERY_SLACK;
-    const double sy0 = fmin(from.y, from.y + d.y) - QUERY_SLACK, sy1 = fmax(from.y, from.y + d.y) + QUERY_SLACK;
-    int32_t n = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (!bd || bd->aabb.x0 > sx1 || bd->aabb.x1 < sx0 || bd->aabb.y0 > sy1 || bd->aabb.y1 < sy0 ||
-            !queried(bd, mask_bits))
-            continue;
+    int32_t m = 0;
+    for (int32_t k = 0; k < n; k++) {
+        const body *bd = wd->bodies[near[k]];
         double t0 = 0, t1 = 1;
         int face;
-        if (!clip_segment(from, d, bd->aabb.x0 - QUERY_SLACK, bd->aabb.y0 - QUERY_SLACK, bd->aabb.x1 + QUERY_SLACK,
-                          bd->aabb.y1 + QUERY_SLACK, &t0, &t1, &face))
-            continue;
-        if (n < cap)
-            c[n] = (ray_candidate){t0, i};
-        n++;
+        if (queried(bd, mask_bits) &&
+            clip_segment(from, d, bd->aabb.x0 - QUERY_SLACK, bd->aabb.y0 - QUERY_SLACK, bd->aabb.x1 + QUERY_SLACK,
+                         bd->aabb.y1 + QUERY_SLACK, &t0, &t1, &face))
+            c[m++] = (ray_candidate){t0, near[k]};
     }
-    return n;
+    return m;
+}
+
+/* The nearest hit so far of a ray from + t·d; ties go to the lower slot. */
+typedef struct ray_best {
+    dvec2 from, d;
+    uint32_t mask_bits;
+    const body *best;
+    pixel_hit hit;
+    dvec2 a, dir; /* the segment in the best body's bitmap frame */
+} ray_best;
+
+static bool ray_try(world *wd, body *bd, void *user)
+{
+    ray_best *rb = user;
+    if (!queried(bd, rb->mask_bits))
+        return true;
+    /* The segment in the bitmap frame; t stays the world segment's. */
+    const dvec2 a = body_world_to_local(bd, rb->from), ad = dv_unrot(rb->d, bd->cos_a, bd->sin_a);
+    pixel_hit h;
+    if (body_ray(bd, a, ad, &h) &&
+        (!rb->best || h.t < rb->hit.t || (h.t == rb->hit.t && bd->index < rb->best->index)))
+        rb->best = bd, rb->hit = h, rb->a = a, rb->dir = ad;
+    return true;
 }
 
 PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
@@ -303,37 +321,28 @@ PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t
                        from.x, from.y, to.x, to.y);
     const dvec2 f = dv(from.x, from.y), e = dv(to.x, to.y), d = dv_sub(e, f);
     /* Bodies in the order the ray meets their boxes, so that the search stops at the first box past the
-     * nearest hit. Many boxes on one ray go to the heap; should that fail, slot order is as correct. */
-    ray_candidate local[128], *c = local;
-    int32_t n = ray_candidates(wd, f, d, mask_bits, local, 128);
-    bool sorted = n <= 128;
-    if (!sorted && (c = pp_malloc((size_t)n * sizeof *c))) {
-        ray_candidates(wd, f, d, mask_bits, c, n);
-        sorted = true;
-    }
-    if (sorted)
+     * nearest hit. Many boxes on one ray go to the heap; without memory, every body near the ray is tried. */
+    const pp_aabb box = {fmin(f.x, e.x) - QUERY_SLACK, fmin(f.y, e.y) - QUERY_SLACK, fmax(f.x, e.x) + QUERY_SLACK,
+                         fmax(f.y, e.y) + QUERY_SLACK};
+    int32_t *near = NULL, n_near = 0;
+    ray_candidate local[128], *c = NULL;
+    if (awake_bodies_in_box(wd, fn, box, &near, &n_near) == PP_OK)
+        c = n_near <= 128 ? local : pp_malloc((size_t)n_near * sizeof *c);
+    ray_best rb = {.from = f, .d = d, .mask_bits = mask_bits};
+    if (c) {
+        const int32_t n = ray_candidates(wd, f, d, mask_bits, near, n_near, c);
         qsort(c, (size_t)n, sizeof *c, candidate_order);
-    const int32_t visits = sorted ? n : wd->body_capacity;
-    const body *best = NULL;
-    pixel_hit bh = {0};
-    dvec2 ba = {0, 0}, bdir = {0, 0};
-    for (int32_t k = 0; k < visits; k++) {
-        const body *bd = wd->bodies[sorted ? c[k].slot : k];
-        if (sorted && best && c[k].t > bh.t)
-            break;
-        if (!sorted && !queried(bd, mask_bits))
-            continue;
-        /* The segment in the bitmap frame; t stays the world segment's. */
-        const dvec2 a = body_world_to_local(bd, f), ad = dv_unrot(d, bd->cos_a, bd->sin_a);
-        pixel_hit h;
-        if (body_ray(bd, a, ad, &h) && (!best || h.t < bh.t))
-            best = bd, bh = h, ba = a, bdir = ad;
+        for (int32_t k = 0; k < n && !(rb.best && c[k].t > rb.hit.t); k++)
+            ray_try(wd, wd->bodies[c[k].slot], &rb);
+    } else {
+        awake_each_in_box(wd, box, ray_try, &rb);
     }
+    pp_free(near);
     if (c != local)
         pp_free(c);
-    *hit = best != NULL;
-    if (best)
-        ray_result(best, f, e, ba, bdir, &bh, out);
+    *hit = rb.best != NULL;
+    if (rb.best)
+        ray_result(rb.best, f, e, rb.a, rb.dir, &rb.hit, out);
     else
         *out = (pp_raycast_hit){0};
     return PP_OK;
@@ -360,21 +369,26 @@ static world *query_world(pp_world w, const char *fn, pp_body *out, int32_t capa
 
 /* Write, in slot order, the bodies passing the filter whose box meets the shape's and that `meets`
  * accepts: up to capacity of them, all counted. */
-static void query_scan(const world *wd, uint32_t mask_bits, const query_shape *q,
-                       bool (*meets)(const body *, const query_shape *), pp_body *out, int32_t capacity, int32_t *count)
+static pp_status query_scan(world *wd, const char *fn, uint32_t mask_bits, const query_shape *q,
+                            bool (*meets)(const body *, const query_shape *), pp_body *out, int32_t capacity,
+                            int32_t *count)
 {
-    int32_t n = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
-        const body *bd = wd->bodies[i];
-        if (!bd || bd->aabb.x0 - QUERY_SLACK > q->x1 || q->x0 > bd->aabb.x1 + QUERY_SLACK ||
-            bd->aabb.y0 - QUERY_SLACK > q->y1 || q->y0 > bd->aabb.y1 + QUERY_SLACK || !queried(bd, mask_bits) ||
-            !meets(bd, q))
+    const pp_aabb box = {q->x0 - QUERY_SLACK, q->y0 - QUERY_SLACK, q->x1 + QUERY_SLACK, q->y1 + QUERY_SLACK};
+    int32_t *near = NULL, n_near = 0, n = 0;
+    pp_status st = awake_bodies_in_box(wd, fn, box, &near, &n_near);
+    if (st)
+        return st;
+    for (int32_t k = 0; k < n_near; k++) {
+        const body *bd = wd->bodies[near[k]];
+        if (!queried(bd, mask_bits) || !meets(bd, q))
             continue;
         if (n < capacity)
             out[n] = bd->handle;
         n++;
     }
+    pp_free(near);
     *count = n;
+    return PP_OK;
 }
 
 /* Is any pixel of columns [xa, xb] of row y solid (inside the bitmap, xa ≤ xb)? A word at a time. */
@@ -423,14 +437,13 @@ PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_b
 {
     static const char *fn = "pp_world_query_point";
     pp_status st;
-    const world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
     if (!finite2(point.x, point.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: point must be finite, got (%g, %g)", fn, point.x, point.y);
     const query_shape q = {point.x, point.y, point.x, point.y, dv(point.x, point.y), dv(0, 0)};
-    query_scan(wd, mask_bits, &q, body_meets_point, out, capacity, count);
-    return PP_OK;
+    return query_scan(wd, fn, mask_bits, &q, body_meets_point, out, capacity, count);
 }
 
 /* Does the centre of pixel (x, y) lie in the world box [lo, hi]? The rule of pp_world_query_aabb. */
@@ -490,7 +503,7 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
 {
     static const char *fn = "pp_world_query_aabb";
     pp_status st;
-    const world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
     if (!finite2(lower.x, lower.y) || !finite2(upper.x, upper.y))
@@ -500,8 +513,7 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower (%g, %g) must not exceed upper (%g, %g)", fn, lower.x,
                        lower.y, upper.x, upper.y);
     const query_shape q = {lower.x, lower.y, upper.x, upper.y, dv(lower.x, lower.y), dv(upper.x, upper.y)};
-    query_scan(wd, mask_bits, &q, body_meets_box, out, capacity, count);
-    return PP_OK;
+    return query_scan(wd, fn, mask_bits, &q, body_meets_box, out, capacity, count);
 }
 
 /* Has the body a solid pixel whose centre lies within radius of the world point center? The edits' rule. */
@@ -531,7 +543,7 @@ PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius,
 {
     static const char *fn = "pp_world_query_circle";
     pp_status st;
-    const world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = query_world(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
     if (!finite2(center.x, center.y))
@@ -540,6 +552,5 @@ PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius,
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: radius must be finite and ≥ 0, got %g", fn, radius);
     const double r = radius;
     const query_shape q = {center.x - r, center.y - r, center.x + r, center.y + r, dv(center.x, center.y), dv(r, 0)};
-    query_scan(wd, mask_bits, &q, body_meets_circle, out, capacity, count);
-    return PP_OK;
+    return query_scan(wd, fn, mask_bits, &q, body_meets_circle, out, capacity, count);
 }

@@ -264,7 +264,6 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->edits);
     pp_free(wd->undo.bodies);
     pp_free(wd->undo.contacts);
-    pp_free(wd->undo.order);
     pp_free(wd->undo.touching);
     pp_free(wd->touching);
     pp_free(wd->touch_next);
@@ -474,7 +473,7 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
         return st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     if (wd->awake_movers > 0)
-        st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity);
+        st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity, wd->awake_slots, wd->awake_count);
     else
         wd->broad.pair_count = 0;
     if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
@@ -728,8 +727,7 @@ static pp_status step_save(world *wd)
         u->bodies = p;
         u->body_capacity = wd->body_capacity;
     }
-    if (!world_room((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts) ||
-        !world_room((void **)&u->order, wd->broad.order_count, &u->order_capacity, sizeof *u->order))
+    if (!world_room((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
     u->step++;
@@ -741,9 +739,6 @@ static pp_status step_save(world *wd)
     if (wd->contact_count > 0)
         memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
     u->contact_count = wd->contact_count;
-    if (wd->broad.order_count > 0)
-        memcpy(u->order, wd->broad.order, (size_t)wd->broad.order_count * sizeof *u->order);
-    u->order_count = wd->broad.order_count;
     u->touch_saved = false; /* saved by touch_end before it first changes the list (world_save_touching) */
     u->event_count = wd->event_count;
     u->stats = wd->stats;
@@ -779,7 +774,7 @@ static void step_restore(world *wd)
 {
     step_undo *u = &wd->undo;
     PP_ASSERT(u->body_capacity >= wd->body_capacity && u->contact_count <= wd->contact_capacity &&
-              u->order_count <= wd->broad.order_cap && u->event_count <= wd->event_count);
+              u->event_count <= wd->event_count);
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
@@ -792,9 +787,6 @@ static void step_restore(world *wd)
     if (u->contact_count > 0)
         memcpy(wd->contacts, u->contacts, (size_t)u->contact_count * sizeof *wd->contacts);
     wd->contact_count = u->contact_count;
-    if (u->order_count > 0)
-        memcpy(wd->broad.order, u->order, (size_t)u->order_count * sizeof *u->order);
-    wd->broad.order_count = u->order_count;
     wd->stats = u->stats;
     solver_set_steps(wd->solver, u->solver_steps);
     /* The saved pairs become the world's, its buffer the next save's: nothing to allocate. */
@@ -835,7 +827,8 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         }
         if ((st = sync_bodies(wd)))
             return st;
-        continuous_end(wd);
+        if ((st = continuous_end(wd)))
+            return st;
         island_sleep(wd, h);
         *t_solver += now_ms() - t0;
     }

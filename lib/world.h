@@ -74,8 +74,6 @@ typedef struct step_undo {
     uint64_t step;            /* counts steps, so a saved entry is known as this step's */
     pp_contact *contacts;
     int32_t contact_count, contact_capacity;
-    uint32_t *order;          /* the broadphase's sort order, which the next sweep starts from */
-    int32_t order_count, order_capacity;
     pp_step_stats stats;
     uint64_t solver_steps;
     touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
