@@ -1,7 +1,7 @@
-/* A dynamic AABB tree (as in Box2D's b2DynamicTree): leaves hold fattened body boxes, an insert descends to
- * the sibling that grows the tree's perimeter least, and AVL rotations keep it balanced. Pairs come from the
- * awake bodies' queries and are sorted into one order that does not depend on the tree's shape, so a step
- * is the same whatever history built the tree. */
+/* The resting bodies' tree (as Box2D's b2DynamicTree: leaves hold fattened boxes, an insert descends to the
+ * sibling that grows the tree's perimeter least, AVL rotations keep it balanced) and the awake bodies'
+ * sweep. Pairs are sorted into one order that depends on neither the tree's shape nor the sweep's, so a
+ * step is the same whatever history built them. */
 #include "alloc.h"
 #include "broadphase.h"
 #include "check.h"
@@ -216,7 +216,7 @@ pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t s
         return st;
     const pp_aabb b = proxy->box;
     int32_t leaf = bp->leaf[slot];
-    if (!proxy->live || !(b.x0 <= b.x1 && b.y0 <= b.y1)) { /* dead, or no solid pixel: no leaf */
+    if (!proxy->live || proxy->awake || !(b.x0 <= b.x1 && b.y0 <= b.y1)) { /* dead, awake, or no solid pixel */
         broadphase_remove(bp, slot);
         return PP_OK;
     }
@@ -296,24 +296,38 @@ static int key_order(const void *x, const void *y)
     return (p->second > q->second) - (p->second < q->second);
 }
 
-/* Sort pairs [from, to) into the sweep's order. */
-static pp_status sort_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from, int32_t to)
+static pair_key key_of(const bp_proxy *px, bp_pair p)
+{
+    const uint32_t first = before(px, p.a, p.b) ? p.a : p.b, second = first == p.a ? p.b : p.a;
+    return (pair_key){px[first].box.x0, px[second].box.x0, first, second};
+}
+
+static bp_pair pair_of(const pair_key *k)
+{
+    return k->first < k->second ? (bp_pair){k->first, k->second} : (bp_pair){k->second, k->first};
+}
+
+/* Sort pairs [mid, to) into the sweep's order and merge them with [from, mid), already in it. */
+static pp_status sort_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from, int32_t mid, int32_t to)
 {
     const int32_t n = to - from;
-    if (n < 2)
+    if (to - mid == 0 || n < 2)
         return PP_OK;
-    pair_key *keys = pp_malloc((size_t)n * sizeof *keys);
+    pair_key *keys = pp_malloc((size_t)n * sizeof *keys), *sorted = keys + (mid - from);
     if (!keys)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to sort %d pairs", (int)n);
-    for (int32_t k = 0; k < n; k++) {
-        const uint32_t a = bp->pairs[from + k].a, b = bp->pairs[from + k].b;
-        const uint32_t first = before(px, a, b) ? a : b, second = first == a ? b : a;
-        keys[k] = (pair_key){px[first].box.x0, px[second].box.x0, first, second};
-    }
-    qsort(keys, (size_t)n, sizeof *keys, key_order);
-    for (int32_t k = 0; k < n; k++)
-        bp->pairs[from + k] = keys[k].first < keys[k].second ? (bp_pair){keys[k].first, keys[k].second}
-                                                             : (bp_pair){keys[k].second, keys[k].first};
+    for (int32_t k = mid; k < to; k++)
+        sorted[k - mid] = key_of(px, bp->pairs[k]);
+    qsort(sorted, (size_t)(to - mid), sizeof *keys, key_order);
+    for (int32_t k = from; k < mid; k++) /* room for the merge: the sorted part moves to the keys' front */
+        keys[k - from] = key_of(px, bp->pairs[k]);
+    int32_t i = 0, j = mid - from, out = from;
+    while (i < mid - from && j < n)
+        bp->pairs[out++] = key_order(&keys[i], &keys[j]) <= 0 ? pair_of(&keys[i++]) : pair_of(&keys[j++]);
+    while (i < mid - from)
+        bp->pairs[out++] = pair_of(&keys[i++]);
+    while (j < n)
+        bp->pairs[out++] = pair_of(&keys[j++]);
     pp_free(keys);
     return PP_OK;
 }
@@ -341,7 +355,8 @@ static bool add_candidate(uint32_t other, void *user)
     const bp_proxy *p = &s->proxies[s->self], *q = &s->proxies[other];
     if (other == s->self)
         return true;
-    if (s->roused ? q->movable : (q->awake && other < s->self)) /* two awake bodies: found from the lower slot */
+    PP_ASSERT(!q->awake); /* the tree holds bodies at rest only */
+    if (s->roused && q->movable)
         return true;
     if (!may_touch(p, q))
         return true;
@@ -370,17 +385,68 @@ static uint32_t sleeper_of(const bp_proxy *px, bp_pair p)
     return px[other].awake && !px[sleeper].awake && px[sleeper].dynamic ? sleeper : UINT32_MAX;
 }
 
+/* The awake bodies in the sweep's order: last call's order kept where still awake, the newly awake after it,
+ * then an insertion sort. `roused` marks the kept ones meanwhile. */
+static pp_status order_awake(pp_broadphase *bp, const bp_proxy *px, const int32_t *awake, int32_t awake_count)
+{
+    if (!grow((void **)&bp->order, &bp->order_cap, bp->order_count + awake_count, sizeof *bp->order))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d awake bodies", (int)awake_count);
+    int32_t m = 0;
+    for (int32_t i = 0; i < bp->order_count; i++) {
+        const uint32_t s = bp->order[i];
+        if (s < (uint32_t)bp->leaf_cap && px[s].live && px[s].awake && !bp->roused[s])
+            bp->order[m++] = s, bp->roused[s] = 1;
+    }
+    for (int32_t k = 0; k < awake_count; k++) {
+        const uint32_t s = (uint32_t)awake[k];
+        if (px[s].live && px[s].awake && !bp->roused[s])
+            bp->order[m++] = s, bp->roused[s] = 1;
+    }
+    bp->order_count = m;
+    for (int32_t i = 0; i < m; i++)
+        bp->roused[bp->order[i]] = 0;
+    for (int32_t i = 1; i < m; i++) {
+        const uint32_t key = bp->order[i];
+        int32_t j = i - 1;
+        for (; j >= 0 && before(px, key, bp->order[j]); j--)
+            bp->order[j + 1] = bp->order[j];
+        bp->order[j + 1] = key;
+    }
+    return PP_OK;
+}
+
+/* The pairs of two awake bodies: a sweep along the order. */
+static pp_status sweep_awake(pp_broadphase *bp, const bp_proxy *px)
+{
+    for (int32_t i = 0; i < bp->order_count; i++) {
+        const uint32_t ip = bp->order[i];
+        for (int32_t j = i + 1; j < bp->order_count; j++) {
+            const uint32_t iq = bp->order[j];
+            if (px[iq].box.x0 > px[ip].box.x1)
+                break;
+            if (!may_touch(&px[ip], &px[iq]))
+                continue;
+            if (!grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof *bp->pairs))
+                return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->pair_count + 1);
+            bp->pairs[bp->pair_count++] = ip < iq ? (bp_pair){ip, iq} : (bp_pair){iq, ip};
+        }
+    }
+    return PP_OK;
+}
+
 pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                 int32_t awake_count)
 {
     bp->pair_count = 0;
     pp_status st = reserve_slots(bp, slots);
-    for (int32_t k = 0; !st && k < awake_count; k++)
-        if (proxies[awake[k]].awake)
-            st = search(bp, proxies, (uint32_t)awake[k], false);
+    if (!st && !(st = order_awake(bp, proxies, awake, awake_count)))
+        st = sweep_awake(bp, proxies); /* in the sweep's order already */
+    const int32_t swept = bp->pair_count;
+    for (int32_t k = 0; !st && k < bp->order_count; k++) /* each awake body against the bodies at rest */
+        st = search(bp, proxies, bp->order[k], false);
     const int32_t first = bp->pair_count;
     if (!st)
-        st = sort_pairs(bp, proxies, 0, first);
+        st = sort_pairs(bp, proxies, 0, swept, first);
     for (int32_t k = 0; k < first; k++) {
         const uint32_t s = sleeper_of(proxies, bp->pairs[k]);
         if (s == UINT32_MAX || bp->roused[s])
@@ -394,12 +460,13 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
         if (s != UINT32_MAX)
             bp->roused[s] = 0;
     }
-    return st ? st : sort_pairs(bp, proxies, first, bp->pair_count);
+    return st ? st : sort_pairs(bp, proxies, first, first, bp->pair_count);
 }
 
 void broadphase_free(pp_broadphase *bp)
 {
     pp_free(bp->nodes);
+    pp_free(bp->order);
     pp_free(bp->leaf);
     pp_free(bp->stack);
     pp_free(bp->roused);

@@ -1,6 +1,8 @@
-/* Candidate pairs: a dynamic AABB tree over every live body's world box, each leaf fattened by a margin so
- * that a body moving a little keeps its leaf. Only the awake bodies query it, so a step's broadphase costs
- * in proportion to what is awake, not to the world; the same tree answers region queries. */
+/* Candidate pairs, with static and moving bodies apart: the bodies at rest (static and sleeping) in a dynamic
+ * AABB tree whose leaves are fattened by a margin, so that an edit or a move of a few pixels keeps a leaf;
+ * the awake dynamic and kinematic bodies in a sweep-and-prune list along x. Awake bodies pair among
+ * themselves in the sweep and query the tree for the rest, so a step's broadphase costs in proportion to
+ * what is awake, not to the world; the tree also answers region queries. */
 #ifndef PP_BROADPHASE_H
 #define PP_BROADPHASE_H
 
@@ -39,6 +41,9 @@ typedef struct bp_node {
 typedef struct pp_broadphase {
     bp_node *nodes;
     int32_t node_count, node_cap, free_node, root;
+    uint32_t *order;        /* the awake bodies' slots by box.x0, then slot: kept between calls, so that the
+                             * insertion sort runs in near-linear time while they move a little */
+    int32_t order_count, order_cap;
     int32_t *leaf;          /* by slot: its leaf, or -1 */
     int32_t leaf_cap;
     int32_t *stack;         /* the walk of a query */
@@ -48,8 +53,8 @@ typedef struct pp_broadphase {
     int32_t pair_count, pair_cap;
 } pp_broadphase;
 
-/* Bring slot's leaf in line with its proxy: insert it, keep it while its box stays inside the fat one, move
- * it, or (dead or empty) remove it. `slots` is the world's slot count. */
+/* Bring slot's leaf in line with its proxy: a body at rest with solid pixels has one (inserted, kept while its
+ * box stays inside the fat one, or moved); an awake, dead or empty one has none. `slots` is the world's slot count. */
 pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t slot, int32_t slots);
 
 /* Take slot's leaf out (its body is being removed); cannot fail. */
@@ -57,8 +62,9 @@ void broadphase_remove(pp_broadphase *bp, uint32_t slot);
 
 /* Find the pairs that can touch: overlapping boxes, passing the category filter, at least one dynamic, at
  * least one awake; and the static pairs of a sleeping body paired with an awake one. Every proxy's leaf must
- * be up to date. `awake` lists the slots that may be awake (the awake set). Fills bp->pairs in the order a
- * sweep along x would: by the pair's first body in (box.x0, slot) order, then its second. */
+ * be up to date. `awake` lists every awake body's slot (the awake set; it may hold others). Fills bp->pairs
+ * in the order one sweep of every box along x would: by the pair's first body in (box.x0, slot) order, then
+ * its second. */
 pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                 int32_t awake_count);
 
