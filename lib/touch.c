@@ -156,8 +156,9 @@ static void merge(const touch *x, int32_t nx, const touch *y, int32_t ny, touch 
 pp_status touch_end(world *wd)
 {
     const int32_t found = wd->touch_next_count, n = found + wd->touch_count;
-    /* Nothing awake, nothing found, no body gone: every recorded pair still touches, untested. */
-    if (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone)
+    /* Nothing awake, nothing found, no body gone: every recorded pair still touches, untested. No pair at
+     * all: nothing to do, and maybe no buffers yet (NULL + 0 below would be undefined, fuzz_scene). */
+    if (n == 0 || (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone))
         return PP_OK;
     touch_sort(wd->touch_next, found);
     /* Room for the worst case first (every old pair kept, or ended with an event): nothing below can fail. */
