@@ -248,9 +248,15 @@ $(BUILD)/bench/bench_load: tests/bench/load/main.c tests/bench/machine.h $(STATI
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 # What sleeping bodies cost, alone and beside a few awake ones.
-$(BUILD)/bench/bench_sleep: tests/bench/sleep/main.c tests/bench/machine.h $(STATIC)
+$(BUILD)/bench/sleep_box2d.o: tests/bench/sleep/peer_box2d.cpp tests/bench/sleep/peer.h
 	mkdir -p $(BUILD)/bench
-	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+	$(CXX) -std=c++17 $(filter-out -Wstrict-prototypes,$(WARN)) -O2 -g $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+$(BUILD)/bench/bench_sleep: tests/bench/sleep/main.c tests/bench/sleep/peer.h tests/bench/machine.h \
+  $(BUILD)/bench/sleep_box2d.o $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(BUILD)/bench/sleep_box2d.o $(STATIC) $(LDFLAGS) -lbox2d \
+	  -lstdc++ $(LIBS)
 
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c

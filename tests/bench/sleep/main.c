@@ -1,12 +1,14 @@
 /* What sleeping bodies cost: N crates of 12 px asleep in stacks of 8 on a 16384 × 64 terrain, alone and
  * beside 8 awake boxes that bounce on a platform of their own above the crates; and those 8 boxes alone.
  * A sleeping body should cost nothing, so the mixed world should step as fast as the 8 boxes alone.
- * Timed: pp_world_step only (the kicks that keep the 8 awake are outside the clock), CPU backend,
- * the median of each block's mean step, the smallest median over the runs.
+ * Timed: one step only (the kicks that keep the 8 awake are outside the clock), PhysPix's CPU backend,
+ * the median of each block's mean step, the smallest median over the runs; Box2D 2.4 from Debian on
+ * the same scene in the same run (peer_box2d.cpp).
  *
  *   bench_sleep [--csv PATH] [--quick]
  */
 #include "../machine.h"
+#include "peer.h"
 #include "physpix.h"
 
 #include <stdio.h>
@@ -114,25 +116,31 @@ int main(int argc, char **argv)
     if (csv_path && !csv)
         return perror(csv_path), 1;
     if (csv)
-        fprintf(csv, "sleeping,awake_boxes,ms_step_median,ratio_to_boxes_alone,awake_at_end\n");
+        fprintf(csv, "sleeping,awake_boxes,ms_step_median,ratio_to_boxes_alone,awake_at_end,box2d_ms_step_median,"
+                     "box2d_awake_at_end,ratio_to_box2d\n");
     char cpu[128];
     bench_cpu_model(cpu, sizeof cpu);
     printf("sleep benchmark on %s; BALANCED defaults, CPU backend, dt 1/60 s\n"
            "crates of %d px asleep in stacks of %d on a %dx%d terrain; %d boxes of 16 px bounce on a platform of "
            "their own,\nthrown up every 30 steps; ms/step: median of %d blocks of %d steps, smallest of %d runs\n\n",
            cpu, CRATE, STACK, FLOOR_W, FLOOR_H, MOVERS, blocks, BLOCK, runs);
-    printf("%9s %11s %12s %14s %8s\n", "sleeping", "awake boxes", "ms/step", "/ boxes alone", "awake");
+    printf("%9s %11s %12s %14s %8s %12s %8s %10s\n", "sleeping", "awake boxes", "ms/step", "/ boxes alone", "awake",
+           "Box2D ms", "awake", "/ Box2D");
     double alone = 0;
     for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
         for (int movers = counts[c] == 0 ? MOVERS : 0; movers <= MOVERS; movers += MOVERS) {
-            double best = 0;
-            int awake = 0;
+            double best = 0, b2_best = 0;
+            int awake = 0, b2_awake = 0;
+            const sleep_scene scene = {counts[c], movers, CRATE, STACK, PITCH, FLOOR_W, FLOOR_H, floor_top, platform_top,
+                                       BLOCK};
             for (int r = 0; r < runs; r++) {
                 pp_body mover[MOVERS];
                 pp_world w = make_world(counts[c], movers, mover);
                 const double ms = time_steps(w, mover, movers, blocks, &awake);
                 best = r == 0 || ms < best ? ms : best;
                 check(pp_world_destroy(w), "pp_world_destroy");
+                const double b2 = sleep_box2d_ms(&scene, blocks, &b2_awake);
+                b2_best = r == 0 || b2 < b2_best ? b2 : b2_best;
             }
             if (counts[c] == 0)
                 alone = best;
@@ -140,9 +148,11 @@ int main(int argc, char **argv)
             char r_text[32] = "-";
             if (ratio > 0)
                 snprintf(r_text, sizeof r_text, "%.2f", ratio);
-            printf("%9d %11d %12.4f %14s %8d\n", counts[c], movers, best, r_text, awake);
+            printf("%9d %11d %12.4f %14s %8d %12.4f %8d %10.4f\n", counts[c], movers, best, r_text, awake, b2_best,
+                   b2_awake, b2_best > 0 ? best / b2_best : 0.0);
             if (csv)
-                fprintf(csv, "%d,%d,%.6f,%.4f,%d\n", counts[c], movers, best, ratio, awake);
+                fprintf(csv, "%d,%d,%.6f,%.4f,%d,%.6f,%d,%.4f\n", counts[c], movers, best, ratio, awake, b2_best,
+                        b2_awake, b2_best > 0 ? best / b2_best : 0.0);
         }
     }
     if (csv && fclose(csv) != 0)
