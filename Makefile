@@ -252,11 +252,11 @@ $(BUILD)/bench/sleep_box2d.o: tests/bench/sleep/peer_box2d.cpp tests/bench/sleep
 	mkdir -p $(BUILD)/bench
 	$(CXX) -std=c++17 $(filter-out -Wstrict-prototypes,$(WARN)) -O2 -g $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
 
-$(BUILD)/bench/bench_sleep: tests/bench/sleep/main.c tests/bench/sleep/peer.h tests/bench/machine.h \
-  $(BUILD)/bench/sleep_box2d.o $(STATIC)
+$(BUILD)/bench/bench_sleep: tests/bench/sleep/main.c tests/bench/sleep/peer_chipmunk.c tests/bench/sleep/peer.h \
+  tests/bench/machine.h $(BUILD)/bench/sleep_box2d.o $(STATIC)
 	mkdir -p $(BUILD)/bench
-	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(BUILD)/bench/sleep_box2d.o $(STATIC) $(LDFLAGS) -lbox2d \
-	  -lstdc++ $(LIBS)
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< tests/bench/sleep/peer_chipmunk.c $(BUILD)/bench/sleep_box2d.o \
+	  $(STATIC) $(LDFLAGS) -lbox2d -lchipmunk -lstdc++ $(LIBS)
 
 # Speed against accuracy of the world's knobs: a table, CSV, and a plot by plot.py.
 ACC_SRC := $(wildcard tests/bench/accuracy/*.c) tests/bench/scenes.c

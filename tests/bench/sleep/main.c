@@ -2,8 +2,8 @@
  * beside 8 awake boxes that bounce on a platform of their own above the crates; and those 8 boxes alone.
  * A sleeping body should cost nothing, so the mixed world should step as fast as the 8 boxes alone.
  * Timed: one step only (the kicks that keep the 8 awake are outside the clock), PhysPix's CPU backend,
- * the median of each block's mean step, the smallest median over the runs; Box2D 2.4 from Debian on
- * the same scene in the same run (peer_box2d.cpp).
+ * the median of each block's mean step, the smallest median over the runs; Box2D 2.4 and Chipmunk 7 from
+ * Debian on the same scene in the same run (peer_box2d.cpp, peer_chipmunk.c).
  *
  *   bench_sleep [--csv PATH] [--quick]
  */
@@ -117,20 +117,20 @@ int main(int argc, char **argv)
         return perror(csv_path), 1;
     if (csv)
         fprintf(csv, "sleeping,awake_boxes,ms_step_median,ratio_to_boxes_alone,awake_at_end,box2d_ms_step_median,"
-                     "box2d_awake_at_end,ratio_to_box2d\n");
+                     "box2d_awake_at_end,ratio_to_box2d,chipmunk_ms_step_median,chipmunk_awake_at_end,ratio_to_chipmunk\n");
     char cpu[128];
     bench_cpu_model(cpu, sizeof cpu);
     printf("sleep benchmark on %s; BALANCED defaults, CPU backend, dt 1/60 s\n"
            "crates of %d px asleep in stacks of %d on a %dx%d terrain; %d boxes of 16 px bounce on a platform of "
            "their own,\nthrown up every 30 steps; ms/step: median of %d blocks of %d steps, smallest of %d runs\n\n",
            cpu, CRATE, STACK, FLOOR_W, FLOOR_H, MOVERS, blocks, BLOCK, runs);
-    printf("%9s %11s %12s %14s %8s %12s %8s %10s\n", "sleeping", "awake boxes", "ms/step", "/ boxes alone", "awake",
-           "Box2D ms", "awake", "/ Box2D");
+    printf("%9s %11s %12s %14s %8s %12s %8s %10s %12s %8s %10s\n", "sleeping", "awake boxes", "ms/step",
+           "/ boxes alone", "awake", "Box2D ms", "awake", "/ Box2D", "Chipmunk ms", "awake", "/ Chipmunk");
     double alone = 0;
     for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
         for (int movers = counts[c] == 0 ? MOVERS : 0; movers <= MOVERS; movers += MOVERS) {
-            double best = 0, b2_best = 0;
-            int awake = 0, b2_awake = 0;
+            double best = 0, b2_best = 0, cp_best = 0;
+            int awake = 0, b2_awake = 0, cp_awake = 0;
             const sleep_scene scene = {counts[c], movers, CRATE, STACK, PITCH, FLOOR_W, FLOOR_H, floor_top, platform_top,
                                        BLOCK};
             for (int r = 0; r < runs; r++) {
@@ -141,6 +141,10 @@ int main(int argc, char **argv)
                 check(pp_world_destroy(w), "pp_world_destroy");
                 const double b2 = sleep_box2d_ms(&scene, blocks, &b2_awake);
                 b2_best = r == 0 || b2 < b2_best ? b2 : b2_best;
+                const double cp = sleep_chipmunk_ms(&scene, blocks, &cp_awake);
+                if (cp < 0)
+                    check(PP_ERR_OUT_OF_MEMORY, "the Chipmunk scene");
+                cp_best = r == 0 || cp < cp_best ? cp : cp_best;
             }
             if (counts[c] == 0)
                 alone = best;
@@ -148,11 +152,11 @@ int main(int argc, char **argv)
             char r_text[32] = "-";
             if (ratio > 0)
                 snprintf(r_text, sizeof r_text, "%.2f", ratio);
-            printf("%9d %11d %12.4f %14s %8d %12.4f %8d %10.4f\n", counts[c], movers, best, r_text, awake, b2_best,
-                   b2_awake, b2_best > 0 ? best / b2_best : 0.0);
+            printf("%9d %11d %12.4f %14s %8d %12.4f %8d %10.4f %12.4f %8d %10.4f\n", counts[c], movers, best, r_text,
+                   awake, b2_best, b2_awake, best / b2_best, cp_best, cp_awake, best / cp_best);
             if (csv)
-                fprintf(csv, "%d,%d,%.6f,%.4f,%d,%.6f,%d,%.4f\n", counts[c], movers, best, ratio, awake, b2_best,
-                        b2_awake, b2_best > 0 ? best / b2_best : 0.0);
+                fprintf(csv, "%d,%d,%.6f,%.4f,%d,%.6f,%d,%.4f,%.6f,%d,%.4f\n", counts[c], movers, best, ratio, awake,
+                        b2_best, b2_awake, best / b2_best, cp_best, cp_awake, best / cp_best);
         }
     }
     if (csv && fclose(csv) != 0)

@@ -1,4 +1,5 @@
-/* bench_sleep's scene as numbers, shared by PhysPix (main.c) and the Box2D peer (peer_box2d.cpp); px, y down. */
+/* bench_sleep's scene as numbers, shared by PhysPix (main.c) and the peers (peer_box2d.cpp, peer_chipmunk.c);
+ * px, y down. */
 #ifndef PP_BENCH_SLEEP_PEER_H
 #define PP_BENCH_SLEEP_PEER_H
 
@@ -19,6 +20,8 @@ typedef struct sleep_scene {
 /// Box2D 2.4: settle the crates to sleep, add the boxes, time `blocks` blocks of steps (the boxes thrown up
 /// every 30 steps, outside the clock); the median block's ms per step; *awake = bodies awake at the end.
 double sleep_box2d_ms(const sleep_scene *s, int blocks, int *awake);
+/// Chipmunk 7, the same (10 iterations; asleep after 0.5 s under 5 px/s, as PhysPix); -1 without memory.
+double sleep_chipmunk_ms(const sleep_scene *s, int blocks, int *awake);
 
 #ifdef __cplusplus
 }
