@@ -19,6 +19,7 @@ void awake_add(world *wd, body *bd)
     if (bd->awake_at >= 0)
         return;
     PP_ASSERT(wd->awake_count < wd->awake_capacity); /* awake_reserve at creation */
+    wd->resting_stale = true; /* it may be in a resting pair (touch.c) */
     const int32_t n = wd->awake_count++;
     wd->awake_slots[n] = (int32_t)bd->index;
     bd->awake_at = n;

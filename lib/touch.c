@@ -1,6 +1,8 @@
 /* Touching pairs across substeps. Each substep builds a new list from the narrowphase's pairs, then
  * compares it with the last one: a pair only in the new list began, one only in the old list ended.
- * Both lists are sorted by handle ids so that a pair is found by binary search. */
+ * A pair whose bodies all sleep (or are static) is not tested; it rests in a list of its own that no substep
+ * visits until a body enters the awake set or is removed. The lists are sorted by handle ids so that a
+ * pair is found by binary search. */
 #include "status.h"
 #include "world.h"
 
@@ -20,6 +22,8 @@ static int touch_cmp(const void *x, const void *y)
     return p->b < q->b ? -1 : p->b > q->b;
 }
 
+int touch_order(const touch *p, const touch *q) { return touch_cmp(p, q); }
+
 /* Whether a pair is in a sorted list; an empty list may have no buffer (bsearch must not see NULL, fuzz_api). */
 static bool listed(const touch *t, const touch *list, int32_t n)
 {
@@ -34,10 +38,12 @@ void touch_sort(touch *list, int32_t n)
 
 const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 {
-    if (wd->touch_count == 0)
-        return NULL;
     const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0, {0}} : (touch){y, x, 0, 0, {0}};
-    return bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp);
+    const touch *t = wd->touch_count > 0 ? bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp)
+                                         : NULL;
+    if (!t && wd->resting_count > 0)
+        t = bsearch(&key, wd->resting, (size_t)wd->resting_count, sizeof key, touch_cmp);
+    return t;
 }
 
 /* A pair re-anchors (its static friction gave way) when a contact point has slipped this far, or the
@@ -153,27 +159,66 @@ static void merge(const touch *x, int32_t nx, const touch *y, int32_t ny, touch 
         out[k++] = y[j++];
 }
 
+/* Take the resting pairs back into the touching ones, to be tested again. */
+static pp_status wake_resting(world *wd)
+{
+    const int32_t n = wd->touch_count + wd->resting_count;
+    pp_status st = world_save_touching(wd, true);
+    if (st || !world_room((void **)&wd->resting_next, n, &wd->resting_next_capacity, sizeof *wd->resting_next))
+        return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
+    merge(wd->touching, wd->touch_count, wd->resting, wd->resting_count, wd->resting_next);
+    touch *list = wd->touching;
+    const int32_t cap = wd->touch_capacity;
+    wd->touching = wd->resting_next, wd->touch_count = n, wd->touch_capacity = wd->resting_next_capacity;
+    wd->resting_next = list, wd->resting_next_capacity = cap;
+    wd->resting_count = 0;
+    return PP_OK;
+}
+
+/* Put n pairs (sorted) to rest beside those resting already. */
+static pp_status put_to_rest(world *wd, const touch *pairs, int32_t n)
+{
+    const int32_t total = wd->resting_count + n;
+    pp_status st = world_save_touching(wd, true);
+    if (st || !world_room((void **)&wd->resting_next, total, &wd->resting_next_capacity, sizeof *wd->resting_next))
+        return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d resting pairs", (int)total);
+    merge(wd->resting, wd->resting_count, pairs, n, wd->resting_next);
+    touch *list = wd->resting;
+    const int32_t cap = wd->resting_capacity;
+    wd->resting = wd->resting_next, wd->resting_count = total, wd->resting_capacity = wd->resting_next_capacity;
+    wd->resting_next = list, wd->resting_next_capacity = cap;
+    return PP_OK;
+}
+
 pp_status touch_end(world *wd)
 {
-    const int32_t found = wd->touch_next_count, n = found + wd->touch_count;
-    /* Nothing awake, nothing found, no body gone: every recorded pair still touches, untested. No pair at
-     * all: nothing to do, and maybe no buffers yet (NULL + 0 below would be undefined, fuzz_scene). */
-    if (n == 0 || (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone))
+    const int32_t found = wd->touch_next_count;
+    /* Nothing awake, found, removed or woken: every pair still touches, untested. No pair at all: nothing to
+     * do, and maybe no buffers yet (NULL + 0 below would be undefined, fuzz_scene). */
+    if (found + wd->touch_count + wd->resting_count == 0 ||
+        (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone && !wd->resting_stale))
         return PP_OK;
     touch_sort(wd->touch_next, found);
-    /* Room for the worst case first (every old pair kept, or ended with an event): nothing below can fail. */
-    pp_status st = world_reserve_events(wd, wd->touch_count);
+    pp_status st = world_save_touching(wd, false);
+    /* Resting pairs are tested again when a body woke or went, or one was found (a sleeper an awake body roused). */
+    bool review = wd->resting_stale || wd->touch_body_gone;
+    for (int32_t i = 0; !review && i < found; i++)
+        review = listed(&wd->touch_next[i], wd->resting, wd->resting_count);
+    if (!st && review && wd->resting_count > 0)
+        st = wake_resting(wd);
+    /* Room for the worst case first (every old pair resting, or ended with an event). */
+    const int32_t n = found + wd->touch_count;
     if (!st)
-        st = world_save_touching(wd);
+        st = world_reserve_events(wd, wd->touch_count);
     if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next) ||
-        !world_room((void **)&wd->touching, n, &wd->touch_capacity, sizeof *wd->touching))
+        !world_room((void **)&wd->touching, found, &wd->touch_capacity, sizeof *wd->touching))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
-    wd->touch_body_gone = false;
+    wd->touch_body_gone = wd->resting_stale = false;
     for (int32_t i = 0; i < wd->touch_count; i++) {
         const touch *t = &wd->touching[i];
         if (listed(t, wd->touch_next, found))
             continue;
-        if (untested(wd, t)) {
+        if (untested(wd, t)) { /* to rest, after the found pairs */
             PP_ASSERT(wd->touch_next_count < wd->touch_next_capacity);
             wd->touch_next[wd->touch_next_count++] = *t;
             continue;
@@ -187,9 +232,11 @@ pp_status touch_end(world *wd)
         else if (wd->def.contact_events && (t->flags & TOUCH_BEGUN))
             world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
     }
-    /* The found pairs and the kept ones (on the end, in the old list's order) merge into the current list. */
-    merge(wd->touch_next, found, wd->touch_next + found, wd->touch_next_count - found, wd->touching);
-    wd->touch_count = wd->touch_next_count;
+    /* The found pairs are the touching ones now; the untested ones (in the old list's order) go to rest. */
+    if (found > 0)
+        memcpy(wd->touching, wd->touch_next, (size_t)found * sizeof *wd->touching);
+    wd->touch_count = found;
+    const int32_t resting = wd->touch_next_count - found;
     wd->touch_next_count = 0;
-    return PP_OK;
+    return resting > 0 ? put_to_rest(wd, wd->touch_next + found, resting) : PP_OK;
 }

@@ -52,4 +52,7 @@ const touch *touch_find(const struct world *wd, uint64_t x, uint64_t y);
 /* Sort a list into the order touch_find searches (for a snapshot's list). */
 void touch_sort(touch *list, int32_t n);
 
+/* That order: negative, zero or positive as p comes before, with or after q. */
+int touch_order(const touch *p, const touch *q);
+
 #endif

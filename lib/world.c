@@ -265,6 +265,9 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->undo.bodies);
     pp_free(wd->undo.contacts);
     pp_free(wd->undo.touching);
+    pp_free(wd->undo.resting);
+    pp_free(wd->resting);
+    pp_free(wd->resting_next);
     pp_free(wd->touching);
     pp_free(wd->touch_next);
     crowd_free(&wd->crowd);
@@ -739,24 +742,30 @@ static pp_status step_save(world *wd)
     if (wd->contact_count > 0)
         memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
     u->contact_count = wd->contact_count;
-    u->touch_saved = false; /* saved by touch_end before it first changes the list (world_save_touching) */
+    u->touch_saved = u->resting_saved = false; /* saved by touch_end before it first changes them (world_save_touching) */
     u->event_count = wd->event_count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
     return PP_OK;
 }
 
-pp_status world_save_touching(world *wd)
+pp_status world_save_touching(world *wd, bool resting)
 {
     step_undo *u = &wd->undo;
-    if (u->touch_saved)
+    bool *saved = resting ? &u->resting_saved : &u->touch_saved;
+    touch **copy = resting ? &u->resting : &u->touching;
+    int32_t *copy_count = resting ? &u->resting_count : &u->touch_count;
+    int32_t *copy_cap = resting ? &u->resting_capacity : &u->touch_capacity;
+    const touch *list = resting ? wd->resting : wd->touching;
+    const int32_t n = resting ? wd->resting_count : wd->touch_count;
+    if (*saved)
         return PP_OK;
-    if (!world_room((void **)&u->touching, wd->touch_count, &u->touch_capacity, sizeof *u->touching))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)wd->touch_count);
-    if (wd->touch_count > 0)
-        memcpy(u->touching, wd->touching, (size_t)wd->touch_count * sizeof *u->touching);
-    u->touch_count = wd->touch_count;
-    u->touch_saved = true;
+    if (!world_room((void **)copy, n, copy_cap, sizeof **copy))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)n);
+    if (n > 0)
+        memcpy(*copy, list, (size_t)n * sizeof **copy);
+    *copy_count = n;
+    *saved = true;
     return PP_OK;
 }
 
@@ -795,6 +804,12 @@ static void step_restore(world *wd)
         const int32_t cap = wd->touch_capacity;
         wd->touching = u->touching, wd->touch_count = u->touch_count, wd->touch_capacity = u->touch_capacity;
         u->touching = list, u->touch_capacity = cap;
+    }
+    if (u->resting_saved) {
+        touch *list = wd->resting;
+        const int32_t cap = wd->resting_capacity;
+        wd->resting = u->resting, wd->resting_count = u->resting_count, wd->resting_capacity = u->resting_capacity;
+        u->resting = list, u->resting_capacity = cap;
     }
     wd->event_count = u->event_count;
     awake_rebuild(wd); /* poses and sleep came back behind the set's back */

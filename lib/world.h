@@ -79,6 +79,9 @@ typedef struct step_undo {
     touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
     int32_t touch_count, touch_capacity; /* swapped back, not copied, so a restore cannot fail */
     bool touch_saved;         /* touching holds this step's saved pairs */
+    touch *resting;           /* the same for the resting pairs */
+    int32_t resting_count, resting_capacity;
+    bool resting_saved;
     int32_t event_count;      /* events queued before the step */
 } step_undo;
 
@@ -137,11 +140,16 @@ typedef struct world {
     int32_t island_capacity;
     uint8_t *island_kind;    /* … and by slot, how each body's island is solved (ISLAND_*) */
     int32_t island_kind_capacity;
-    touch *touching;         /* pairs touching at the last substep, sorted (touch.c) */
+    touch *touching;         /* pairs touching at the last substep with a body awake, sorted (touch.c) */
     int32_t touch_count, touch_capacity;
+    touch *resting;          /* pairs touching whose bodies all sleep (or are static), sorted; no substep visits them */
+    int32_t resting_count, resting_capacity;
     touch *touch_next;       /* the substep's list being built */
     int32_t touch_next_count, touch_next_capacity;
+    touch *resting_next;     /* scratch for the resting pairs' merge */
+    int32_t resting_next_capacity;
     bool touch_body_gone;    /* a body was removed since the last touch_end: its pairs end there */
+    bool resting_stale;      /* a body entered the awake set since the last touch_end: resting pairs are reviewed */
     step_undo undo;
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
 } world;
@@ -197,8 +205,9 @@ bool world_room(void **items, int32_t n, int32_t *capacity, size_t size);
 /* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */
 timed_edit *world_edits_in_order(const world *wd);
 
-/* Save the touching pairs for the step's undo, once a step, before touch_end first changes them. */
-pp_status world_save_touching(world *wd);
+/* Save the touching (resting: the resting) pairs for the step's undo, once a step, before touch_end first
+ * changes them. */
+pp_status world_save_touching(world *wd, bool resting);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

@@ -115,3 +115,64 @@ Test(awake, destroying_a_body_in_a_sleeping_world_ends_its_contact)
     cr_assert_eq(awake_bodies(w), 0);
     pp_world_destroy(w);
 }
+
+/* Steps until none of the crates is awake (other bodies may be), then a few more; fails after `most` steps. */
+static void settle_crates(pp_world w, const pp_body *crates, int n, int most)
+{
+    for (int k = 0; k < most; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        int32_t awake = 0, any = 0;
+        for (int i = 0; i < n; i++) {
+            PP_OK_OR_FAIL(pp_body_is_awake(w, crates[i], &awake));
+            any |= awake;
+        }
+        if (!any) {
+            step_n(w, DT, 3);
+            return;
+        }
+    }
+    cr_assert_fail("crates still awake after %d steps", most);
+}
+
+/* A pair whose bodies sleep rests outside the substeps' walk (a kinematic body far off keeps the walk
+ * going); woken, it is the same pair again: a nudge that keeps the crate on the stack begins nothing new, a
+ * throw that lifts it off ends the pair once, and so does a move between steps that leaves the pair apart
+ * before any substep could find it. */
+Test(awake, a_resting_pair_woken_is_the_same_pair_and_ends_when_parted)
+{
+    pp_world_def d = pp_world_def_default();
+    d.contact_events = 1;
+    pp_world w = make_world_def(&d);
+    pp_body crates[4];
+    crate_stacks(w, 1, crates);
+    pp_body_def k = body_def(PP_BODY_KINEMATIC, 900, 100, 0);
+    k.angular_velocity = 1.0f;
+    add_rect(w, k, 16, 16);
+    settle_crates(w, crates, 4, 600);
+    pp_event ev[16];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert_eq(n, 4, "the four BEGINs, got %d events", (int)n);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, crates[3], v2(3, 0), 0)); /* the top crate slides a little */
+    step_n(w, DT, 10);
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert_eq(n, 0, "a nudged crate still touches the one under it: %d events", (int)n);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, crates[3], v2(0, -400), 0)); /* thrown up, off the stack */
+    step_n(w, DT, 10);
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert_eq(n, 1, "one END as the thrown crate leaves, got %d events", (int)n);
+    cr_assert_eq(ev[0].type, PP_EVENT_CONTACT_END);
+    cr_assert(ev[0].body.id == crates[3].id || ev[0].other.id == crates[3].id, "the END names the thrown crate");
+    settle_crates(w, crates, 4, 600); /* it lands back on the stack (and may bounce); the pairs rest again */
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert(n >= 1 && n % 2 == 1 && ev[n - 1].type == PP_EVENT_CONTACT_BEGIN, "it lands: %d events", (int)n);
+    PP_OK_OR_FAIL(pp_body_set_transform(w, crates[3], v2(700, GROUND_TOP - 7), 0)); /* moved away, 1 px into the ground */
+    step_n(w, DT, 1);
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    int ends = 0, begins = 0;
+    for (int i = 0; i < n; i++)
+        ends += ev[i].type == PP_EVENT_CONTACT_END, begins += ev[i].type == PP_EVENT_CONTACT_BEGIN;
+    cr_assert_eq(ends, 1, "the moved crate's pair with the stack ends: %d ENDs", ends);
+    cr_assert_eq(begins, 1, "and it begins one with the ground: %d BEGINs", begins);
+    pp_world_destroy(w);
+}
