@@ -93,13 +93,20 @@ Test(awake, a_static_platform_moved_between_steps_catches_a_falling_box)
     pp_world_destroy(w);
 }
 
-Test(awake, destroying_a_body_in_a_sleeping_world_ends_its_contact)
+/* A world with contact events and one stack of four crates (crates[0] at the bottom). */
+static pp_world events_stack(pp_body *crates)
 {
     pp_world_def d = pp_world_def_default();
     d.contact_events = 1;
     pp_world w = make_world_def(&d);
-    pp_body crates[4];
     crate_stacks(w, 1, crates);
+    return w;
+}
+
+Test(awake, destroying_a_body_in_a_sleeping_world_ends_its_contact)
+{
+    pp_body crates[4];
+    pp_world w = events_stack(crates);
     settle(w, 600);
     pp_event ev[16];
     int32_t n = 0;
@@ -140,11 +147,8 @@ static void settle_crates(pp_world w, const pp_body *crates, int n, int most)
  * before any substep could find it. */
 Test(awake, a_resting_pair_woken_is_the_same_pair_and_ends_when_parted)
 {
-    pp_world_def d = pp_world_def_default();
-    d.contact_events = 1;
-    pp_world w = make_world_def(&d);
     pp_body crates[4];
-    crate_stacks(w, 1, crates);
+    pp_world w = events_stack(crates);
     pp_body_def k = body_def(PP_BODY_KINEMATIC, 900, 100, 0);
     k.angular_velocity = 1.0f;
     add_rect(w, k, 16, 16);
