@@ -4,7 +4,6 @@
 #include "alloc.h"
 #include "status.h"
 
-
 #include <stdlib.h>
 
 pp_status awake_reserve(world *wd, int32_t n)
@@ -112,11 +111,6 @@ pp_status awake_refresh(world *wd)
     return PP_OK;
 }
 
-static bool boxes_meet(const pp_aabb *a, const pp_aabb *b)
-{
-    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
-}
-
 typedef struct box_visit {
     world *wd;
     pp_aabb box;
@@ -130,7 +124,7 @@ static bool visit_leaf(uint32_t slot, void *user)
 {
     box_visit *v = user;
     body *bd = v->wd->bodies[slot];
-    if (bd->awake_at >= 0 || !boxes_meet(&bd->aabb, &v->box) || v->visit(v->wd, bd, v->user))
+    if (bd->awake_at >= 0 || !aabb_overlap(&bd->aabb, &v->box) || v->visit(v->wd, bd, v->user))
         return true;
     v->stopped = true;
     return false;
@@ -143,7 +137,7 @@ void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd
     const int32_t n = wd->awake_count; /* bodies a visit lists were visited from the tree */
     for (int32_t k = 0; k < n && !v.stopped; k++) {
         body *bd = wd->bodies[wd->awake_slots[k]];
-        if (boxes_meet(&bd->aabb, &box) && !visit(wd, bd, user))
+        if (aabb_overlap(&bd->aabb, &box) && !visit(wd, bd, user))
             return;
     }
 }

@@ -26,11 +26,6 @@ static bool contains(pp_aabb outer, pp_aabb in)
     return outer.x0 <= in.x0 && outer.y0 <= in.y0 && in.x1 <= outer.x1 && in.y1 <= outer.y1;
 }
 
-static bool overlap(const pp_aabb *a, const pp_aabb *b)
-{
-    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
-}
-
 static int32_t max_i(int32_t a, int32_t b) { return a > b ? a : b; }
 
 /* Room for `need` items of `size` bytes, doubling; false (nothing changed) without memory. */
@@ -257,7 +252,7 @@ void broadphase_query(pp_broadphase *bp, pp_aabb box, bool (*visit)(uint32_t slo
     bp->stack[top++] = bp->root;
     while (top > 0) {
         const bp_node *n = &bp->nodes[bp->stack[--top]];
-        if (!overlap(&n->box, &box))
+        if (!aabb_overlap(&n->box, &box))
             continue;
         if (n->child1 < 0) {
             if (!visit(n->slot, user))
@@ -346,7 +341,7 @@ static bool may_touch(const bp_proxy *p, const bp_proxy *q)
         return false; /* static and kinematic never respond to each other */
     if (!(p->category_bits & q->mask_bits) || !(q->category_bits & p->mask_bits))
         return false;
-    return overlap(&p->box, &q->box);
+    return aabb_overlap(&p->box, &q->box);
 }
 
 static bool add_candidate(uint32_t other, void *user)

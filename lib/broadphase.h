@@ -15,6 +15,12 @@ typedef struct pp_aabb {
     double x0, y0, x1, y1;
 } pp_aabb;
 
+/* Whether two boxes meet, edges included. */
+static inline bool aabb_overlap(const pp_aabb *a, const pp_aabb *b)
+{
+    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
+}
+
 /* What the broadphase needs of each body slot. */
 typedef struct bp_proxy {
     pp_aabb box;

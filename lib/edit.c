@@ -63,8 +63,6 @@ static pp_aabb edited_region(const body *bd, const edit_span *e)
     return box;
 }
 
-/* Wake every body that may rest on, or now overlap, the edited pixels. Only those: a crater deep
- * in a large terrain leaves the bodies sleeping on its surface asleep. */
 static bool wake_movable(world *wd, body *o, void *user)
 {
     if (o->sb.body)
@@ -72,6 +70,8 @@ static bool wake_movable(world *wd, body *o, void *user)
     return true;
 }
 
+/* Wake every body that may rest on, or now overlap, the edited pixels. Only those: a crater deep
+ * in a large terrain leaves the bodies sleeping on its surface asleep. */
 static void wake_around(world *wd, pp_aabb region) { awake_each_in_box(wd, region, wake_movable, NULL); }
 
 /* A body's part of one edit call. Everything that can fail (room for events, the split's new bodies)
