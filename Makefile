@@ -284,11 +284,25 @@ $(BUILD)/bench/bench_stability: $(STAB_SRC) $(STAB_HDR) $(BUILD)/bench/peer_box2
 	$(CC) $(PP_CFLAGS) -Itests/bench -O2 -g $(USER_CFLAGS) -o $@ $(STAB_SRC) $(BUILD)/bench/peer_box2d.o $(STATIC) \
 	  $(LDFLAGS) -lbox2d -lchipmunk -lstdc++ $(LIBS)
 
+# Step cost against Box2D 2.4 and Chipmunk 7 on the same scenes (issue 23): the stability scenes and peers, the
+# rain and the destruction scene; Box2D's remeshing terrain is C++ (its own object), beside peer_box2d.o.
+COST_SRC := $(wildcard tests/bench/cost/*.c) tests/bench/stability/scenes.c tests/bench/stability/scenes_physpix.c \
+  tests/bench/stability/peer_chipmunk.c tests/bench/settings.c
+COST_HDR := $(wildcard tests/bench/cost/*.h) $(STAB_HDR)
+$(BUILD)/bench/cost_remesh.o: tests/bench/cost/peer_remesh.cpp $(COST_HDR) include/physpix.h
+	mkdir -p $(BUILD)/bench
+	$(CXX) -std=c++17 $(filter-out -Wstrict-prototypes,$(WARN)) -Iinclude -O2 -g $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+$(BUILD)/bench/bench_cost: $(COST_SRC) $(COST_HDR) $(BUILD)/bench/peer_box2d.o $(BUILD)/bench/cost_remesh.o $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(COST_SRC) $(BUILD)/bench/peer_box2d.o $(BUILD)/bench/cost_remesh.o \
+	  $(STATIC) $(LDFLAGS) -lbox2d -lchipmunk -lstdc++ $(LIBS)
+
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
 	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
-	  $(BUILD)/bench/bench_sleep
+	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
@@ -302,11 +316,13 @@ bench: deps
 	$(BUILD)/bench/bench_spawn --csv $(BUILD)/bench/spawn.csv
 	$(BUILD)/bench/bench_stability --csv $(BUILD)/bench/stability.csv
 	$(BUILD)/bench/bench_sleep --csv $(BUILD)/bench/sleep.csv
+	$(BUILD)/bench/bench_cost --csv $(BUILD)/bench/cost.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
 	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }
 	$(VENV_PY) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
 	$(VENV_PY) tests/bench/scale/plot.py $(BUILD)/bench/scale.csv $(BUILD)/bench/scale.png
+	$(VENV_PY) tests/bench/cost/plot.py $(BUILD)/bench/cost.csv $(BUILD)/bench/cost.png
 
 # Under PREFIX: lib/ (libraries, the plugin and its manifest, pkgconfig/physpix.pc), include/, and share/physpix/:
 # godot/ (a Godot 3.2 project's bin/ and resources, copied into a project whole) and python/ (the package's

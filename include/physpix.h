@@ -129,7 +129,7 @@ typedef enum pp_contact_mode {
 /// A named point on the measured speed/accuracy trade; see pp_world_def_preset.
 typedef enum pp_preset {
     PP_PRESET_FAST = 1,     ///< 1 substep × 10 iterations: cheapest, same contact errors; 10-high stacks stand, taller fall
-    PP_PRESET_BALANCED = 2, ///< the default, 4 substeps × 40 iterations: stacks stand, contact errors on target
+    PP_PRESET_BALANCED = 2, ///< the default, 4 substeps × 20 iterations: stacks stand, contact errors on target
     PP_PRESET_ACCURATE = 3, ///< 4 substeps × 80 iterations: the stiffest stacks measured, for more solver time
     PP_PRESET_FORCE_U32 = 0x7fffffff
 } pp_preset;
@@ -189,7 +189,7 @@ typedef struct pp_world_def {
     uint32_t struct_size;           ///< sizeof(pp_world_def), set by pp_world_def_default
     pp_vec2 gravity;                ///< acceleration, px/s² (default 0, 980)
     int32_t substeps;               ///< solver steps per pp_world_step, 1..64 (default 4)
-    int32_t solver_iterations;      ///< QuickStep iterations, 1..1000 (default 40)
+    int32_t solver_iterations;      ///< QuickStep iterations a substep, 1..1000 (default 20)
     uint32_t exact_solver;          ///< nonzero: ODE's exact dWorldStep instead of QuickStep
     pp_backend backend;             ///< collision backend (default AUTO)
     pp_normal_method normal_method; ///< contact normal estimator (default AREA_GRADIENT)
@@ -347,12 +347,12 @@ typedef struct pp_step_stats {
     float total_ms;        ///< the whole step, milliseconds
     int32_t bodies;        ///< live bodies
     int32_t awake_bodies;  ///< dynamic or kinematic bodies not asleep
-    int32_t pairs;         ///< candidate pairs tested in the last substep
+    int32_t pairs;         ///< candidate pairs in the last substep (carried ones included)
     int32_t contacts;      ///< contact points made in the last substep
-    int64_t pixels_tested; ///< raster samples tested (all substeps)
+    int64_t pixels_tested; ///< raster samples tested (all substeps; a pair touching at the step's start once)
     pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
     uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
-    int32_t threads;       ///< threads that ran the last substep's CPU narrowphase, the calling one included
+    int32_t threads;       ///< most threads any CPU narrowphase batch of the step ran on, the calling one included
                            ///< (1: it alone; 0: the narrowphase ran on the GPU or had no pairs)
 } pp_step_stats;
 

@@ -87,6 +87,19 @@ dvec2 body_com_world(const body *bd)
     return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
 }
 
+/* A body is round when its inertia is within ROUND_INERTIA of a disc's of the same area (a pixel disc of
+ * radius 3 px is 1.0145 of it, one of 16 px 1.0009, a square 1.047, an ellipse of aspect 1.2 1.017). */
+#define ROUND_INERTIA 1.015
+
+/* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
+double body_round_radius(const body *bd)
+{
+    if (bd->type != PP_BODY_DYNAMIC || !(bd->mass.mass > 0))
+        return 0;
+    const double area = bd->mass.mass / bd->density; /* weighted pixels */
+    return bd->mass.inertia <= ROUND_INERTIA * bd->mass.mass * area / (2 * PP_PI) ? sqrt(area / PP_PI) : 0;
+}
+
 void body_free(world *wd, body *bd)
 {
     solver_body_destroy(wd->solver, &bd->sb);

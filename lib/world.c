@@ -68,7 +68,7 @@ PP_API pp_world_def pp_world_def_default(void)
     d.struct_size = sizeof d;
     d.gravity = (pp_vec2){0.0f, 980.0f};
     d.substeps = 4;
-    d.solver_iterations = 40;
+    d.solver_iterations = 20;
     d.backend = PP_BACKEND_AUTO;
     d.normal_method = PP_NORMAL_AREA_GRADIENT;
     d.contact_mode = PP_CONTACT_MANIFOLD;
@@ -92,7 +92,9 @@ PP_API pp_world_def pp_world_def_default(void)
 /* The presets differ only in the solver's work, the knob that decides whether stacks stand; the
  * figures behind each are in the README ("Presets") and come from build/bench/bench_accuracy.
  * FAST is the front's cheapest point without a coarse stride (stride 2 took the depth error from 0.26 to 1 px):
- * it holds 10-high stacks, not 20. One contact point a pair (CENTROID) lets a box tip on a gentle slope,
+ * it holds 10-high stacks, not 20. BALANCED's 20 iterations are the fewest that stand bench_stability's card
+ * house for 60 s with carried contacts (10 let it fall at 35 s; 40 cost 1.5 times as much and stand nothing
+ * more). One contact point a pair (CENTROID) lets a box tip on a gentle slope,
  * so every preset keeps two. */
 PP_API pp_world_def pp_world_def_preset(pp_preset preset)
 {
@@ -270,6 +272,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->resting_next);
     pp_free(wd->touching);
     pp_free(wd->touch_next);
+    carry_free(&wd->carry);
     crowd_free(&wd->crowd);
     pp_free(wd);
     return PP_OK;
@@ -384,6 +387,8 @@ static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
         if (st)
             return st;
         const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
+        if (carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
+            continue;
         const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
         PP_ASSERT(*n < wd->pair_capacity);
         if (!np_pair_setup(&set, &va, &vb, &wd->pairs[*n]))
@@ -406,28 +411,19 @@ static pp_status collide_pairs(world *wd, int32_t *n, int32_t *first, int64_t *c
         const int32_t from = *n;
         const int64_t cells_from = *cells;
         pp_status st = set_up_pairs(wd, pass, n, cells);
-        if (!st && (pass == 0 || *n > from)) /* an empty second pass leaves the first one's stats */
+        /* An empty second pass, or a later substep's when every pair is carried, leaves the stats of the one before. */
+        int32_t threads = 0;
+        if (!st && (*n > from || (pass == 0 && !wd->carry.active))) {
             st = world_run_cores(wd, "pp_world_step", from, *n - from, *cells - cells_from, &wd->stats.backend,
-                                 &wd->stats.threads);
+                                 &threads);
+            wd->stats.threads = threads > wd->stats.threads ? threads : wd->stats.threads;
+        }
         if (st)
             return st;
         if (pass == 1)
             crowd_prove(wd, *first = *n);
     }
     return PP_OK;
-}
-
-/* A body is round when its inertia is within ROUND_INERTIA of a disc's of the same area (a pixel disc of
- * radius 3 px is 1.0145 of it, one of 16 px 1.0009, a square 1.047, an ellipse of aspect 1.2 1.017). */
-#define ROUND_INERTIA 1.015
-
-/* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
-static double round_radius(const body *bd)
-{
-    if (bd->type != PP_BODY_DYNAMIC || !(bd->mass.mass > 0))
-        return 0;
-    const double area = bd->mass.mass / bd->density; /* weighted pixels */
-    return bd->mass.inertia <= ROUND_INERTIA * bd->mass.mass * area / (2 * PP_PI) ? sqrt(area / PP_PI) : 0;
 }
 
 /* Relative angular speed above which a round body rolls (see touch_round), rad/s: a disc of radius 16 px
@@ -450,7 +446,7 @@ static double angular_speed(const world *wd, const body *bd)
  * the patch's ends and comes to rest, as a pixel polygon does, rather than rock in a hollow for ever. */
 static void touch_round(const world *wd, const body *a, const body *b, np_result *r)
 {
-    const double ra = round_radius(a), rb = round_radius(b);
+    const double ra = body_round_radius(a), rb = body_round_radius(b);
     if ((ra == 0 && rb == 0) || fabs(angular_speed(wd, a) - angular_speed(wd, b)) <= ROLLING_RATE)
         return;
     const body *disc = rb > 0 ? b : a;
@@ -466,11 +462,16 @@ static void touch_round(const world *wd, const body *a, const body *b, np_result
     r->count = 1;
 }
 
-/* Broadphase and narrowphase at the current poses; fills wd->contacts. */
-static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
+/* Broadphase and narrowphase at the current poses; fills wd->contacts. At a step's first substep every
+ * pair is collided and its contacts are carried through the later ones (carry.h). */
+static pp_status find_contacts(world *wd, bool first_substep, double *t_broad, double *t_narrow)
 {
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
+    if (first_substep)
+        wd->carry.active = false;
+    else
+        carry_unclaim(wd);
     pp_status st = awake_refresh(wd);
     if (st)
         return st;
@@ -511,7 +512,8 @@ static pp_status find_contacts(world *wd, double *t_broad, double *t_narrow)
                 return st;
         }
     }
-    if ((st = touch_end(wd)) || (st = crowd_limit_contacts(wd)))
+    carry_strike(wd);
+    if ((st = carry_push(wd)) || (st = touch_end(wd)) || (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
@@ -820,7 +822,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
 {
     const double h = (double)dt / wd->def.substeps;
     for (int32_t k = 0; k < wd->def.substeps; k++) {
-        pp_status st = find_contacts(wd, t_broad, t_narrow);
+        pp_status st = find_contacts(wd, k == 0, t_broad, t_narrow);
         if (st)
             return st;
         const double t0 = now_ms();
@@ -829,7 +831,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
-        if ((st = island_plan(wd, &islands)))
+        if ((st = island_plan(wd, &islands)) || (k == 0 && wd->def.substeps > 1 && (st = carry_record(wd, dt))))
             return st;
         save_contact_bodies(wd);
         add_contact_joints(wd, h);
@@ -866,6 +868,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         return st;
     wd->stats.pixels_tested = 0;
     wd->stats.swept_stops = 0;
+    wd->stats.threads = 0;
     if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
         step_restore(wd);
         return st;

@@ -3,6 +3,7 @@
 #define PP_WORLD_H
 
 #include "broadphase.h"
+#include "carry.h"
 #include "check.h"
 #include "crowd.h"
 #include "handle.h"
@@ -152,6 +153,7 @@ typedef struct world {
     bool resting_stale;      /* a body entered the awake set since the last touch_end: resting pairs are reviewed */
     step_undo undo;
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
+    carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */
@@ -194,6 +196,8 @@ dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
 /* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
+/* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
+double body_round_radius(const body *bd);
 
 /* Room for n more events for pp_world_get_events, then queue each into it (checked by PP_ASSERT). */
 pp_status world_reserve_events(world *wd, int32_t n);

@@ -3,7 +3,9 @@
 #ifndef PP_BENCH_H
 #define PP_BENCH_H
 
+#include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /// One box of a scene; the same numbers build a raster body and an ODE dCreateBox.
 typedef struct bench_box {
@@ -74,6 +76,12 @@ void bench_print_machine(const char *title);
 void bench_print_settings(const bench_settings *set);
 /// Median of v[0..n) (sorts v); 0 when n is 0.
 double bench_median(double *v, int n);
+/// Whether `needle` (NULL: anything) occurs in `hay`, ignoring case: the benches' --only and --engine.
+int bench_matches(const char *hay, const char *needle);
+/// v printed with `format` into buf (n bytes), or "-" when v is not finite (unmeasured); returns buf.
+const char *bench_fmt(char *buf, size_t n, const char *format, double v);
+/// Append ",v" to a CSV line, or "," when v is not finite.
+void bench_csv_field(FILE *f, double v);
 
 /// The 10-row pyramid of 16 px boxes on a static ground (55 boxes).
 int bench_scene_pyramid(bench_scene *out, int steps);

@@ -4,9 +4,12 @@
 #include "machine.h"
 #include "physpix.h"
 
+#include <ctype.h>
+#include <math.h>
 #include <ode/ode.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 bench_settings bench_settings_from_defaults(void)
@@ -65,4 +68,36 @@ double bench_median(double *v, int n)
         return 0.0;
     qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int bench_matches(const char *hay, const char *needle)
+{
+    if (!needle)
+        return 1;
+    const size_t n = strlen(needle);
+    for (const char *h = hay; *h; h++) {
+        size_t k = 0;
+        while (k < n && h[k] && tolower((unsigned char)h[k]) == tolower((unsigned char)needle[k]))
+            k++;
+        if (k == n)
+            return 1;
+    }
+    return n == 0;
+}
+
+const char *bench_fmt(char *buf, size_t n, const char *format, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, n, format, v);
+    else
+        snprintf(buf, n, "-");
+    return buf;
+}
+
+void bench_csv_field(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, ",%.6g", v);
+    else
+        fprintf(f, ",");
 }

@@ -153,8 +153,8 @@ static const struct {
     uint64_t hash;
 } golden[] = {
     {PP_PRESET_FAST, "FAST", 0x7f5aec197fe0fc83ull},
-    {PP_PRESET_BALANCED, "BALANCED", 0xb4da813b3d0ce18aull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0x3fab54fb42b658ffull},
+    {PP_PRESET_BALANCED, "BALANCED", 0x10f3e0d7d3aa30c2ull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0xe26a1a1e44e5726dull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {

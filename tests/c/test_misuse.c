@@ -34,7 +34,7 @@ Test(misuse, defaults_are_documented_values) {
     cr_assert_float_eq(wd.gravity.x, 0.0, 0.0);
     cr_assert_float_eq(wd.gravity.y, 980.0, 0.0);
     cr_assert_eq(wd.substeps, 4);
-    cr_assert_eq(wd.solver_iterations, 40);
+    cr_assert_eq(wd.solver_iterations, 20);
     cr_assert_eq(wd.normal_method, PP_NORMAL_AREA_GRADIENT);
     cr_assert_eq(wd.contact_mode, PP_CONTACT_MANIFOLD);
     cr_assert_eq(wd.backend, PP_BACKEND_AUTO);

@@ -27,7 +27,7 @@ def test_world_accepts_def_fields_as_keywords(fields):
 
 @pytest.mark.parametrize("name", ["fast", "balanced", "accurate"])
 def test_from_preset_starts_from_the_preset_and_keywords_override_it(name):
-    want = {"fast": (1, 10, 1), "balanced": (4, 40, 1), "accurate": (4, 80, 1)}[name]
+    want = {"fast": (1, 10, 1), "balanced": (4, 20, 1), "accurate": (4, 80, 1)}[name]
     with physpix.World.from_preset(name, contact_erp=0.5) as w:
         s = w.settings
         assert (s["substeps"], s["solver_iterations"], s["raster_stride"]) == want

@@ -9,7 +9,6 @@
 #include "peers.h"
 #include "stability.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,22 +54,6 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-/* Whether `needle` (NULL: anything) occurs in `hay`, ignoring case. */
-static int matches(const char *hay, const char *needle)
-{
-    if (!needle)
-        return 1;
-    const size_t n = strlen(needle);
-    for (const char *h = hay; *h; h++) {
-        size_t k = 0;
-        while (k < n && h[k] && tolower((unsigned char)h[k]) == tolower((unsigned char)needle[k]))
-            k++;
-        if (k == n)
-            return 1;
-    }
-    return n == 0;
-}
-
 static int make_engines(stab_engine *out)
 {
     int n = 0;
@@ -109,31 +92,13 @@ static void print_header(const options *o, const stab_engine *engines, int n, do
            "crush", "value", "ref", "err%", "ref2", "err2%", "ms/step");
 }
 
-/* A figure for the table: "-" when unmeasured. */
-static const char *fmt(char *buf, size_t n, const char *format, double v)
-{
-    if (isfinite(v))
-        snprintf(buf, n, format, v);
-    else
-        snprintf(buf, n, "-");
-    return buf;
-}
-
-static void csv_field(FILE *f, double v)
-{
-    if (isfinite(v))
-        fprintf(f, ",%.6g", v);
-    else
-        fprintf(f, ",");
-}
-
 static void print_row(FILE *csv, const stab_scene *s, const stab_engine *e, const stab_result *r)
 {
     char b[8][32];
     printf("%-14s %-17s %-9s %8s %6s %8s %9s %9s %8s %9s %8s %8.3f\n", s->name, e->name, stab_verdict_name(r->verdict),
-           fmt(b[0], 32, "%.2f", r->drift), fmt(b[1], 32, "%.2f", r->fall_s), fmt(b[2], 32, "%.2f", r->crush),
-           fmt(b[3], 32, "%.2f", r->value), fmt(b[4], 32, "%.2f", r->ref), fmt(b[5], 32, "%+.2f", r->err_pct),
-           fmt(b[6], 32, "%.2f", r->ref2), fmt(b[7], 32, "%+.2f", r->err2_pct), r->ms_median);
+           bench_fmt(b[0], 32, "%.2f", r->drift), bench_fmt(b[1], 32, "%.2f", r->fall_s),
+           bench_fmt(b[2], 32, "%.2f", r->crush), bench_fmt(b[3], 32, "%.2f", r->value),
+           bench_fmt(b[4], 32, "%.2f", r->ref), bench_fmt(b[5], 32, "%+.2f", r->err_pct), bench_fmt(b[6], 32, "%.2f", r->ref2), bench_fmt(b[7], 32, "%+.2f", r->err2_pct), r->ms_median);
     fflush(stdout);
     if (!csv)
         return;
@@ -141,7 +106,7 @@ static void print_row(FILE *csv, const stab_scene *s, const stab_engine *e, cons
     const double figures[] = {r->drift, r->fall_s, r->crush, r->settle_sink, r->value, r->ref,
                               r->err_pct, r->ref2, r->err2_pct, r->ms_median};
     for (size_t i = 0; i < sizeof figures / sizeof figures[0]; i++)
-        csv_field(csv, figures[i]);
+        bench_csv_field(csv, figures[i]);
     fprintf(csv, ",%d\n", r->frames);
 }
 
@@ -165,7 +130,7 @@ int main(int argc, char **argv)
     const double t0 = bench_clock_ms();
     int rows = 0;
     for (int i = 0; i < stab_scene_count(); i++) {
-        if (!matches(stab_scene_name(i), opt.only))
+        if (!bench_matches(stab_scene_name(i), opt.only))
             continue;
         stab_scene scene;
         if (stab_scene_build(i, &scene) != 0) {
@@ -173,7 +138,7 @@ int main(int argc, char **argv)
             return 1;
         }
         for (int k = 0; k < nengines; k++) {
-            if (!matches(engines[k].name, opt.engine))
+            if (!bench_matches(engines[k].name, opt.engine))
                 continue;
             stab_result r;
             (void)stab_run(&engines[k], &scene, &run, &r); /* a failed build is an "error" row */

@@ -1,0 +1,208 @@
+/* Contacts carried through a step's substeps (carry.h). */
+#include "carry.h"
+#include "alloc.h"
+#include "island.h"
+#include "status.h"
+#include "touch.h"
+#include "world.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A carried point whose bodies have pulled it this far apart no longer touches, px. Nearer, it stays: ODE
+ * corrects only depth past contact_slop, so it holds the bodies as the raster's thin overlap would. */
+#define CARRY_GAP_PX 1.0
+
+static uint32_t slot_of(pp_body b) { return handle_slot(b.id); }
+
+static uint64_t key_of(uint32_t a, uint32_t b) { return (uint64_t)a << 32 | b; }
+
+static int key_cmp(const void *x, const void *y)
+{
+    const uint64_t p = ((const carried_key *)x)->slots, q = ((const carried_key *)y)->slots;
+    return p < q ? -1 : p > q; /* keys are unique: a pair is found once a substep */
+}
+
+/* A pair is carried only while no point of one body moves more than CARRY_MOTION_PX against the other in a
+ * step, px, and neither turns more than CARRY_TURN_RAD: a resting pair. Its contacts then stay within that of
+ * the truth, and a feature the first substep did not see touching (a falling stick's far end) cannot come
+ * through more than that before the next step finds it. At 1 px, QuickStep's 1:10:100:1000 chain, which
+ * jitters at tens of px/s, fell carried; at 0.25 px (15 px/s at 60 Hz) it stands as when collided. A tiny
+ * body may spin fast and still move under a pixel; turned, its raster contact is another one (a 1 px body
+ * carried while it tumbled came to rest 2 px deep). */
+#define CARRY_MOTION_PX 0.25
+#define CARRY_TURN_RAD 0.05
+
+/* Whether a body is slow enough to carry over dt s; *speed gets how fast its points may move, px/s. */
+static bool slow_body(const world *wd, const body *bd, double dt, double *speed)
+{
+    *speed = 0;
+    if (!bd->sb.body)
+        return true;
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    const double diagonal = hypot(bd->aabb.x1 - bd->aabb.x0, bd->aabb.y1 - bd->aabb.y0);
+    *speed = dv_norm(s.velocity) + fabs(s.angular_velocity) * diagonal;
+    return fabs(s.angular_velocity) * dt <= CARRY_TURN_RAD;
+}
+
+static bool slow_pair(const world *wd, const body *a, const body *b, double dt)
+{
+    double va, vb;
+    return slow_body(wd, a, dt, &va) && slow_body(wd, b, dt, &vb) && (va + vb) * dt <= CARRY_MOTION_PX;
+}
+
+static void strike(carry *c, const body *bd)
+{
+    if (bd->sb.body) /* a static body never moves onto anything */
+        c->struck[bd->index] = c->step;
+}
+
+static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
+
+pp_status carry_record(world *wd, double dt)
+{
+    carry *c = &wd->carry;
+    c->contact_count = c->pair_count = 0;
+    c->active = false;
+    const int32_t n = wd->contact_count;
+    if (n == 0)
+        return PP_OK;
+    const int32_t had = c->struck_capacity;
+    pp_status st = world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
+    if (st)
+        return st;
+    if (c->struck_capacity > had)
+        memset(c->struck + had, 0, (size_t)(c->struck_capacity - had) * sizeof *c->struck);
+    if (++c->step == 0) { /* wrapped: no stale stamp may match */
+        memset(c->struck, 0, (size_t)c->struck_capacity * sizeof *c->struck);
+        c->step = 1;
+    }
+    if (!world_room((void **)&c->contacts, n, &c->contact_capacity, sizeof *c->contacts) ||
+        !world_room((void **)&c->pairs, n, &c->pair_capacity, sizeof *c->pairs) ||
+        !world_room((void **)&c->by_slots, n, &c->by_slots_capacity, sizeof *c->by_slots))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
+    for (int32_t i = 0, end; i < n; i = end) {
+        const pp_contact *ct = &wd->contacts[i];
+        for (end = i + 1; end < n && wd->contacts[end].a.id == ct->a.id && wd->contacts[end].b.id == ct->b.id;)
+            end++;
+        const body *a = body_of(wd, ct->a), *b = body_of(wd, ct->b);
+        /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
+         * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
+         * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
+        if (wd->island_kind[(a->sb.body ? a : b)->index] == ISLAND_EXACT || body_round_radius(a) > 0 ||
+            body_round_radius(b) > 0 || !slow_pair(wd, a, b, dt)) {
+            strike(c, a), strike(c, b);
+            continue;
+        }
+        const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
+        PP_ASSERT(sa < sb); /* contacts keep the broadphase pair's order */
+        c->by_slots[c->pair_count] = (carried_key){key_of(sa, sb), c->pair_count};
+        c->pairs[c->pair_count++] = (carried_pair){sa, sb, c->contact_count, end - i, false};
+        const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
+        for (int32_t k = i; k < end; k++)
+            c->contacts[c->contact_count++] =
+                (carried_contact){wd->contacts[k], com_a, com_b, a->cos_a, a->sin_a, b->cos_a, b->sin_a};
+    }
+    c->active = true;
+    qsort(c->by_slots, (size_t)c->pair_count, sizeof *c->by_slots, key_cmp);
+    return PP_OK;
+}
+
+bool carry_claim(world *wd, uint32_t a, uint32_t b)
+{
+    carry *c = &wd->carry;
+    if (!c->active || c->pair_count == 0 || struck(c, a) || struck(c, b))
+        return false;
+    const carried_key want = {key_of(a, b), 0};
+    const carried_key *k = bsearch(&want, c->by_slots, (size_t)c->pair_count, sizeof want, key_cmp);
+    if (!k)
+        return false;
+    c->pairs[k->pair].claimed = true;
+    return true;
+}
+
+/* How far the material point of a body that was at p when the contact was found has moved, px. */
+static dvec2 moved(const body *bd, dvec2 com0, double c0, double s0, dvec2 p)
+{
+    const dvec2 local = dv_unrot(dv_sub(p, com0), c0, s0);
+    return dv_sub(dv_add(body_com_world(bd), dv_rot(local, bd->cos_a, bd->sin_a)), p);
+}
+
+/* A carried pair's contacts at the bodies' poses now: each point at the midpoint of where its two material
+ * points went, its depth less their separation along the normal. Points pulled apart are dropped. */
+static void move_pair(const world *wd, const carried_pair *p, np_result *r)
+{
+    r->count = 0;
+    r->samples = 0;
+    for (int32_t k = 0; k < p->count; k++) {
+        const carried_contact *cc = &wd->carry.contacts[p->first + k];
+        const body *a = body_of(wd, cc->c.a), *b = body_of(wd, cc->c.b);
+        const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y), n = dv(cc->c.normal.x, cc->c.normal.y);
+        const dvec2 ua = moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0);
+        const dvec2 ub = moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0);
+        const double depth = cc->c.depth - dv_dot(dv_sub(ub, ua), n);
+        if (!(depth >= -CARRY_GAP_PX))
+            continue;
+        pp_contact *out = &r->contacts[r->count++];
+        *out = cc->c;
+        const dvec2 at = dv_add(p0, dv_scale(dv_add(ua, ub), 0.5));
+        out->point = (pp_vec2){(float)at.x, (float)at.y};
+        out->depth = (float)fmax(depth, 0.0); /* a contact reports overlap, never a gap */
+    }
+}
+
+void carry_strike(world *wd)
+{
+    carry *c = &wd->carry;
+    if (!c->active)
+        return;
+    for (int32_t i = 0; i < wd->contact_count; i++)
+        strike(c, body_of(wd, wd->contacts[i].a)), strike(c, body_of(wd, wd->contacts[i].b));
+}
+
+pp_status carry_push(world *wd)
+{
+    carry *c = &wd->carry;
+    if (!c->active)
+        return PP_OK;
+    for (int32_t i = 0; i < c->pair_count; i++) {
+        const carried_pair *p = &c->pairs[i];
+        if (!p->claimed)
+            continue; /* the broadphase no longer pairs them: apart */
+        np_result r;
+        move_pair(wd, p, &r);
+        if (r.count == 0)
+            continue;
+        const body *a = wd->bodies[p->a], *b = wd->bodies[p->b];
+        bool keep = true;
+        pp_status st = touch_pair(wd, a, b, &r, &keep);
+        if (st)
+            return st;
+        if (!keep)
+            continue;
+        if (!world_room((void **)&wd->contacts, wd->contact_count + r.count, &wd->contact_capacity,
+                        sizeof *wd->contacts))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts",
+                           (int)(wd->contact_count + r.count));
+        for (int32_t k = 0; k < r.count; k++)
+            wd->contacts[wd->contact_count++] = r.contacts[k];
+    }
+    return PP_OK;
+}
+
+void carry_unclaim(world *wd)
+{
+    carry *c = &wd->carry;
+    for (int32_t i = 0; i < c->pair_count; i++)
+        c->pairs[i].claimed = false;
+}
+
+void carry_free(carry *c)
+{
+    pp_free(c->struck);
+    pp_free(c->contacts);
+    pp_free(c->pairs);
+    pp_free(c->by_slots);
+}
