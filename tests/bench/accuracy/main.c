@@ -203,12 +203,12 @@ static int build_settings(setting *list, int gpu_ok)
     d = pp_world_def_default();
     d.contact_mode = PP_CONTACT_CENTROID;
     add_setting(list, &n, d, ROLE_SWEEP);
-    static const int strides[] = {1, 2, 4}, substeps[] = {1, 2, 4, 8}, iterations[] = {5, 10, 20, 40};
+    static const int strides[] = {1, 2, 4}, substeps[] = {1, 2, 4, 8}, iterations[] = {5, 10, 20, 30, 40};
     for (int i = 0; i < 3; i++)
         add_setting(list, &n, knobs(0, 0, strides[i], 0), ROLE_SWEEP);
     for (int i = 0; i < 4; i++)
         add_setting(list, &n, knobs(substeps[i], 0, 0, 0), ROLE_SWEEP);
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         add_setting(list, &n, knobs(0, iterations[i], 0, 0), ROLE_SWEEP);
     add_setting(list, &n, knobs(0, 0, 0, 1), ROLE_SWEEP);
     if (gpu_ok) {
