@@ -510,6 +510,38 @@ PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_by
 /// Whether the body is awake (1) or asleep (0); static bodies are never awake.
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
 
+/* Runtime properties. A setter takes effect at the next step, keeps the pose, and wakes the body and the
+ * bodies whose boxes meet its own (a sleeping crate on a ground whose friction changed notices it). What a
+ * body def refuses, the setter refuses the same way, with PP_ERR_INVALID_ARGUMENT naming the value. */
+
+/// Set the body's Coulomb friction coefficient (≥ 0); pairs use sqrt(fa·fb).
+PP_API pp_status pp_body_set_friction(pp_world w, pp_body b, float friction);
+/// Set the body's restitution (0..1); pairs use max(ea, eb).
+PP_API pp_status pp_body_set_restitution(pp_world w, pp_body b, float restitution);
+/// Set the body's velocity decay, 1/s (≥ 0), linear and angular, as pp_body_def's damping fields.
+PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float angular);
+/// Set the categories the body is in and those it collides with (pp_body_def's category_bits, mask_bits).
+PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bits, uint32_t mask_bits);
+/// Wake a dynamic or kinematic body (awake 1) or put it to sleep now, its velocity zeroed (awake 0); an awake
+/// body touching it wakes it again at the next step. PP_ERR_INVALID_ARGUMENT for a static body.
+PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake);
+/// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
+PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
+
+/// One body's state as pp_world_get_body_states reads it.
+typedef struct pp_body_state {
+    pp_body body;
+    pp_vec2 position;          ///< the pivot in the world, px
+    float angle;               ///< rotation, rad
+    pp_vec2 linear_velocity;   ///< of the centre of mass, px/s (0 for a static body)
+    float angular_velocity;    ///< rad/s
+    uint32_t awake;            ///< 1 awake, 0 asleep (a static body is never awake)
+} pp_body_state;
+
+/// Every live body's state in one call, in slot order (pp_world_get_bodies' order); count receives how many
+/// live bodies there are, even when capacity is short (then only capacity are written).
+PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_t capacity, int32_t *count);
+
 /* Edits change pixels between steps, and the next step sees them. The mass sums and the solid bounds follow
  * from the changed pixels alone; the pivot stays put and the body moves to its new centre of mass with the
  * velocity its material had; bodies around the edit wake. A dynamic body cut into several 8-connected

@@ -172,3 +172,13 @@ pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **
     *slots = l.slots, *n = l.count;
     return PP_OK;
 }
+
+static bool wake_movable(world *wd, body *bd, void *user)
+{
+    (void)user;
+    if (bd->sb.body)
+        awake_wake(wd, bd);
+    return true;
+}
+
+void awake_wake_in_box(world *wd, pp_aabb box) { awake_each_in_box(wd, box, wake_movable, NULL); }

@@ -16,6 +16,9 @@ void awake_add(world *wd, body *bd);
 /* Wake a movable body's ODE body and list it. */
 void awake_wake(world *wd, body *bd);
 
+/* Wake every movable body whose world box meets `box` (closed). */
+void awake_wake_in_box(world *wd, pp_aabb box);
+
 /* Forget a body that is being removed: out of the set, its slot's proxy dead. */
 void awake_forget(world *wd, body *bd);
 

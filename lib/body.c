@@ -110,6 +110,20 @@ void body_free(world *wd, body *bd)
     pp_free(bd);
 }
 
+pp_status body_check_surface(const char *fn, double friction, double restitution, double linear_damping,
+                             double angular_damping)
+{
+    if (!(friction >= 0) || !isfinite(friction))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: friction must be finite and ≥ 0, got %g", fn, friction);
+    if (!(restitution >= 0 && restitution <= 1))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: restitution must be in 0..1, got %g", fn, restitution);
+    if (!(linear_damping >= 0 && angular_damping >= 0) || !isfinite(linear_damping) || !isfinite(angular_damping))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "%s: linear_damping and angular_damping must be finite and ≥ 0, got %g and %g", fn, linear_damping,
+                       angular_damping);
+    return PP_OK;
+}
+
 pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w)
 {
     if (!(hypot(v.x, v.y) <= PP_MAX_SPEED))
@@ -141,13 +155,8 @@ static pp_status check_body_def(const pp_body_def *d)
         return st;
     if (!(d->density > 0) || !isfinite(d->density))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: density must be finite and > 0, got %g", fn, d->density);
-    if (!(d->friction >= 0) || !isfinite(d->friction))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: friction must be finite and ≥ 0, got %g", fn, d->friction);
-    if (!(d->restitution >= 0 && d->restitution <= 1))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: restitution must be in 0..1, got %g", fn, d->restitution);
-    if (!(d->linear_damping >= 0 && d->angular_damping >= 0) || !isfinite(d->linear_damping) ||
-        !isfinite(d->angular_damping))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_damping and angular_damping must be finite and ≥ 0", fn);
+    if ((st = body_check_surface(fn, d->friction, d->restitution, d->linear_damping, d->angular_damping)))
+        return st;
     const double dl = hypot(d->one_way_direction.x, d->one_way_direction.y);
     if (d->one_way && !(dl > 0 && isfinite(dl)))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: one_way_direction must be finite and not zero", fn);

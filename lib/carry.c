@@ -70,7 +70,8 @@ pp_status carry_record(world *wd, double dt)
     if (n == 0)
         return PP_OK;
     const int32_t had = c->struck_capacity;
-    pp_status st = world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
+    pp_status st =
+        world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
     if (st)
         return st;
     if (c->struck_capacity > had)

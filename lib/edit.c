@@ -63,16 +63,9 @@ static pp_aabb edited_region(const body *bd, const edit_span *e)
     return box;
 }
 
-static bool wake_movable(world *wd, body *o, void *user)
-{
-    if (o->sb.body)
-        awake_wake(wd, o);
-    return true;
-}
-
 /* Wake every body that may rest on, or now overlap, the edited pixels. Only those: a crater deep
  * in a large terrain leaves the bodies sleeping on its surface asleep. */
-static void wake_around(world *wd, pp_aabb region) { awake_each_in_box(wd, region, wake_movable, NULL); }
+static void wake_around(world *wd, pp_aabb region) { awake_wake_in_box(wd, region); }
 
 /* A body's part of one edit call. Everything that can fail (room for events, the split's new bodies)
  * happens between the pixel writes and the commit, and a failure puts the pixels back: an edit call

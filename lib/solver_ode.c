@@ -71,7 +71,7 @@ pp_status solver_create(const pp_world_def *def, pp_solver **out)
     s->bounce_vel = def->bounce_threshold * s->inv_ppm;
     s->world = dWorldCreate();
     s->contacts = dJointGroupCreate(0);
-    dWorldSetGravity(s->world, def->gravity.x * s->inv_ppm, def->gravity.y * s->inv_ppm, 0);
+    solver_set_gravity(s, dv(def->gravity.x, def->gravity.y));
     dWorldSetQuickStepNumIterations(s->world, def->solver_iterations);
     dWorldSetContactSurfaceLayer(s->world, def->contact_slop * s->inv_ppm);
     /* Deep overlaps (spawned bodies, a fast body stopped inside a wall) separate at a bounded speed;
@@ -117,6 +117,14 @@ void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, doub
     if (!dBodyIsKinematic((dBodyID)sb->body))
         set_mass(s, (dBodyID)sb->body, mass, inertia);
 }
+
+void solver_body_set_damping(const solver_body *sb, double linear, double angular)
+{
+    dBodySetLinearDamping((dBodyID)sb->body, linear);
+    dBodySetAngularDamping((dBodyID)sb->body, angular);
+}
+
+void solver_set_gravity(pp_solver *s, dvec2 g) { dWorldSetGravity(s->world, g.x * s->inv_ppm, g.y * s->inv_ppm, 0); }
 
 pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_body *out)
 {

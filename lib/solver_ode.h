@@ -58,6 +58,10 @@ void solver_body_set_pose(pp_solver *s, solver_body *sb, dvec2 com_world, double
 void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w);
 /* New mass (mass units) and inertia about the centre of mass (mass·px²) after an edit. */
 void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia);
+/* A dynamic body's velocity decay, as solver_body_desc's damping fields. */
+void solver_body_set_damping(const solver_body *sb, double linear, double angular);
+/* The world's gravity, px/s². */
+void solver_set_gravity(pp_solver *s, dvec2 gravity);
 void solver_body_wake(const solver_body *sb);
 void solver_body_sleep(const solver_body *sb);
 bool solver_body_is_awake(const solver_body *sb);

@@ -225,6 +225,9 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
 
 /* PP_ERR_INVALID_ARGUMENT, naming the field, for a velocity past PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED. */
+/* PP_ERR_INVALID_ARGUMENT naming the first of a body's surface and damping values out of its range. */
+pp_status body_check_surface(const char *fn, double friction, double restitution, double linear_damping,
+                             double angular_damping);
 pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w);
 
 /* Refresh cached trig and world bounds after a pose change. */

@@ -83,6 +83,11 @@ int main(void)
     F(pp_timed_edit, center); F(pp_timed_edit, radius); F(pp_timed_edit, reserved);
     end();
 
+    S(pp_body_state);
+    F(pp_body_state, body); F(pp_body_state, position); F(pp_body_state, angle); F(pp_body_state, linear_velocity);
+    F(pp_body_state, angular_velocity); F(pp_body_state, awake);
+    end();
+
     S(pp_collision_view);
     F(pp_collision_view, width); F(pp_collision_view, height); F(pp_collision_view, origin);
     F(pp_collision_view, step_x); F(pp_collision_view, step_y); F(pp_collision_view, normal);

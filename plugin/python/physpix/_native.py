@@ -157,6 +157,17 @@ class pp_timed_edit(ctypes.Structure):
     ]
 
 
+class pp_body_state(ctypes.Structure):
+    _fields_ = [
+        ("body", pp_body),
+        ("position", pp_vec2),
+        ("angle", c_float),
+        ("linear_velocity", pp_vec2),
+        ("angular_velocity", c_float),
+        ("awake", c_uint32),
+    ]
+
+
 class pp_collision_view(ctypes.Structure):
     _fields_ = [
         ("width", c_int32),
@@ -188,7 +199,7 @@ class pp_allocator(ctypes.Structure):
 # Every public struct, by its C name (the layout test walks this).
 STRUCTS = {cls.__name__: cls for cls in
            (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_raycast_hit,
-            pp_step_stats, pp_camera, pp_timed_edit, pp_collision_view, pp_allocator)}
+            pp_step_stats, pp_camera, pp_timed_edit, pp_body_state, pp_collision_view, pp_allocator)}
 
 STATUS = "status"  # marks a function returning pp_status: its result goes through check()
 P = POINTER
@@ -230,6 +241,13 @@ SIGNATURES = {
     "pp_body_get_mass": (STATUS, [pp_world, pp_body, P(c_float), P(pp_vec2), P(c_float)]),
     "pp_body_get_memory": (STATUS, [pp_world, pp_body, P(c_int64), P(c_int64)]),
     "pp_body_is_awake": (STATUS, [pp_world, pp_body, P(c_int32)]),
+    "pp_body_set_friction": (STATUS, [pp_world, pp_body, c_float]),
+    "pp_body_set_restitution": (STATUS, [pp_world, pp_body, c_float]),
+    "pp_body_set_damping": (STATUS, [pp_world, pp_body, c_float, c_float]),
+    "pp_body_set_filter": (STATUS, [pp_world, pp_body, c_uint32, c_uint32]),
+    "pp_body_set_awake": (STATUS, [pp_world, pp_body, c_uint32]),
+    "pp_world_set_gravity": (STATUS, [pp_world, pp_vec2]),
+    "pp_world_get_body_states": (STATUS, [pp_world, P(pp_body_state), c_int32, P(c_int32)]),
     "pp_body_erase_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, P(c_int32)]),
     "pp_body_paint_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, c_uint8, P(c_int32)]),
     "pp_body_write_pixels": (STATUS, [pp_world, pp_body, c_int32, c_int32, c_int32, c_int32, u8p, u8p]),

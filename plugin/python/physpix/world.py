@@ -128,6 +128,19 @@ def _fill_def(struct: ctypes.Structure, values: Mapping[str, Any], caller: str, 
             raise TypeError(f"{name}: {exc}") from None
 
 
+def _dtype_of(struct: Type[ctypes.Structure], shapes: Mapping[str, Tuple[str, Tuple[int, ...]]]) -> np.dtype:
+    """A numpy dtype with a ctypes struct's field offsets and size; shapes: field name to (numpy type, shape)."""
+    names = [f for f, _ in struct._fields_]
+    return np.dtype({"names": names, "formats": [(shapes[f][0], shapes[f][1]) if shapes[f][1] else shapes[f][0]
+                                                  for f in names],
+                     "offsets": [getattr(struct, f).offset for f in names], "itemsize": ctypes.sizeof(struct)})
+
+
+BODY_STATE_DTYPE = _dtype_of(N.pp_body_state, {
+    "body": ("<u8", ()), "position": ("<f4", (2,)), "angle": ("<f4", ()), "linear_velocity": ("<f4", (2,)),
+    "angular_velocity": ("<f4", ()), "awake": ("<u4", ())})
+
+
 def _read_list(fn: Callable[..., Any], item_type: Type[_S], *args: Any, guess: int = 0) -> List[_S]:
     """All items of a snapshot getter (bodies, contacts, collide): read with a first guess of the count
     (0: just ask it), then again with the total the library reported if that was more."""
@@ -381,6 +394,28 @@ class World:
     def bodies(self) -> List[Body]:
         """Every live body."""
         return [Body(self, h.id) for h in _read_list(lib.pp_world_get_bodies, N.pp_body, self._handle)]
+
+    def body_states(self) -> npt.NDArray[Any]:
+        """Every live body's state in one call, in bodies() order: a numpy structured array with fields body (id),
+        position (pivot, 2 floats, px), angle (rad), linear_velocity (2, px/s), angular_velocity (rad/s), awake."""
+        count = c_int32(0)
+        lib.pp_world_get_body_states(self._handle, None, 0, byref(count))
+        while True:
+            out = np.zeros(count.value, dtype=BODY_STATE_DTYPE)
+            ptr = out.ctypes.data_as(POINTER(N.pp_body_state))
+            lib.pp_world_get_body_states(self._handle, ptr, len(out), byref(count))
+            if count.value <= len(out):
+                return out[:count.value]
+
+    @property
+    def gravity(self) -> Vec2:
+        """The world's gravity, (x, y) px/s²; settable (wakes every sleeping body)."""
+        g = self.settings["gravity"]
+        return g[0], g[1]
+
+    @gravity.setter
+    def gravity(self, value: Vec2Like) -> None:
+        lib.pp_world_set_gravity(self._handle, vec2(value, "gravity"))
 
     def _contacts(self, raw: Iterable[N.pp_contact]) -> List[Contact]:
         return [Contact(Body(self, c.a.id), Body(self, c.b.id), (c.point.x, c.point.y), (c.normal.x, c.normal.y),
@@ -667,6 +702,23 @@ class Body:
         awake = c_int32()
         self._call(lib.pp_body_is_awake, byref(awake))
         return bool(awake.value)
+
+    @property
+    def awake(self) -> bool:
+        """Whether the body is awake; set False to put it to sleep now (velocity zeroed), True to wake it."""
+        return self.is_awake
+
+    @awake.setter
+    def awake(self, value: bool) -> None:
+        self._call(lib.pp_body_set_awake, 1 if value else 0)
+
+    def set_damping(self, linear: float, angular: float) -> None:
+        """Set the velocity decay, linear and angular, as the body def's damping fields (≥ 0)."""
+        self._call(lib.pp_body_set_damping, linear, angular)
+
+    def set_filter(self, category_bits: int, mask_bits: int) -> None:
+        """Set the categories the body is in and those it collides with; wakes what it touches."""
+        self._call(lib.pp_body_set_filter, _c_int(category_bits, c_uint32, "category_bits"), _mask_bits(mask_bits))
 
     @property
     def size(self) -> Tuple[int, int]:

@@ -1,0 +1,280 @@
+/* Runtime properties (issue 24's setters): a property set between steps acts as if the body had been
+ * created with it, the physics follows the new value, what it touches wakes, and bad values are refused
+ * with the world unchanged. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "helpers.h"
+#include "physpix.h"
+
+PP_TEST_SUITE(props);
+
+#define DT (1.0f / 60.0f)
+#define GROUND_TOP 500.0f
+
+/* How far a body falls from rest in n substeps of h s under g, px: ODE's semi-implicit Euler gives
+ * g·h²·n(n+1)/2 (the default 4 substeps a step: 123.5 px in 30 steps at 980 px/s², not ½gt² = 122.5). */
+static double fall(double g, int steps)
+{
+    const int n = 4 * steps;
+    const double h = DT / 4.0;
+    return g * h * h * n * (n + 1) / 2;
+}
+
+static pp_body add_ground(pp_world w) { return add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40); }
+
+static int32_t awake(pp_world w, pp_body b)
+{
+    int32_t a = -1;
+    PP_OK_OR_FAIL(pp_body_is_awake(w, b, &a));
+    return a;
+}
+
+/* A ground and a 16 px box thrown sideways from 100 px above it, with the box def given. */
+static pp_world thrown_box(const pp_body_def *box, pp_body *out)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    *out = add_rect(w, *box, 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, *out, v2(200, 0), 3));
+    return w;
+}
+
+Test(props, friction_restitution_and_damping_set_after_creation_run_bit_for_bit_as_if_created_with_them)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 300, GROUND_TOP - 108, 0);
+    pp_body set_box, made_box;
+    pp_world set = thrown_box(&d, &set_box);
+    d.friction = 0.2f, d.restitution = 0.5f, d.linear_damping = 0.01f, d.angular_damping = 0.02f;
+    pp_world made = thrown_box(&d, &made_box);
+    PP_OK_OR_FAIL(pp_body_set_friction(set, set_box, 0.2f));
+    PP_OK_OR_FAIL(pp_body_set_restitution(set, set_box, 0.5f));
+    PP_OK_OR_FAIL(pp_body_set_damping(set, set_box, 0.01f, 0.02f));
+    /* Two seconds: it falls, bounces, tumbles and slides, so each of the three shapes the path. */
+    for (int k = 0; k < 120; k++) {
+        PP_OK_OR_FAIL(pp_world_step(set, DT));
+        PP_OK_OR_FAIL(pp_world_step(made, DT));
+        const pp_vec2 p = body_pos(set, set_box), q = body_pos(made, made_box);
+        cr_assert(p.x == q.x && p.y == q.y && body_angle(set, set_box) == body_angle(made, made_box),
+                  "step %d: (%g, %g) set against (%g, %g) created so", k, p.x, p.y, q.x, q.y);
+    }
+    pp_world_destroy(set);
+    pp_world_destroy(made);
+}
+
+Test(props, a_box_that_sticks_on_a_30_degree_ramp_slides_as_coulomb_says_once_its_friction_drops)
+{
+    const double a = DEG2RAD(30.0);
+    pp_world w = make_world(0, 980);
+    pp_body ramp = add_rect(w, body_def(PP_BODY_STATIC, 400, 400, (float)a), 600, 40);
+    /* Resting on the ramp's top face: 20 px (half the ramp) + 8 px (half the box) along its normal. */
+    const double nx = sin(a), ny = -cos(a);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, (float)(400 + 28.5 * nx), (float)(400 + 28.5 * ny), (float)a), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_friction(w, ramp, 1.0f));
+    PP_OK_OR_FAIL(pp_body_set_friction(w, box, 1.0f));
+    step_n(w, DT, 30);
+    const pp_vec2 p0 = body_pos(w, box);
+    step_n(w, DT, 30);
+    const pp_vec2 p1 = body_pos(w, box);
+    cr_assert_lt(hypot(p1.x - p0.x, p1.y - p0.y), 0.5, "at μ = 1 (over tan 30°) the box crept %g px",
+                 hypot(p1.x - p0.x, p1.y - p0.y));
+    /* μ = 0.1 for both (the pair's √(0.1·0.1)): from rest, s = ½·g(sin 30° − 0.1·cos 30°)·t² = 51.2 px in 0.5 s. */
+    PP_OK_OR_FAIL(pp_body_set_friction(w, ramp, 0.1f));
+    PP_OK_OR_FAIL(pp_body_set_friction(w, box, 0.1f));
+    step_n(w, DT, 30);
+    const pp_vec2 p2 = body_pos(w, box);
+    const double s = hypot(p2.x - p1.x, p2.y - p1.y), want = 0.5 * 980 * (0.5 - 0.1 * cos(a)) * 0.25;
+    cr_assert_float_eq(s, want, 0.05 * want, "slid %.2f px in 0.5 s, Coulomb says %.2f", s, want);
+    pp_world_destroy(w);
+}
+
+Test(props, restitution_set_on_a_box_in_flight_gives_its_bounce)
+{
+    for (int elastic = 0; elastic < 2; elastic++) {
+        pp_world w = make_world(0, 980);
+        pp_body ground = add_ground(w);
+        pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 8 - 200, 0), 16, 16);
+        step_n(w, DT, 10); /* falling */
+        PP_OK_OR_FAIL(pp_body_set_restitution(w, box, elastic ? 1.0f : 0.0f));
+        PP_OK_OR_FAIL(pp_body_set_restitution(w, ground, elastic ? 1.0f : 0.0f));
+        float apex = INFINITY, landed = 0;
+        for (int k = 0; k < 90; k++) { /* the fall takes 0.64 s; then the rebound's apex */
+            PP_OK_OR_FAIL(pp_world_step(w, DT));
+            const float y = body_pos(w, box).y;
+            if (!landed && body_vel(w, box).y <= 0 && y > GROUND_TOP - 30)
+                landed = 1;
+            if (landed)
+                apex = fminf(apex, y);
+        }
+        const float rise = GROUND_TOP - 8 - apex;
+        if (elastic) /* e = 1 keeps all but the substeps' few per cent (README, Presets) */
+            cr_assert_gt(rise, 180.0f, "e = 1: rebound apex %g px above the ground, dropped from 200", rise);
+        else
+            cr_assert_lt(rise, 5.0f, "e = 0: rebound apex %g px above the ground (only the overlap's push-out)", rise);
+        pp_world_destroy(w);
+    }
+}
+
+Test(props, a_sleeping_box_whose_filter_drops_the_ground_wakes_and_falls_through_it)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 8, 0), 16, 16);
+    step_n(w, DT, 120);
+    cr_assert_eq(awake(w, box), 0, "the resting box should be asleep");
+    const float y0 = body_pos(w, box).y;
+    PP_OK_OR_FAIL(pp_body_set_filter(w, box, 1, 0)); /* collides with nothing */
+    cr_assert_eq(awake(w, box), 1);
+    step_n(w, DT, 30);
+    cr_assert_float_eq(body_pos(w, box).y - y0, fall(980, 30), 0.05, "fell %g px through the ground in 0.5 s",
+                       body_pos(w, box).y - y0);
+    pp_world_destroy(w);
+}
+
+Test(props, set_awake_puts_a_falling_box_to_sleep_in_the_air_and_wakes_it_again)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 200, 0), 16, 16);
+    step_n(w, DT, 10);
+    PP_OK_OR_FAIL(pp_body_set_awake(w, box, 0));
+    cr_assert_eq(awake(w, box), 0);
+    const pp_vec2 hung = body_pos(w, box);
+    step_n(w, DT, 30);
+    const pp_vec2 still = body_pos(w, box);
+    cr_assert(still.x == hung.x && still.y == hung.y, "asleep, it moved from (%g, %g) to (%g, %g)", hung.x, hung.y,
+              still.x, still.y);
+    cr_assert(body_vel(w, box).y == 0, "asleep with velocity %g", body_vel(w, box).y);
+    PP_OK_OR_FAIL(pp_body_set_awake(w, box, 1));
+    step_n(w, DT, 30); /* from rest again */
+    cr_assert_float_eq(body_pos(w, box).y - still.y, fall(980, 30), 0.05, "woken, it fell %g px in 0.5 s",
+                       body_pos(w, box).y - still.y);
+    pp_world_destroy(w);
+}
+
+Test(props, world_gravity_set_mid_fall_changes_the_acceleration_and_wakes_sleepers)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body sleeper = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, GROUND_TOP - 8, 0), 16, 16);
+    step_n(w, DT, 120);
+    cr_assert_eq(awake(w, sleeper), 0);
+    pp_body faller = add_rect(w, body_def(PP_BODY_DYNAMIC, 600, -2000, 0), 16, 16);
+    step_n(w, DT, 6);
+    const float v0 = body_vel(w, faller).y;
+    PP_OK_OR_FAIL(pp_world_set_gravity(w, v2(0, 490)));
+    cr_assert_eq(awake(w, sleeper), 1, "the sleeper did not wake to the new gravity");
+    step_n(w, DT, 60);
+    const float dv = body_vel(w, faller).y - v0;
+    cr_assert_float_eq(dv, 490.0f, 0.01f, "1 s at g = 490 px/s² added %g px/s", dv);
+    pp_world_def got;
+    PP_OK_OR_FAIL(pp_world_get_def(w, &got));
+    cr_assert(got.gravity.x == 0 && got.gravity.y == 490);
+    pp_world_destroy(w);
+}
+
+Test(props, body_states_match_the_getters_for_every_body_in_slot_order)
+{
+    pp_world w = make_world(0, 980);
+    pp_body bodies[4];
+    bodies[0] = add_ground(w);
+    bodies[1] = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 300, 0.3f), 16, 16);
+    bodies[2] = add_rect(w, body_def(PP_BODY_KINEMATIC, 500, 300, 0), 32, 8);
+    bodies[3] = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 8, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, bodies[2], v2(50, 0), 1));
+    step_n(w, DT, 20);
+    pp_body_state s[5];
+    memset(s, 0xab, sizeof s);
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, s, 5, &n));
+    cr_assert_eq(n, 4);
+    for (int i = 0; i < 4; i++) {
+        pp_vec2 v;
+        float wz;
+        int32_t a;
+        PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &v, &wz));
+        PP_OK_OR_FAIL(pp_body_is_awake(w, bodies[i], &a));
+        const pp_vec2 p = body_pos(w, bodies[i]);
+        cr_assert_eq(s[i].body.id, bodies[i].id, "state %d is of another body", i);
+        cr_assert(s[i].position.x == p.x && s[i].position.y == p.y && s[i].angle == body_angle(w, bodies[i]),
+                  "body %d's pose", i);
+        cr_assert(s[i].linear_velocity.x == v.x && s[i].linear_velocity.y == v.y && s[i].angular_velocity == wz,
+                  "body %d's velocity", i);
+        cr_assert_eq((int32_t)s[i].awake, a, "body %d's sleep", i);
+    }
+    cr_assert_eq(s[2].linear_velocity.x, 50.0f, "the kinematic body keeps its set speed");
+    /* A short buffer: the count of all, only capacity written. */
+    pp_body_state two[3];
+    memset(two, 0xab, sizeof two);
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, two, 2, &n));
+    cr_assert_eq(n, 4);
+    cr_assert_eq(two[1].body.id, bodies[1].id);
+    const unsigned char *tail = (const unsigned char *)&two[2];
+    for (size_t k = 0; k < sizeof two[2]; k++)
+        cr_assert_eq(tail[k], 0xab, "wrote past capacity");
+    pp_world_destroy(w);
+}
+
+Test(props, bad_values_and_handles_are_refused_and_change_nothing)
+{
+    pp_world w = make_world(0, 980);
+    pp_body ground = add_ground(w);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    EXPECT_ERR(pp_body_set_friction(w, box, NAN), PP_ERR_INVALID_ARGUMENT, "friction");
+    EXPECT_ERR(pp_body_set_friction(w, box, -0.5f), PP_ERR_INVALID_ARGUMENT, "friction");
+    EXPECT_ERR(pp_body_set_restitution(w, box, 1.5f), PP_ERR_INVALID_ARGUMENT, "restitution");
+    EXPECT_ERR(pp_body_set_damping(w, box, -1, 0), PP_ERR_INVALID_ARGUMENT, "damping");
+    EXPECT_ERR(pp_body_set_damping(w, box, 0, INFINITY), PP_ERR_INVALID_ARGUMENT, "damping");
+    EXPECT_ERR(pp_body_set_awake(w, ground, 1), PP_ERR_INVALID_ARGUMENT, "static");
+    EXPECT_ERR(pp_world_set_gravity(w, v2(NAN, 0)), PP_ERR_INVALID_ARGUMENT, "finite");
+    EXPECT_ERR(pp_world_set_gravity(w, v2(0, 2e8f)), PP_ERR_INVALID_ARGUMENT, "PP_MAX_ACCELERATION");
+    EXPECT_ERR(pp_world_get_body_states(w, NULL, 4, NULL), PP_ERR_INVALID_ARGUMENT, "count|NULL|null");
+    pp_world_def got;
+    PP_OK_OR_FAIL(pp_world_get_def(w, &got));
+    cr_assert(got.gravity.x == 0 && got.gravity.y == 980, "a refused gravity changed it");
+    /* The refused values changed nothing: the box falls as a fresh one does. */
+    pp_world fresh = make_world(0, 980);
+    add_ground(fresh);
+    pp_body twin = add_rect(fresh, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    step_n(w, DT, 60);
+    step_n(fresh, DT, 60);
+    cr_assert(body_pos(w, box).y == body_pos(fresh, twin).y, "the refused calls changed the fall");
+    PP_OK_OR_FAIL(pp_body_destroy(w, box));
+    EXPECT_ERR(pp_body_set_friction(w, box, 0.5f), PP_ERR_INVALID_HANDLE, "pp_body_set_friction");
+    EXPECT_ERR(pp_body_set_filter(w, box, 1, 1), PP_ERR_INVALID_HANDLE, "pp_body_set_filter");
+    pp_world_destroy(fresh);
+    pp_world_destroy(w);
+    EXPECT_ERR(pp_world_set_gravity(w, v2(0, 1)), PP_ERR_INVALID_HANDLE, "pp_world_set_gravity");
+}
+
+Test(props, set_properties_survive_a_snapshot_and_the_run_continues_bit_for_bit)
+{
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 300, GROUND_TOP - 108, 0);
+    pp_body box;
+    pp_world w = thrown_box(&d, &box);
+    PP_OK_OR_FAIL(pp_body_set_friction(w, box, 0.1f));
+    PP_OK_OR_FAIL(pp_body_set_restitution(w, box, 0.7f));
+    PP_OK_OR_FAIL(pp_body_set_damping(w, box, 0.01f, 0.02f));
+    PP_OK_OR_FAIL(pp_world_set_gravity(w, v2(100, 600)));
+    step_n(w, DT, 20);
+    char dir[] = "/tmp/pp_props_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
+    pp_world back = {0};
+    PP_OK_OR_FAIL(pp_world_load_snapshot(dir, &back));
+    remove_tree(dir);
+    pp_body loaded[2];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(back, loaded, 2, &n));
+    cr_assert_eq(n, 2);
+    for (int k = 0; k < 100; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        PP_OK_OR_FAIL(pp_world_step(back, DT));
+        const pp_vec2 p = body_pos(w, box), q = body_pos(back, loaded[1]);
+        cr_assert(p.x == q.x && p.y == q.y, "step %d after the snapshot: (%g, %g) against (%g, %g)", k, p.x, p.y, q.x,
+                  q.y);
+    }
+    pp_world_destroy(w);
+    pp_world_destroy(back);
+}

@@ -1,0 +1,86 @@
+"""Runtime properties from Python: the world's gravity, every body's state in one call, sleep set by hand,
+damping and filters (the same physics as tests/c/test_props.c)."""
+import math
+
+import numpy as np
+import pytest
+
+import physpix
+from pphelpers import raises_from_library, rect
+
+DT = 1.0 / 60.0
+
+
+def test_gravity_set_mid_fall_changes_the_acceleration(world):
+    box = rect(world, 16, 16, position=(400, -3000))
+    for _ in range(6):
+        world.step(DT)
+    v0 = box.velocity[1]
+    world.gravity = (0, 490)
+    assert world.gravity == (0.0, 490.0)
+    for _ in range(60):
+        world.step(DT)
+    assert box.velocity[1] - v0 == pytest.approx(490.0, abs=0.01)
+    raises_from_library(physpix.InvalidArgumentError, ["finite"], setattr, world, "gravity", (math.nan, 0))
+    assert world.gravity == (0.0, 490.0)
+
+
+def test_body_states_are_one_structured_array_matching_the_properties(world):
+    rect(world, 800, 40, type="static", position=(400, 500))
+    boxes = [rect(world, 16, 16, position=(300 + 40 * i, 300), angle=0.1 * i) for i in range(3)]
+    for _ in range(20):
+        world.step(DT)
+    s = world.body_states()
+    assert s.dtype.names == ("body", "position", "angle", "linear_velocity", "angular_velocity", "awake")
+    assert len(s) == 4 and [int(i) for i in s["body"]] == [b.id for b in world.bodies()]
+    for row, box in zip(s[1:], boxes):
+        assert tuple(row["position"]) == pytest.approx(box.position, abs=0)
+        assert row["angle"] == pytest.approx(box.angle, abs=0)
+        assert tuple(row["linear_velocity"]) == pytest.approx(box.velocity, abs=0)
+        assert row["angular_velocity"] == pytest.approx(box.angular_velocity, abs=0)
+        assert bool(row["awake"]) == box.is_awake
+    assert not s["awake"][0] and tuple(s["linear_velocity"][0]) == (0, 0)  # the static ground
+
+
+def test_a_box_put_to_sleep_in_the_air_hangs_then_falls_when_woken(world):
+    box = rect(world, 16, 16, position=(400, 200))
+    for _ in range(10):
+        world.step(DT)
+    box.awake = False
+    assert not box.awake
+    hung = box.position
+    for _ in range(30):
+        world.step(DT)
+    assert box.position == hung
+    box.awake = True
+    for _ in range(30):
+        world.step(DT)
+    n, h = 120, DT / 4  # 30 steps of 4 substeps from rest: g·h²·n(n+1)/2
+    assert box.position[1] - hung[1] == pytest.approx(980 * h * h * n * (n + 1) / 2, abs=0.05)
+
+
+def test_a_filter_that_drops_the_ground_lets_a_resting_box_fall_through(world):
+    rect(world, 800, 40, type="static", position=(400, 500))
+    box = rect(world, 16, 16, position=(400, 472))
+    for _ in range(120):
+        world.step(DT)
+    y0 = box.position[1]
+    box.set_filter(1, 0)
+    for _ in range(30):
+        world.step(DT)
+    assert box.position[1] - y0 > 100
+    with pytest.raises(physpix.IntegerRangeError, match=r"category_bits: -1 is outside uint32"):
+        box.set_filter(-1, 0)
+
+
+def test_damping_slows_a_thrown_box_and_bad_damping_is_refused(world):
+    world.gravity = (0, 0)
+    free, damped = rect(world, 16, 16, position=(100, 100)), rect(world, 16, 16, position=(100, 300))
+    for b in (free, damped):
+        b.velocity = (100, 0)
+    damped.set_damping(0.01, 0)
+    for _ in range(60):
+        world.step(DT)
+    assert free.velocity[0] == pytest.approx(100)
+    assert damped.velocity[0] < 0.9 * free.velocity[0]
+    raises_from_library(physpix.InvalidArgumentError, ["damping"], damped.set_damping, -1, 0)
