@@ -525,6 +525,15 @@ PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bit
 /// Wake a dynamic or kinematic body (awake 1) or put it to sleep now, its velocity zeroed (awake 0); an awake
 /// body touching it wakes it again at the next step. PP_ERR_INVALID_ARGUMENT for a static body.
 PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake);
+/// Apply a force (mass·px/s²) at a world point (px) through every substep of the next step; forces add up
+/// and are spent by the step. Wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_force(pp_world w, pp_body b, pp_vec2 force, pp_vec2 world_point);
+/// Apply a torque (mass·px²/s², +x turning toward +y) through the next step, as pp_body_apply_force. Dynamic only.
+PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
+/// Change the angular velocity by impulse / inertia at once (mass·px²/s); wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impulse);
+/// Scale the world's gravity on this body (default 1; 0 floats, −1 rises); kept until set again. Dynamic only.
+PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale);
 /// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
 PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
 

@@ -2,6 +2,7 @@
  * and velocities. A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
 #include "alloc.h"
 #include "awake.h"
+#include "forces.h"
 #include "handle.h"
 #include "status.h"
 #include "world.h"
@@ -258,6 +259,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
     else
         bd->one_way_dir = dv(0, -1);
     bd->user_data = def->user_data;
+    bd->gravity_scale = 1;
     bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
     bd->pos = dv(def->position.x, def->position.y);
     bd->angle = def->angle;
@@ -307,6 +309,7 @@ void body_remove(world *wd, body *bd)
     const uint32_t slot = bd->index;
     const pp_body b = bd->handle;
     awake_forget(wd, bd);
+    forces_forget(wd, bd);
     wd->touch_body_gone = true;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;

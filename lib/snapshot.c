@@ -4,6 +4,7 @@
  * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
 #define _GNU_SOURCE /* renameat2 */
 #include "alloc.h"
+#include "forces.h"
 #include "files.h"
 #include "handle.h"
 #include "image.h"
@@ -159,6 +160,10 @@ static pp_status write_body(const save_dir *dir, const body *bd, cJSON *arr)
         solver_body_save(&bd->sb, &s);
         const double ode[6] = {s.px, s.py, s.rotation_angle, s.vx, s.vy, s.wz};
         ok = add(state, "ode", json_doubles(ode, 6)) && add(state, "awake", cJSON_CreateBool(s.enabled));
+    }
+    if (ok && bd->forced) { /* only then, so that a snapshot without forces is as before */
+        const double forces[4] = {bd->force.x, bd->force.y, bd->torque, bd->gravity_scale};
+        ok = add(state, "forces", json_doubles(forces, 4));
     }
     if (!ok)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_save_snapshot: no memory");
@@ -546,10 +551,10 @@ static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *
 }
 
 static const char *const body_snapshot_keys[] = {"handle", "serial", "sprite", "mask", "weights", "state", NULL};
-static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode", "awake", NULL};
+static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode", "awake", "forces", NULL};
 
 /* The exact state over a body made from its settings and planes. */
-static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, body *bd)
+static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, world *wd, body *bd)
 {
     const cJSON *state;
     char at[48];
@@ -575,7 +580,15 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
         const solver_exact_state s = {ode[0], ode[1], ode[2], ode[3], ode[4], ode[5], awake != 0};
         solver_body_restore(&bd->sb, &s);
     }
-    return PP_OK;
+    if (!cJSON_GetObjectItemCaseSensitive(state, "forces"))
+        return PP_OK;
+    double forces[4];
+    if ((st = read_doubles(c, state, at, "forces", forces, 4)))
+        return st;
+    if (bd->type != PP_BODY_DYNAMIC)
+        return json_fail(c, PP_ERR_FORMAT, at, "forces", "only a dynamic body takes forces");
+    bd->force = dv(forces[0], forces[1]), bd->torque = forces[2], bd->gravity_scale = forces[3];
+    return forces_list(wd, bd, "pp_world_load_snapshot");
 }
 
 /* One body into the slot its handle names; bodies come in creation order, so ODE's list is rebuilt. */
@@ -611,7 +624,7 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
     body *bd = wd->bodies[slot];
     bd->serial = (uint64_t)ser;
     *serial = (uint64_t)ser + 1;
-    return restore_state(c, obj, where, bd);
+    return restore_state(c, obj, where, wd, bd);
 }
 
 static pp_status restore_bodies(const json_ctx *c, const cJSON *root, world *wd)

@@ -124,6 +124,18 @@ void solver_body_set_damping(const solver_body *sb, double linear, double angula
     dBodySetAngularDamping((dBodyID)sb->body, angular);
 }
 
+void solver_body_add_force(pp_solver *s, const solver_body *sb, dvec2 f, double torque)
+{
+    dBodyAddForce((dBodyID)sb->body, f.x * s->inv_ppm, f.y * s->inv_ppm, 0);
+    dBodyAddTorque((dBodyID)sb->body, 0, 0, torque * s->inv_ppm * s->inv_ppm);
+}
+
+void solver_body_clear_force(const solver_body *sb)
+{
+    dBodySetForce((dBodyID)sb->body, 0, 0, 0);
+    dBodySetTorque((dBodyID)sb->body, 0, 0, 0);
+}
+
 void solver_set_gravity(pp_solver *s, dvec2 g) { dWorldSetGravity(s->world, g.x * s->inv_ppm, g.y * s->inv_ppm, 0); }
 
 pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_body *out)

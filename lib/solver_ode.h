@@ -60,6 +60,10 @@ void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, doub
 void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia);
 /* A dynamic body's velocity decay, as solver_body_desc's damping fields. */
 void solver_body_set_damping(const solver_body *sb, double linear, double angular);
+/* Add a force (mass·px/s², at the centre of mass) and a torque (mass·px²/s²) for the next solver step only. */
+void solver_body_add_force(pp_solver *s, const solver_body *sb, dvec2 force, double torque);
+/* Drop what solver_body_add_force gave a body that a failed step did not consume. */
+void solver_body_clear_force(const solver_body *sb);
 /* The world's gravity, px/s². */
 void solver_set_gravity(pp_solver *s, dvec2 gravity);
 void solver_body_wake(const solver_body *sb);

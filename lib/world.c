@@ -3,6 +3,7 @@
 #include "alloc.h"
 #include "awake.h"
 #include "continuous.h"
+#include "forces.h"
 #include "handle.h"
 #include "island.h"
 #include "world.h"
@@ -273,6 +274,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->touching);
     pp_free(wd->touch_next);
     carry_free(&wd->carry);
+    pp_free(wd->forced);
     crowd_free(&wd->crowd);
     pp_free(wd);
     return PP_OK;
@@ -835,6 +837,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         save_contact_bodies(wd);
         add_contact_joints(wd, h);
+        forces_apply(wd);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
         island_list_woken(wd);
@@ -871,8 +874,10 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->stats.threads = 0;
     if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
         step_restore(wd);
+        forces_step_undone(wd);
         return st;
     }
+    forces_step_done(wd);
     int32_t awake = 0;
     for (int32_t k = 0; k < wd->awake_count; k++)
         awake += awake_mover(wd->bodies[wd->awake_slots[k]]);

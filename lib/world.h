@@ -45,6 +45,10 @@ typedef struct body {
     bool is_sensor;          /* overlaps make events, never contacts */
     bool one_way;            /* a one-way platform: contacts only from the one_way_dir side */
     dvec2 one_way_dir;       /* unit, bitmap axes */
+    dvec2 force;             /* applied since the last step, mass·px/s² (forces.c) … */
+    double torque;           /* … and its torque about the centre of mass, mass·px²/s² */
+    double gravity_scale;    /* of the world's gravity; 1 by default */
+    bool forced;             /* listed in wd->forced: a force, torque or gravity scale acts on it */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -154,6 +158,8 @@ typedef struct world {
     step_undo undo;
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
+    int32_t *forced;         /* slots of the bodies with a force, torque or gravity scale (forces.c) */
+    int32_t forced_count, forced_capacity;
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */

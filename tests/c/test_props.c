@@ -278,3 +278,147 @@ Test(props, set_properties_survive_a_snapshot_and_the_run_continues_bit_for_bit)
     pp_world_destroy(w);
     pp_world_destroy(back);
 }
+
+/* ---- forces, torques, angular impulses and gravity scales ---- */
+
+static void mass_of(pp_world w, pp_body b, float *m, float *inertia)
+{
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b, m, NULL, inertia));
+}
+
+static pp_vec2 com_of(pp_world w, pp_body b)
+{
+    /* A 16 px box made at its centre keeps its centre of mass on its pivot while it does not turn. */
+    return body_pos(w, b);
+}
+
+Test(props, a_force_equal_to_the_weight_holds_a_box_in_the_air_while_it_is_applied_each_step)
+{
+    /* Sleep off: held still for 0.5 s, a box would sleep in the air (as in Box2D) and stay there. */
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 200, 0), 16, 16);
+    float m, inertia;
+    mass_of(w, box, &m, &inertia);
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_body_apply_force(w, box, v2(0, -m * 980), com_of(w, box)));
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+    }
+    cr_assert_float_eq(body_pos(w, box).y, 200.0f, 1e-3, "held by its weight's force, it moved to y = %g",
+                       body_pos(w, box).y);
+    /* Spent by the step: without it the box falls again from rest. */
+    step_n(w, DT, 30);
+    cr_assert_float_eq(body_pos(w, box).y - 200.0f, fall(980, 30), 0.01, "it fell %g px once the force stopped",
+                       body_pos(w, box).y - 200.0f);
+    pp_world_destroy(w);
+}
+
+Test(props, a_force_and_a_torque_for_one_step_give_momentum_f_dt_and_angular_momentum_tau_dt)
+{
+    pp_world w = make_world(0, 0);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    float m, inertia;
+    mass_of(w, box, &m, &inertia);
+    /* F at the centre and τ separately, then the same F 8 px below the centre: τ = r × F. */
+    PP_OK_OR_FAIL(pp_body_apply_force(w, box, v2(600 * m, 0), com_of(w, box)));
+    PP_OK_OR_FAIL(pp_body_apply_torque(w, box, 3 * inertia));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    pp_vec2 v;
+    float wz;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, &wz));
+    cr_assert_float_eq(v.x, 600 * DT, 1e-4, "F·dt/m: %g px/s", v.x);
+    cr_assert_float_eq(wz, 3 * DT, 1e-5, "τ·dt/I: %g rad/s", wz);
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, &wz));
+    cr_assert_float_eq(v.x, 600 * DT, 1e-4, "spent after one step, yet the speed changed to %g", v.x);
+    const pp_vec2 c = com_of(w, box);
+    PP_OK_OR_FAIL(pp_body_apply_force(w, box, v2(600 * m, 0), v2(c.x, c.y + 8)));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    float wz2;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, &wz2));
+    /* r = (0, 8), F = (600m, 0): r × F = 0·0 − 8·600m, clockwise in y-down terms. */
+    cr_assert_float_eq(wz2 - wz, -8 * 600 * m / inertia * DT, 1e-4, "off-centre force turned it by %g rad/s", wz2 - wz);
+    cr_assert_float_eq(v.x, 2 * 600 * DT, 1e-3, "and pushed it to %g px/s", v.x);
+    /* An angular impulse changes ω by J/I at once. */
+    PP_OK_OR_FAIL(pp_body_apply_angular_impulse(w, box, 2 * inertia));
+    float wz3;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, NULL, &wz3));
+    cr_assert_float_eq(wz3 - wz2, 2.0f, 1e-5, "J/I: %g rad/s", wz3 - wz2);
+    pp_world_destroy(w);
+}
+
+Test(props, gravity_scale_0_floats_2_doubles_the_fall_and_minus_1_rises)
+{
+    const float scales[] = {0, 2, -1, 1};
+    pp_world w = make_world(0, 980);
+    pp_body b[4];
+    for (int i = 0; i < 4; i++) {
+        b[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 100.0f + 100 * i, 1000, 0), 16, 16);
+        PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, b[i], scales[i]));
+    }
+    step_n(w, DT, 30); /* the scale stays: every step */
+    for (int i = 0; i < 4; i++)
+        cr_assert_float_eq(body_pos(w, b[i]).y - 1000, fall(980 * scales[i], 30), 0.01,
+                           "scale %g: moved %g px in 0.5 s", scales[i], body_pos(w, b[i]).y - 1000);
+    /* Back to 1: it falls as any body. */
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, b[0], 1));
+    step_n(w, DT, 30);
+    cr_assert_float_eq(body_pos(w, b[0]).y - 1000, fall(980, 30), 0.01);
+    pp_world_destroy(w);
+}
+
+Test(props, forces_and_gravity_scales_survive_a_snapshot_bit_for_bit)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 300, 0.2f), 16, 16);
+    pp_body floater = add_rect(w, body_def(PP_BODY_DYNAMIC, 500, 300, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, floater, 0.25f));
+    step_n(w, DT, 5);
+    PP_OK_OR_FAIL(pp_body_apply_force(w, a, v2(3000, -2000), v2(305, 300)));
+    PP_OK_OR_FAIL(pp_body_apply_torque(w, floater, 50000));
+    char dir[] = "/tmp/pp_forces_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
+    pp_world back = {0};
+    PP_OK_OR_FAIL(pp_world_load_snapshot(dir, &back));
+    remove_tree(dir);
+    pp_body loaded[3];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(back, loaded, 3, &n));
+    cr_assert_eq(n, 3);
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        PP_OK_OR_FAIL(pp_world_step(back, DT));
+        for (int i = 1; i < 3; i++) {
+            const pp_vec2 p = body_pos(w, i == 1 ? a : floater), q = body_pos(back, loaded[i]);
+            cr_assert(p.x == q.x && p.y == q.y, "step %d, body %d: (%g, %g) against (%g, %g)", k, i, p.x, p.y, q.x, q.y);
+        }
+    }
+    pp_world_destroy(w);
+    pp_world_destroy(back);
+}
+
+Test(props, forces_refuse_static_and_kinematic_bodies_and_non_finite_values)
+{
+    pp_world w = make_world(0, 980);
+    pp_body ground = add_ground(w);
+    pp_body kin = add_rect(w, body_def(PP_BODY_KINEMATIC, 100, 100, 0), 8, 8);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    EXPECT_ERR(pp_body_apply_force(w, ground, v2(1, 0), v2(0, 0)), PP_ERR_INVALID_ARGUMENT, "dynamic");
+    EXPECT_ERR(pp_body_apply_torque(w, kin, 1), PP_ERR_INVALID_ARGUMENT, "dynamic");
+    EXPECT_ERR(pp_body_set_gravity_scale(w, ground, 0), PP_ERR_INVALID_ARGUMENT, "dynamic");
+    EXPECT_ERR(pp_body_apply_angular_impulse(w, kin, 1), PP_ERR_INVALID_ARGUMENT, "dynamic");
+    EXPECT_ERR(pp_body_apply_force(w, box, v2(NAN, 0), v2(0, 0)), PP_ERR_INVALID_ARGUMENT, "finite");
+    EXPECT_ERR(pp_body_apply_force(w, box, v2(1, 0), v2(INFINITY, 0)), PP_ERR_INVALID_ARGUMENT, "finite");
+    EXPECT_ERR(pp_body_apply_torque(w, box, NAN), PP_ERR_INVALID_ARGUMENT, "finite");
+    EXPECT_ERR(pp_body_set_gravity_scale(w, box, INFINITY), PP_ERR_INVALID_ARGUMENT, "finite");
+    EXPECT_ERR(pp_body_apply_angular_impulse(w, box, 1e30f), PP_ERR_INVALID_ARGUMENT, "angular");
+    /* Nothing was applied: it falls as a fresh box. */
+    step_n(w, DT, 30);
+    cr_assert_float_eq(body_pos(w, box).y - 300, fall(980, 30), 0.01);
+    PP_OK_OR_FAIL(pp_body_destroy(w, box));
+    EXPECT_ERR(pp_body_apply_force(w, box, v2(1, 0), v2(0, 0)), PP_ERR_INVALID_HANDLE, "pp_body_apply_force");
+    pp_world_destroy(w);
+}

@@ -84,3 +84,19 @@ def test_damping_slows_a_thrown_box_and_bad_damping_is_refused(world):
     assert free.velocity[0] == pytest.approx(100)
     assert damped.velocity[0] < 0.9 * free.velocity[0]
     raises_from_library(physpix.InvalidArgumentError, ["damping"], damped.set_damping, -1, 0)
+
+
+def test_a_force_for_one_step_gives_f_dt_and_a_torque_tau_dt(world):
+    world.gravity = (0, 0)
+    box = rect(world, 16, 16, position=(400, 300))
+    box.apply_force((600 * box.mass, 0), box.position)
+    box.apply_torque(3 * box.inertia)
+    world.step(DT)
+    assert box.velocity[0] == pytest.approx(600 * DT, abs=1e-4)
+    assert box.angular_velocity == pytest.approx(3 * DT, abs=1e-5)
+    world.step(DT)
+    assert box.velocity[0] == pytest.approx(600 * DT, abs=1e-4)  # spent
+    w0 = box.angular_velocity
+    box.apply_angular_impulse(2 * box.inertia)
+    assert box.angular_velocity - w0 == pytest.approx(2.0, abs=1e-5)
+    raises_from_library(physpix.InvalidArgumentError, ["finite"], box.apply_torque, math.nan)

@@ -669,6 +669,18 @@ class Body:
         """Apply an impulse (mass·px/s) at a world point (px); dynamic bodies only."""
         self._call(lib.pp_body_apply_impulse, vec2(impulse, "impulse"), vec2(point, "point"))
 
+    def apply_force(self, force: Vec2Like, point: Vec2Like) -> None:
+        """Apply a force (mass·px/s²) at a world point (px) through the next step; dynamic bodies only."""
+        self._call(lib.pp_body_apply_force, vec2(force, "force"), vec2(point, "point"))
+
+    def apply_torque(self, torque: float) -> None:
+        """Apply a torque (mass·px²/s²) through the next step; dynamic bodies only."""
+        self._call(lib.pp_body_apply_torque, torque)
+
+    def apply_angular_impulse(self, impulse: float) -> None:
+        """Change the angular velocity by impulse / inertia (mass·px²/s) now; dynamic bodies only."""
+        self._call(lib.pp_body_apply_angular_impulse, impulse)
+
     @property
     def memory(self) -> Tuple[int, int]:
         """Bytes the body holds: (collision raster, sprite copy); the weight plane counts only where there is one."""

@@ -1,0 +1,23 @@
+/* Forces, torques and gravity scales: what acts on a body besides its contacts and the world's gravity.
+ * The bodies that carry any are listed, so a scene without them walks nothing for them. */
+#ifndef PP_FORCES_H
+#define PP_FORCES_H
+
+#include "physpix.h"
+
+struct world;
+struct body;
+
+/* Before each solver step of a substep: hand every listed awake body its force, torque and the part of
+ * gravity its scale adds or takes away. */
+void forces_apply(struct world *wd);
+/* After a whole step: forces and torques are spent; a body whose gravity scale is 1 leaves the list. */
+void forces_step_done(struct world *wd);
+/* After a step is undone: what ODE was handed and did not use is dropped (the list keeps every force). */
+void forces_step_undone(struct world *wd);
+/* A body being removed leaves the list. */
+void forces_forget(struct world *wd, struct body *bd);
+/* List a body (a snapshot's, with its force, torque or scale already set); PP_ERR_OUT_OF_MEMORY. */
+pp_status forces_list(struct world *wd, struct body *bd, const char *fn);
+
+#endif
