@@ -520,6 +520,8 @@ PP_API pp_status pp_body_set_friction(pp_world w, pp_body b, float friction);
 PP_API pp_status pp_body_set_restitution(pp_world w, pp_body b, float restitution);
 /// Set the body's velocity decay, 1/s (≥ 0), linear and angular, as pp_body_def's damping fields.
 PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float angular);
+/// Set the mass per solid pixel (> 0, pp_body_def's density): mass and inertia follow, the velocity stays.
+PP_API pp_status pp_body_set_density(pp_world w, pp_body b, float density);
 /// Set the categories the body is in and those it collides with (pp_body_def's category_bits, mask_bits).
 PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bits, uint32_t mask_bits);
 /// Wake a dynamic or kinematic body (awake 1) or put it to sleep now, its velocity zeroed (awake 0); an awake

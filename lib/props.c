@@ -2,6 +2,7 @@
  * keeps the pose, and wakes what it touches, so that a sleeping pile notices the change. */
 #include "awake.h"
 #include "check.h"
+#include "edit.h"
 #include "status.h"
 #include "world.h"
 
@@ -58,6 +59,22 @@ PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float 
     bd->linear_damping = linear, bd->angular_damping = angular;
     if (bd->type == PP_BODY_DYNAMIC) /* as pp_body_create: kinematic bodies keep their set velocity */
         solver_body_set_damping(&bd->sb, linear, angular);
+    wake_touching(wd, bd);
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_set_density(pp_world w, pp_body b, float density)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_set_density", &wd, &bd);
+    if (st)
+        return st;
+    if (!(density > 0) || !isfinite(density))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_density: density must be finite and > 0, got %g", density);
+    bd->density = density;
+    if (bd->type == PP_BODY_DYNAMIC) /* mass and inertia scale; the velocity stays, as an edit keeps the material's */
+        edit_update_solver_body(wd, bd);
     wake_touching(wd, bd);
     return PP_OK;
 }

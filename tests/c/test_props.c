@@ -422,3 +422,28 @@ Test(props, forces_refuse_static_and_kinematic_bodies_and_non_finite_values)
     EXPECT_ERR(pp_body_apply_force(w, box, v2(1, 0), v2(0, 0)), PP_ERR_INVALID_HANDLE, "pp_body_apply_force");
     pp_world_destroy(w);
 }
+
+Test(props, density_set_scales_mass_and_inertia_keeps_the_velocity_and_the_solver_feels_it)
+{
+    pp_world w = make_world(0, 0);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, box, v2(50, -20), 0.5f));
+    float m0, i0, m1, i1;
+    mass_of(w, box, &m0, &i0);
+    PP_OK_OR_FAIL(pp_body_set_density(w, box, 4.0f));
+    mass_of(w, box, &m1, &i1);
+    cr_assert_float_eq(m1, 4 * m0, 1e-3 * m0, "mass %g after density 4, %g before", m1, m0);
+    cr_assert_float_eq(i1, 4 * i0, 1e-3 * i0, "inertia %g after density 4, %g before", i1, i0);
+    pp_vec2 v;
+    float wz;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, &wz));
+    cr_assert(v.x == 50 && v.y == -20 && wz == 0.5f, "velocity (%g, %g), %g rad/s after the change", v.x, v.y, wz);
+    /* ODE has the new mass: the force that gave the old mass 600 px/s² gives the new one a quarter of it. */
+    PP_OK_OR_FAIL(pp_body_apply_force(w, box, v2(600 * m0, 0), body_pos(w, box)));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, NULL));
+    cr_assert_float_eq(v.x - 50, 150 * DT, 1e-3, "Δv %g px/s, want F·dt/(4m)", v.x - 50);
+    EXPECT_ERR(pp_body_set_density(w, box, 0), PP_ERR_INVALID_ARGUMENT, "density");
+    EXPECT_ERR(pp_body_set_density(w, box, NAN), PP_ERR_INVALID_ARGUMENT, "density");
+    pp_world_destroy(w);
+}

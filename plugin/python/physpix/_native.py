@@ -244,6 +244,7 @@ SIGNATURES = {
     "pp_body_set_friction": (STATUS, [pp_world, pp_body, c_float]),
     "pp_body_set_restitution": (STATUS, [pp_world, pp_body, c_float]),
     "pp_body_set_damping": (STATUS, [pp_world, pp_body, c_float, c_float]),
+    "pp_body_set_density": (STATUS, [pp_world, pp_body, c_float]),
     "pp_body_set_filter": (STATUS, [pp_world, pp_body, c_uint32, c_uint32]),
     "pp_body_set_awake": (STATUS, [pp_world, pp_body, c_uint32]),
     "pp_body_apply_force": (STATUS, [pp_world, pp_body, pp_vec2, pp_vec2]),
