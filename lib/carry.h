@@ -57,7 +57,7 @@ bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 void carry_strike(struct world *wd);
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through touch_pair. */
 pp_status carry_push(struct world *wd);
-/* Unclaim every pair (the substep's start) or, after the step, forget them. */
+/* At a later substep's start: no pair is claimed yet. */
 void carry_unclaim(struct world *wd);
 void carry_free(carry *c);
 
