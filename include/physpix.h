@@ -536,6 +536,14 @@ PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
 PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impulse);
 /// Scale the world's gravity on this body (default 1; 0 floats, −1 rises); kept until set again. Dynamic only.
 PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale);
+/// The body's friction coefficient.
+PP_API pp_status pp_body_get_friction(pp_world w, pp_body b, float *out);
+/// The body's restitution, 0..1.
+PP_API pp_status pp_body_get_restitution(pp_world w, pp_body b, float *out);
+/// The body's mass per solid pixel (density).
+PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out);
+/// The body's gravity scale (1 unless set).
+PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out);
 /// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
 PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
 

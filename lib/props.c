@@ -159,3 +159,42 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
     *count = n;
     return PP_OK;
 }
+
+/* One float property of a body, for its getter. */
+static pp_status get_float(pp_world w, pp_body b, const char *fn, float *out, double (*of)(const body *))
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out is NULL", fn);
+    *out = (float)of(bd);
+    return PP_OK;
+}
+
+static double friction_of(const body *bd) { return bd->friction; }
+static double restitution_of(const body *bd) { return bd->restitution; }
+static double density_of(const body *bd) { return bd->density; }
+static double gravity_scale_of(const body *bd) { return bd->gravity_scale; }
+
+PP_API pp_status pp_body_get_friction(pp_world w, pp_body b, float *out)
+{
+    return get_float(w, b, "pp_body_get_friction", out, friction_of);
+}
+
+PP_API pp_status pp_body_get_restitution(pp_world w, pp_body b, float *out)
+{
+    return get_float(w, b, "pp_body_get_restitution", out, restitution_of);
+}
+
+PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out)
+{
+    return get_float(w, b, "pp_body_get_density", out, density_of);
+}
+
+PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out)
+{
+    return get_float(w, b, "pp_body_get_gravity_scale", out, gravity_scale_of);
+}

@@ -447,3 +447,28 @@ Test(props, density_set_scales_mass_and_inertia_keeps_the_velocity_and_the_solve
     EXPECT_ERR(pp_body_set_density(w, box, NAN), PP_ERR_INVALID_ARGUMENT, "density");
     pp_world_destroy(w);
 }
+
+Test(props, getters_read_back_the_defaults_and_what_was_set)
+{
+    pp_world w = make_world(0, 980);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    float f, e, d, g;
+    PP_OK_OR_FAIL(pp_body_get_friction(w, box, &f));
+    PP_OK_OR_FAIL(pp_body_get_restitution(w, box, &e));
+    PP_OK_OR_FAIL(pp_body_get_density(w, box, &d));
+    PP_OK_OR_FAIL(pp_body_get_gravity_scale(w, box, &g));
+    const pp_body_def def = pp_body_def_default();
+    cr_assert(f == def.friction && e == def.restitution && d == def.density && g == 1, "defaults %g %g %g %g", f, e,
+              d, g);
+    PP_OK_OR_FAIL(pp_body_set_friction(w, box, 0.25f));
+    PP_OK_OR_FAIL(pp_body_set_restitution(w, box, 0.5f));
+    PP_OK_OR_FAIL(pp_body_set_density(w, box, 3));
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, box, -0.5f));
+    PP_OK_OR_FAIL(pp_body_get_friction(w, box, &f));
+    PP_OK_OR_FAIL(pp_body_get_restitution(w, box, &e));
+    PP_OK_OR_FAIL(pp_body_get_density(w, box, &d));
+    PP_OK_OR_FAIL(pp_body_get_gravity_scale(w, box, &g));
+    cr_assert(f == 0.25f && e == 0.5f && d == 3 && g == -0.5f, "read back %g %g %g %g", f, e, d, g);
+    EXPECT_ERR(pp_body_get_friction(w, box, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
+    pp_world_destroy(w);
+}

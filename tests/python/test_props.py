@@ -100,3 +100,18 @@ def test_a_force_for_one_step_gives_f_dt_and_a_torque_tau_dt(world):
     box.apply_angular_impulse(2 * box.inertia)
     assert box.angular_velocity - w0 == pytest.approx(2.0, abs=1e-5)
     raises_from_library(physpix.InvalidArgumentError, ["finite"], box.apply_torque, math.nan)
+
+
+def test_friction_restitution_density_and_gravity_scale_are_settable_properties(world):
+    box = rect(world, 16, 16, position=(400, 1000))
+    assert (box.friction, box.restitution, box.density, box.gravity_scale) == (pytest.approx(0.6), 0.0, 1.0, 1.0)
+    m = box.mass
+    box.friction, box.restitution, box.density, box.gravity_scale = 0.25, 0.5, 3.0, 0.0
+    assert (box.friction, box.restitution, box.density, box.gravity_scale) == (0.25, 0.5, 3.0, 0.0)
+    assert box.mass == pytest.approx(3 * m)
+    y = box.position[1]
+    for _ in range(30):
+        world.step(DT)
+    assert box.position[1] == y  # gravity scale 0: it floats
+    raises_from_library(physpix.InvalidArgumentError, ["restitution"], setattr, box, "restitution", 2.0)
+    assert box.restitution == 0.5

@@ -715,6 +715,47 @@ class Body:
         self._call(lib.pp_body_is_awake, byref(awake))
         return bool(awake.value)
 
+    def _float(self, getter: Callable[..., Any]) -> float:
+        out = c_float()
+        self._call(getter, byref(out))
+        return out.value
+
+    @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient (≥ 0); settable: the next step uses it and what the body touches wakes."""
+        return self._float(lib.pp_body_get_friction)
+
+    @friction.setter
+    def friction(self, value: float) -> None:
+        self._call(lib.pp_body_set_friction, value)
+
+    @property
+    def restitution(self) -> float:
+        """Restitution 0..1; settable as friction."""
+        return self._float(lib.pp_body_get_restitution)
+
+    @restitution.setter
+    def restitution(self, value: float) -> None:
+        self._call(lib.pp_body_set_restitution, value)
+
+    @property
+    def density(self) -> float:
+        """Mass per solid pixel; settable (mass and inertia follow, the velocity stays)."""
+        return self._float(lib.pp_body_get_density)
+
+    @density.setter
+    def density(self, value: float) -> None:
+        self._call(lib.pp_body_set_density, value)
+
+    @property
+    def gravity_scale(self) -> float:
+        """Scale of the world's gravity on this body (default 1); settable, dynamic bodies only."""
+        return self._float(lib.pp_body_get_gravity_scale)
+
+    @gravity_scale.setter
+    def gravity_scale(self, value: float) -> None:
+        self._call(lib.pp_body_set_gravity_scale, value)
+
     @property
     def awake(self) -> bool:
         """Whether the body is awake; set False to put it to sleep now (velocity zeroed), True to wake it."""
