@@ -46,9 +46,6 @@ enum {
     GDN_POOL_BYTE_ARRAY = 20,
 };
 
-/* Image.FORMAT_RGBA8 in Godot 3.2. */
-#define GDN_IMAGE_FORMAT_RGBA8 5
-
 /* The API tables; valid between a successful gdn_bind and godot_gdnative_terminate. */
 extern const godot_gdnative_core_api_struct *gdn;       /* core 1.0 */
 extern const godot_gdnative_core_1_1_api_struct *gdn11; /* core 1.1: is_instance_valid */

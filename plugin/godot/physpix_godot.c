@@ -8,54 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gdn.h"
-#include "physpix.h"
-
-#define CLASS_NAME "PhysPixWorld"
-#define MAX_ARGS 6
-#define PATH_SIZE 4096 /* a path argument's UTF-8 bytes, with the terminating NUL */
-
-typedef struct world_inst {
-    pp_world world;  /* id 0 if pp_world_create failed; every call then reports the stale handle */
-    char error[512]; /* why the last call failed, "" if it succeeded */
-} world_inst;
-
-/* One argument after its type was checked, read as its spec letter says. */
-typedef struct arg {
-    const godot_variant *var;
-    int64_t i;
-    float f;
-    pp_vec2 v;
-    pp_body body;
-    pp_body_type type;
-    godot_object *object;
-    const char *path; /* 'p': the call's path buffer, res:// and user:// made absolute */
-} arg;
-
-struct method_def;
-
-/* One call of a method: who, which, and the checked arguments. */
-typedef struct call {
-    world_inst *self;
-    const struct method_def *def;
-    int argc;
-    arg a[MAX_ARGS];
-    char *path; /* PATH_SIZE bytes for the one path argument a method may have (not zeroed per call) */
-} call;
-
-typedef godot_variant (*method_fn)(call *c);
-
-/* A GDScript-facing method. spec has one letter an argument, those after '|' optional:
- * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
- * "static" or "kinematic"), M PoolByteArray, I Image, p path (String; res:// and user://
- * become filesystem paths through ProjectSettings.globalize_path, others are used as given),
- * m collision mask bits (int, 0..0xffffffff), o body options (Dictionary, see read_body_options), B bool. */
-typedef struct method_def {
-    const char *name;
-    const char *spec;
-    method_fn fn;
-    const char *usage; /* quoted in error messages */
-} method_def;
+#include "adapter.h"
 
 static const char *const EVENT_TYPE_NAMES[] = {
     [PP_EVENT_BODY_SPLIT] = "split",
@@ -72,20 +25,10 @@ static const char *const BODY_TYPE_NAMES[] = {
     [PP_BODY_KINEMATIC] = "kinematic",
 };
 
-/* Image methods, looked up once at load; class tag to tell an Image from other objects. */
-static struct {
-    void *tag;
-    godot_method_bind *get_width, *get_height, *get_format, *get_data, *convert, *duplicate;
-} image_api;
-
 /* ProjectSettings.globalize_path, looked up once at load; the singleton is asked for at each call. */
 static godot_method_bind *globalize_path_mb;
 
 /* ---- errors ---------------------------------------------------------------------------- */
-
-/* fail() and ok() are macros so that the engine's "At: file:line" names the check that failed. */
-#define fail(...) fail_at(__FILE__, __LINE__, __VA_ARGS__)
-#define ok(c, status) ok_at(__FILE__, __LINE__, c, status)
 
 static void record_error(world_inst *self, const char *method, const char *msg, const char *file, int line)
 {
@@ -97,7 +40,7 @@ static void record_error(world_inst *self, const char *method, const char *msg, 
 }
 
 /* Records and prints why the call failed; returns false so checks read `return cond || fail(...)`. */
-__attribute__((format(printf, 4, 5))) static bool fail_at(const char *file, int line, call *c, const char *fmt, ...)
+bool fail_at(const char *file, int line, call *c, const char *fmt, ...)
 {
     char msg[400];
     va_list ap;
@@ -109,7 +52,7 @@ __attribute__((format(printf, 4, 5))) static bool fail_at(const char *file, int 
 }
 
 /* True on PP_OK; otherwise records the status and PhysPix's own message. */
-static bool ok_at(const char *file, int line, call *c, pp_status s)
+bool ok_at(const char *file, int line, call *c, pp_status s)
 {
     return s == PP_OK || fail_at(file, line, c, "%s: %s", pp_status_name(s), pp_last_error());
 }
@@ -189,6 +132,8 @@ static bool read_arg(call *c, int i, char letter)
                fail(c, "argument %d, mask bits %lld, is outside 0..0xffffffff", i + 1, (long long)a->i);
     case 'o':
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (body options)");
+    case 'd':
+        return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (world settings)");
     case 'B':
         if (t != GDN_BOOL)
             return wrong_type(c, i, "bool");
@@ -222,15 +167,12 @@ static bool read_arg(call *c, int i, char letter)
         return t == GDN_STRING ? read_path(c, i) : wrong_type(c, i, "String (a path)");
     case 'I':
         if (t != GDN_OBJECT)
-            return wrong_type(c, i, "Image");
+            return wrong_type(c, i, "Image or Texture");
         a->object = gdn->godot_variant_as_object(a->var);
-        /* A freed object may still be a pointer, so ask the ObjectDB; anything but an Image would
-         * crash get_data. */
+        /* A freed object may still be a pointer, so ask the ObjectDB; any other class would crash get_data. */
         if (!a->object || !gdn11->godot_is_instance_valid(a->object))
-            return fail(c, "argument %d is a freed or null object, expected Image", i + 1);
-        if (!gdn12->godot_object_cast_to(a->object, image_api.tag))
-            return wrong_type(c, i, "Image");
-        return true;
+            return fail(c, "argument %d is a freed or null object, expected Image or Texture", i + 1);
+        return pixels_is_image_or_texture(a->object) || wrong_type(c, i, "Image or Texture");
     default:
         return fail(c, "internal error: bad spec letter '%c'", letter);
     }
@@ -258,106 +200,24 @@ static bool read_args(call *c, godot_variant **args)
 
 /* ---- bodies ---------------------------------------------------------------------------- */
 
-/* One body option: the variant type its value must have and where it goes in the def. */
-typedef struct body_option {
-    const char *name;
-    int32_t type; /* GDN_BOOL or GDN_VECTOR2 */
-    size_t offset;
-} body_option;
-
-static const body_option BODY_OPTIONS[] = {
-    {"is_sensor", GDN_BOOL, offsetof(pp_body_def, is_sensor)},
-    {"one_way", GDN_BOOL, offsetof(pp_body_def, one_way)},
-    {"one_way_direction", GDN_VECTOR2, offsetof(pp_body_def, one_way_direction)},
-};
-
-/* Sets the def fields an options Dictionary names (keys as in pp_body_def); an unknown key or a value of
- * the wrong type is refused, so a typo is not silently a default. */
-static bool read_body_options(call *c, const godot_variant *var, pp_body_def *def)
-{
-    godot_dictionary dict = gdn->godot_variant_as_dictionary(var);
-    godot_array keys = gdn->godot_dictionary_keys(&dict);
-    bool good = true;
-    for (int32_t k = 0, n = gdn->godot_array_size(&keys); good && k < n; k++) {
-        godot_variant key = gdn->godot_array_get(&keys, k);
-        char name[32] = "";
-        const body_option *opt = NULL;
-        const bool named = gdn->godot_variant_get_type(&key) == GDN_STRING &&
-                           gdn_string_to_utf8(&key, name, sizeof name) < sizeof name;
-        if (named)
-            for (size_t i = 0; i < sizeof BODY_OPTIONS / sizeof BODY_OPTIONS[0]; i++)
-                if (strcmp(name, BODY_OPTIONS[i].name) == 0)
-                    opt = &BODY_OPTIONS[i];
-        godot_variant value = gdn->godot_dictionary_get(&dict, &key);
-        const int32_t t = gdn->godot_variant_get_type(&value);
-        if (!opt) {
-            good = fail(c, "options has the key \"%s\"; known keys are \"is_sensor\" (bool), \"one_way\" (bool) and "
-                           "\"one_way_direction\" (Vector2)", name[0] ? name : gdn_type_name(&key));
-        } else if (t != opt->type) {
-            good = fail(c, "options[\"%s\"] is %s, expected %s", opt->name, gdn_type_name(&value),
-                        opt->type == GDN_BOOL ? "bool" : "Vector2");
-        } else if (opt->type == GDN_BOOL) {
-            *(uint32_t *)((char *)def + opt->offset) = gdn->godot_variant_as_bool(&value) ? 1 : 0;
-        } else {
-            pp_vec2 *v = (pp_vec2 *)((char *)def + opt->offset);
-            gdn_vector2_read(&value, &v->x, &v->y);
-        }
-        gdn->godot_variant_destroy(&value);
-        gdn->godot_variant_destroy(&key);
-    }
-    gdn->godot_array_destroy(&keys);
-    gdn->godot_dictionary_destroy(&dict);
-    return good;
-}
-
-/* A default def at args[first] (position), args[first + 1] (type, default dynamic) and args[first + 2]
- * (options, default none); false if the options were refused. */
-static bool body_def(call *c, int first, pp_body_def *def)
-{
-    *def = pp_body_def_default();
-    def->position = c->a[first].v;
-    def->type = c->argc > first + 1 ? c->a[first + 1].type : PP_BODY_DYNAMIC;
-    return c->argc <= first + 2 || read_body_options(c, c->a[first + 2].var, def);
-}
-
-/* A body's int for GDScript (0 stays 0: "no body" in events). */
-static godot_variant body_int(pp_body b)
+godot_variant body_int(pp_body b)
 {
     return gdn_int((int64_t)b.id);
 }
 
-static godot_variant create_body(call *c, const pp_body_def *def)
+godot_variant make_body(call *c, int first, pp_body_def *def)
 {
+    def->position = c->a[first].v;
+    def->type = c->argc > first + 1 ? c->a[first + 1].type : PP_BODY_DYNAMIC;
+    uint8_t *weights = NULL;
     pp_body b;
-    return ok(c, pp_body_create(c->self->world, def, &b)) ? body_int(b) : gdn_nil();
+    const bool made = (c->argc <= first + 2 || fields_body_def(c, c->a[first + 2].var, def, &weights)) &&
+                      ok(c, pp_body_create(c->self->world, def, &b));
+    free(weights);
+    return made ? body_int(b) : gdn_nil();
 }
 
-/* Creates a body whose width × height plane (mask if rgba is false, else RGBA) is a PoolByteArray. */
-static godot_variant create_body_from_pool(call *c, pp_body_def *def, const godot_variant *pool_var, bool rgba)
-{
-    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(pool_var);
-    const int64_t have = gdn->godot_pool_byte_array_size(&pool);
-    const int64_t need = (int64_t)def->width * def->height * (rgba ? 4 : 1);
-    godot_variant r = gdn_nil();
-    /* An image with mipmaps carries the smaller levels after the first; only a short buffer is wrong. */
-    if (rgba ? have < need : have != need) {
-        fail(c, "%s has %lld bytes, expected %lld (%d × %d%s)", rgba ? "the image data" : "the mask",
-             (long long)have, (long long)need, (int)def->width, (int)def->height, rgba ? " × 4" : "");
-    } else {
-        godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
-        const uint8_t *bytes = gdn->godot_pool_byte_array_read_access_ptr(rd);
-        if (rgba)
-            def->rgba = bytes;
-        else
-            def->mask = bytes;
-        r = create_body(c, def);
-        gdn->godot_pool_byte_array_read_access_destroy(rd);
-    }
-    gdn->godot_pool_byte_array_destroy(&pool);
-    return r;
-}
-
-static bool bitmap_size_ok(call *c, int64_t w, int64_t h)
+bool bitmap_size_ok(call *c, int64_t w, int64_t h)
 {
     return (w >= 1 && h >= 1 && w <= PP_MAX_BITMAP_SIDE && h <= PP_MAX_BITMAP_SIDE) ||
            fail(c, "a bitmap of %lld × %lld pixels; each side must be 1..%d", (long long)w, (long long)h,
@@ -368,64 +228,22 @@ static godot_variant add_body_mask(call *c)
 {
     if (!bitmap_size_ok(c, c->a[1].i, c->a[2].i))
         return gdn_nil();
-    pp_body_def def;
-    if (!body_def(c, 3, &def))
-        return gdn_nil();
+    pp_body_def def = pp_body_def_default();
     def.width = (int32_t)c->a[1].i;
     def.height = (int32_t)c->a[2].i;
-    return create_body_from_pool(c, &def, c->a[0].var, false);
-}
-
-/* image.<getter>() as an int, -1 if the call failed. */
-static int64_t image_int(godot_object *image, godot_method_bind *getter)
-{
-    godot_variant v;
-    const int64_t r = gdn_call(getter, image, NULL, 0, &v) ? gdn->godot_variant_as_int(&v) : -1;
-    gdn->godot_variant_destroy(&v);
-    return r;
-}
-
-static godot_variant add_body_image(call *c)
-{
-    godot_object *image = c->a[0].object;
-    const int64_t w = image_int(image, image_api.get_width), h = image_int(image, image_api.get_height);
-    if (!bitmap_size_ok(c, w, h))
-        return gdn_nil();
-    godot_variant copy = gdn_nil(), data = gdn_nil(), r = gdn_nil();
-    const int64_t format = image_int(image, image_api.get_format);
-    if (format != GDN_IMAGE_FORMAT_RGBA8) {
-        /* Convert a copy, so the caller's image stays as it was; `copy` holds its reference. */
-        gdn->godot_variant_destroy(&copy);
-        if (!gdn_call(image_api.duplicate, image, NULL, 0, &copy)) {
-            fail(c, "Image.duplicate() failed");
-            goto done;
-        }
-        image = gdn->godot_variant_as_object(&copy);
-        godot_variant fmt = gdn_int(GDN_IMAGE_FORMAT_RGBA8), ignored;
-        const godot_variant *args[] = {&fmt};
-        gdn_call(image_api.convert, image, args, 1, &ignored);
-        gdn->godot_variant_destroy(&ignored);
-        gdn->godot_variant_destroy(&fmt);
-        if (image_int(image, image_api.get_format) != GDN_IMAGE_FORMAT_RGBA8) {
-            fail(c, "cannot convert an image of format %lld to RGBA8 (a compressed image? decompress() it)",
-                 (long long)format);
-            goto done;
-        }
+    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(c->a[0].var);
+    const int64_t have = gdn->godot_pool_byte_array_size(&pool), need = (int64_t)def.width * def.height;
+    godot_variant r = gdn_nil();
+    if (have != need) {
+        fail(c, "the mask has %lld bytes, expected %lld (%d × %d)", (long long)have, (long long)need, (int)def.width,
+             (int)def.height);
+    } else {
+        godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
+        def.mask = gdn->godot_pool_byte_array_read_access_ptr(rd);
+        r = make_body(c, 3, &def);
+        gdn->godot_pool_byte_array_read_access_destroy(rd);
     }
-    gdn->godot_variant_destroy(&data);
-    if (!gdn_call(image_api.get_data, image, NULL, 0, &data)) {
-        fail(c, "Image.get_data() failed");
-        goto done;
-    }
-    pp_body_def def;
-    if (!body_def(c, 1, &def))
-        goto done;
-    def.width = (int32_t)w;
-    def.height = (int32_t)h;
-    r = create_body_from_pool(c, &def, &data, true);
-done:
-    gdn->godot_variant_destroy(&data);
-    gdn->godot_variant_destroy(&copy);
+    gdn->godot_pool_byte_array_destroy(&pool);
     return r;
 }
 
@@ -496,6 +314,129 @@ static godot_variant get_mass(call *c)
     return ok(c, pp_body_get_mass(c->self->world, c->a[0].body, &m, NULL, NULL)) ? gdn_real(m) : gdn_nil();
 }
 
+/* ---- runtime properties and forces ------------------------------------------------------- */
+
+/* A call that returns nothing: nil either way, the error (if any) recorded. */
+static godot_variant done(call *c, pp_status s)
+{
+    ok(c, s);
+    return gdn_nil();
+}
+
+static godot_variant set_transform(call *c)
+{
+    return done(c, pp_body_set_transform(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f));
+}
+
+static godot_variant set_friction(call *c)
+{
+    return done(c, pp_body_set_friction(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant set_restitution(call *c)
+{
+    return done(c, pp_body_set_restitution(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant set_density(call *c)
+{
+    return done(c, pp_body_set_density(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant set_gravity_scale(call *c)
+{
+    return done(c, pp_body_set_gravity_scale(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant set_damping(call *c)
+{
+    return done(c, pp_body_set_damping(c->self->world, c->a[0].body, c->a[1].f, c->a[2].f));
+}
+
+static godot_variant set_filter(call *c)
+{
+    return done(c, pp_body_set_filter(c->self->world, c->a[0].body, (uint32_t)c->a[1].i, (uint32_t)c->a[2].i));
+}
+
+static godot_variant set_awake(call *c)
+{
+    return done(c, pp_body_set_awake(c->self->world, c->a[0].body, c->a[1].i != 0));
+}
+
+static godot_variant apply_force(call *c)
+{
+    return done(c, pp_body_apply_force(c->self->world, c->a[0].body, c->a[1].v, c->a[2].v));
+}
+
+static godot_variant apply_torque(call *c)
+{
+    return done(c, pp_body_apply_torque(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant apply_angular_impulse(call *c)
+{
+    return done(c, pp_body_apply_angular_impulse(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant set_gravity(call *c)
+{
+    return done(c, pp_world_set_gravity(c->self->world, c->a[0].v));
+}
+
+/* The float getters share one shape: pp_body_get_<x>(w, b, &out). */
+typedef pp_status (*float_getter)(pp_world w, pp_body b, float *out);
+static godot_variant get_float(call *c, float_getter fn)
+{
+    float x;
+    return ok(c, fn(c->self->world, c->a[0].body, &x)) ? gdn_real(x) : gdn_nil();
+}
+
+static godot_variant get_friction(call *c)
+{
+    return get_float(c, pp_body_get_friction);
+}
+
+static godot_variant get_restitution(call *c)
+{
+    return get_float(c, pp_body_get_restitution);
+}
+
+static godot_variant get_density(call *c)
+{
+    return get_float(c, pp_body_get_density);
+}
+
+static godot_variant get_gravity_scale(call *c)
+{
+    return get_float(c, pp_body_get_gravity_scale);
+}
+
+static godot_variant is_awake(call *c)
+{
+    int32_t awake;
+    return ok(c, pp_body_is_awake(c->self->world, c->a[0].body, &awake)) ? gdn_bool(awake != 0) : gdn_nil();
+}
+
+static godot_variant get_type(call *c)
+{
+    pp_body_type t;
+    return ok(c, pp_body_get_type(c->self->world, c->a[0].body, &t)) ? gdn_string(BODY_TYPE_NAMES[t]) : gdn_nil();
+}
+
+/* Bitmap size, px, as a Vector2 (a Sprite's texture size). */
+static godot_variant get_size(call *c)
+{
+    int32_t w, h;
+    return ok(c, pp_body_get_size(c->self->world, c->a[0].body, &w, &h)) ? gdn_vector2((float)w, (float)h)
+                                                                          : gdn_nil();
+}
+
+static godot_variant get_pivot(call *c)
+{
+    pp_vec2 p;
+    return ok(c, pp_body_get_pivot(c->self->world, c->a[0].body, &p)) ? gdn_vector2(p.x, p.y) : gdn_nil();
+}
+
 /* ---- edits ----------------------------------------------------------------------------- */
 
 static godot_variant erase_circle(call *c)
@@ -541,6 +482,11 @@ static pp_status list_contacts(pp_world w, void *out, int32_t cap, int32_t *n)
 static pp_status list_events(pp_world w, void *out, int32_t cap, int32_t *n)
 {
     return pp_world_get_events(w, out, cap, n);
+}
+
+static pp_status list_states(pp_world w, void *out, int32_t cap, int32_t *n)
+{
+    return pp_world_get_body_states(w, out, cap, n);
 }
 
 /* The whole list in a malloc'd array (a count first, then the items); *n is -1 on failure. */
@@ -626,6 +572,30 @@ static godot_variant get_events(call *c)
         gdn_array_put(&out, gdn_dict_variant(&d));
     }
     free(es);
+    return gdn_array_variant(&out);
+}
+
+/* Every body's pose and motion in one call: what a host reads each frame to move its nodes. */
+static godot_variant get_body_states(call *c)
+{
+    int32_t n;
+    pp_body_state *st = read_list(c, list_states, sizeof *st, &n);
+    if (n < 0)
+        return gdn_nil();
+    godot_array out;
+    gdn->godot_array_new(&out);
+    for (int32_t i = 0; i < n; i++) {
+        godot_dictionary d;
+        gdn->godot_dictionary_new(&d);
+        gdn_dict_put(&d, "body", body_int(st[i].body));
+        gdn_dict_put(&d, "position", gdn_vector2(st[i].position.x, st[i].position.y));
+        gdn_dict_put(&d, "angle", gdn_real(st[i].angle));
+        gdn_dict_put(&d, "linear_velocity", gdn_vector2(st[i].linear_velocity.x, st[i].linear_velocity.y));
+        gdn_dict_put(&d, "angular_velocity", gdn_real(st[i].angular_velocity));
+        gdn_dict_put(&d, "awake", gdn_bool(st[i].awake != 0));
+        gdn_array_put(&out, gdn_dict_variant(&d));
+    }
+    free(st);
     return gdn_array_variant(&out);
 }
 
@@ -720,6 +690,24 @@ static godot_variant replace_world(call *c, pp_world loaded)
     return gdn_bool(true);
 }
 
+/* A fresh world from settings (a preset, then pp_world_def fields): NativeScript's new() takes no arguments. */
+static godot_variant create(call *c)
+{
+    pp_world_def def;
+    pp_world made;
+    if (c->argc > 0 && !fields_world_def(c, c->a[0].var, &def))
+        return gdn_nil();
+    if (c->argc == 0)
+        def = pp_world_def_default();
+    return ok(c, pp_world_create(&def, &made)) ? replace_world(c, made) : gdn_nil();
+}
+
+static godot_variant get_settings(call *c)
+{
+    pp_world_def def;
+    return ok(c, pp_world_get_def(c->self->world, &def)) ? fields_world_dict(&def) : gdn_nil();
+}
+
 static godot_variant load_scene(call *c)
 {
     pp_world loaded;
@@ -775,7 +763,8 @@ static const method_def METHODS[] = {
      "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\","
      " options: Dictionary = {}) -> int"},
     {"add_body_image", "Iv|to", add_body_image,
-     "add_body_image(image: Image, position: Vector2, type: String = \"dynamic\", options: Dictionary = {}) -> int"},
+     "add_body_image(image: Image or Texture, position: Vector2, type: String = \"dynamic\", options: Dictionary = {})"
+     " -> int"},
     {"destroy_body", "b", destroy_body, "destroy_body(body: int)"},
     {"step", "f", step, "step(dt: float)"},
     {"get_transform", "b", get_transform, "get_transform(body: int) -> Transform2D"},
@@ -786,6 +775,31 @@ static const method_def METHODS[] = {
     {"set_velocity", "bvf", set_velocity, "set_velocity(body: int, linear: Vector2, angular: float)"},
     {"apply_impulse", "bvv", apply_impulse, "apply_impulse(body: int, impulse: Vector2, point: Vector2)"},
     {"get_mass", "b", get_mass, "get_mass(body: int) -> float"},
+    {"set_transform", "bvf", set_transform, "set_transform(body: int, position: Vector2, angle: float)"},
+    {"get_size", "b", get_size, "get_size(body: int) -> Vector2"},
+    {"get_pivot", "b", get_pivot, "get_pivot(body: int) -> Vector2"},
+    {"get_type", "b", get_type, "get_type(body: int) -> String"},
+    {"is_awake", "b", is_awake, "is_awake(body: int) -> bool"},
+    {"get_body_states", "", get_body_states, "get_body_states() -> Array"},
+    {"set_friction", "bf", set_friction, "set_friction(body: int, friction: float)"},
+    {"get_friction", "b", get_friction, "get_friction(body: int) -> float"},
+    {"set_restitution", "bf", set_restitution, "set_restitution(body: int, restitution: float)"},
+    {"get_restitution", "b", get_restitution, "get_restitution(body: int) -> float"},
+    {"set_density", "bf", set_density, "set_density(body: int, density: float)"},
+    {"get_density", "b", get_density, "get_density(body: int) -> float"},
+    {"set_gravity_scale", "bf", set_gravity_scale, "set_gravity_scale(body: int, scale: float)"},
+    {"get_gravity_scale", "b", get_gravity_scale, "get_gravity_scale(body: int) -> float"},
+    {"set_damping", "bff", set_damping, "set_damping(body: int, linear: float, angular: float)"},
+    {"set_filter", "bmm", set_filter, "set_filter(body: int, category_bits: int, mask_bits: int)"},
+    {"set_awake", "bB", set_awake, "set_awake(body: int, awake: bool)"},
+    {"apply_force", "bvv", apply_force, "apply_force(body: int, force: Vector2, point: Vector2)"},
+    {"apply_torque", "bf", apply_torque, "apply_torque(body: int, torque: float)"},
+    {"apply_angular_impulse", "bf", apply_angular_impulse, "apply_angular_impulse(body: int, impulse: float)"},
+    {"read_mask", "b", read_mask, "read_mask(body: int) -> PoolByteArray"},
+    {"read_rgba", "b|ii", read_rgba, "read_rgba(body: int, first_row: int = 0, rows: int = all) -> PoolByteArray"},
+    {"write_pixels", "biiiiM|M", write_pixels,
+     "write_pixels(body: int, x: int, y: int, width: int, height: int, mask: PoolByteArray, weights: PoolByteArray"
+     " = all 255) -> bool"},
     {"erase_circle", "bvf", erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"},
     {"paint_circle", "bvfi", paint_circle,
      "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"},
@@ -801,6 +815,9 @@ static const method_def METHODS[] = {
     {"load_scene", "p", load_scene, "load_scene(path: String) -> bool"},
     {"save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"},
     {"load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"},
+    {"create", "|d", create, "create(settings: Dictionary = {}) -> bool"},
+    {"get_settings", "", get_settings, "get_settings() -> Dictionary"},
+    {"set_gravity", "v", set_gravity, "set_gravity(gravity: Vector2)"},
     {"get_time", "", get_time, "get_time() -> float"},
     {"set_contact_events", "B", set_contact_events, "set_contact_events(enabled: bool)"},
     {"get_camera", "", get_camera, "get_camera() -> Dictionary"},
@@ -850,21 +867,8 @@ static void world_free(godot_object *instance, void *method_data, void *user_dat
 
 static bool bind_engine_api(char *err, size_t err_size)
 {
-    godot_string_name name;
-    gdn->godot_string_name_new_data(&name, "Image");
-    image_api.tag = gdn12->godot_get_class_tag(&name);
-    gdn->godot_string_name_destroy(&name);
-    image_api.get_width = gdn->godot_method_bind_get_method("Image", "get_width");
-    image_api.get_height = gdn->godot_method_bind_get_method("Image", "get_height");
-    image_api.get_format = gdn->godot_method_bind_get_method("Image", "get_format");
-    image_api.get_data = gdn->godot_method_bind_get_method("Image", "get_data");
-    image_api.convert = gdn->godot_method_bind_get_method("Image", "convert");
-    image_api.duplicate = gdn->godot_method_bind_get_method("Resource", "duplicate");
-    if (!image_api.tag || !image_api.get_width || !image_api.get_height || !image_api.get_format ||
-        !image_api.get_data || !image_api.convert || !image_api.duplicate) {
-        snprintf(err, err_size, "the engine has no Image class with get_width/get_height/get_format/get_data/convert");
+    if (!pixels_bind(err, err_size))
         return false;
-    }
     globalize_path_mb = gdn->godot_method_bind_get_method("ProjectSettings", "globalize_path");
     if (globalize_path_mb)
         return true;

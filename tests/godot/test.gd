@@ -5,7 +5,7 @@ extends SceneTree
 # and a snapshot loaded into a second object continues exactly as the original; rays and queries
 # find what is there, a sensor reports a ball falling freely through it, a landing reports its
 # speed and the resting contacts' impulses carry the weight, and a one-way platform is passed
-# from below and landed on from above.
+# from below and landed on from above; world settings, poses, pixels, states and properties (issue 25).
 # Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
 
 const PhysPixWorld = preload("res://physpix_world.gdns")
@@ -194,6 +194,109 @@ func test_one_way():
 		and o.get_last_error().find("expected bool") >= 0, "an option of the wrong type refused: %s" % o.get_last_error())
 	check(o.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "static", {"one_way": true, "one_way_direction": Vector2()})
 		== null and o.get_last_error().find("one_way_direction") >= 0, "a zero direction refused: %s" % o.get_last_error())
+
+
+# Issue 25: world settings at creation, poses, pixels in and out, states in one call, runtime properties.
+func test_native_gains():
+	var g = PhysPixWorld.new()
+	check(g.create({"preset": "fast", "gravity": Vector2(0, 500), "backend": "cpu", "contact_events": true,
+		"sleep_time": 2}) == true, "create(settings): %s" % g.get_last_error())
+	var st = g.get_settings()
+	check(st["substeps"] == 1 and st["solver_iterations"] == 10 and st["gravity"] == Vector2(0, 500)
+		and st["backend"] == "cpu" and st["contact_events"] == true and st["sleep_time"] == 2.0
+		and st["contact_mode"] == "manifold", "get_settings: the fast preset with the fields given: %s" % [st])
+	check(g.create({"substepz": 2}) == null and g.get_last_error().find("substepz") >= 0,
+		"an unknown settings key refused: %s" % g.get_last_error())
+	check(g.create({"backend": "gpx"}) == null and g.get_last_error().find("\"cpu\"") >= 0,
+		"an unknown backend refused with the names: %s" % g.get_last_error())
+	check(g.create({"substeps": 0.5}) == null and g.get_last_error().find("expected int") >= 0,
+		"a float substeps refused: %s" % g.get_last_error())
+	check(g.get_settings()["substeps"] == 1, "a refused create leaves the world as it was")
+	check(g.create({"substeps": 99}) == null and g.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"substeps 99 refused by PhysPix: %s" % g.get_last_error())
+	check(g.create() == true and g.get_settings()["substeps"] == 4, "create() gives the default world")
+
+	# A 10×6 box with a custom pivot; size, pivot, transform.
+	var box = g.add_body_mask(solid_mask(10, 6), 10, 6, Vector2(50, 50), "dynamic", {"pivot": Vector2(0, 0), "density": 2.0,
+		"friction": 0.25})
+	check(g.get_size(box) == Vector2(10, 6) and g.get_pivot(box) == Vector2(0, 0) and g.get_mass(box) == 120.0
+		and g.get_friction(box) == 0.25, "size, pivot, density and friction from the options: %s %s %s %s"
+		% [g.get_size(box), g.get_pivot(box), g.get_mass(box), g.get_friction(box)])
+	g.set_transform(box, Vector2(100, 40), 0.5)
+	check(g.get_position(box).distance_to(Vector2(100, 40)) < 1e-3 and near(g.get_angle(box), 0.5, 1e-6),
+		"set_transform: %s %s" % [g.get_position(box), g.get_angle(box)])
+	check(g.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "dynamic", {"weights": PoolByteArray([1, 2])}) == null
+		and g.get_last_error().find("expected 16") >= 0, "weights of the wrong size refused: %s" % g.get_last_error())
+	var w4 = PoolByteArray()
+	for i in range(16):
+		w4.append(51)
+	var light = g.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(-200, 0), "dynamic", {"weights": w4})
+	check(near(g.get_mass(light), 16 * 51.0 / 255.0, 1e-4), "weights 51/255 make a 4×4 body of mass %s" % g.get_mass(light))
+
+	# Pixels: read the mask, clear a 5×6 half with write_pixels, read the look's rows.
+	var mask = g.read_mask(box)
+	check(typeof(mask) == TYPE_RAW_ARRAY and mask.size() == 60 and mask[0] == 1 and mask[59] == 1, "read_mask: 60 ones")
+	var zeros = PoolByteArray()
+	zeros.resize(30)
+	for i in range(30):
+		zeros[i] = 0
+	check(g.write_pixels(box, 5, 0, 5, 6, zeros) == true and g.get_mass(box) == 60.0 and g.read_mask(box)[9] == 0
+		and g.read_mask(box)[4] == 1, "write_pixels cleared the right half: mass %s" % g.get_mass(box))
+	check(g.write_pixels(box, 0, 0, 5, 6, zeros.subarray(0, 9)) == null and g.get_last_error().find("expected 30") >= 0,
+		"a short mask refused: %s" % g.get_last_error())
+	var rgba = g.read_rgba(box)
+	var rows = g.read_rgba(box, 2, 3)
+	check(rgba.size() == 240 and rows.size() == 120 and rows == rgba.subarray(80, 199) and rgba[3] == 255 and rgba[39] == 0,
+		"read_rgba: the whole look (opaque left, clear right) and rows 2..4 of it")
+	check(g.read_rgba(box, 4, 3) == null and g.get_last_error().find("outside") >= 0, "rows past the bitmap refused")
+
+	# States in one call, and runtime properties.
+	var states = g.get_body_states()
+	check(states.size() == 2 and states[0]["body"] == box and states[0]["position"] == g.get_position(box)
+		and states[0]["awake"] == true and states[1]["body"] == light, "get_body_states: %s" % [states])
+	g.set_gravity(Vector2(0, -100))
+	g.set_gravity_scale(light, 2.0)
+	g.step(DT)
+	check(near(g.get_linear_velocity(box).y, -100.0 * DT, 1e-3) and near(g.get_linear_velocity(light).y, -200.0 * DT, 1e-3),
+		"set_gravity up, gravity scale 2 doubles it: %s %s" % [g.get_linear_velocity(box), g.get_linear_velocity(light)])
+	g.set_gravity(Vector2())
+	g.set_velocity(light, Vector2(), 0.0)
+	g.apply_force(light, Vector2(60.0 * g.get_mass(light), 0), g.get_position(light))
+	g.step(DT)
+	check(near(g.get_linear_velocity(light).x, 1.0, 1e-3), "apply_force m·60 px/s² for 1/60 s: v.x %s" % g.get_linear_velocity(light).x)
+	var inertia_turn = g.get_angular_velocity(light)
+	g.apply_angular_impulse(light, 10.0)
+	check(g.get_angular_velocity(light) > inertia_turn, "apply_angular_impulse turns it")
+	g.apply_torque(light, -1000.0)
+	g.step(DT)
+	check(g.get_angular_velocity(light) < g.get_angular_velocity(box) + 10.0, "apply_torque accepted: %s" % g.get_last_error())
+	g.set_restitution(light, 0.5)
+	g.set_density(light, 2.0)
+	g.set_damping(light, 0.1, 0.2)
+	g.set_filter(light, 2, 0xffffffff)
+	check(g.get_restitution(light) == 0.5 and g.get_density(light) == 2.0 and g.get_gravity_scale(light) == 2.0
+		and g.get_last_error() == "", "restitution, density, damping, filter set")
+	g.set_awake(light, false)
+	check(g.is_awake(light) == false and g.get_type(light) == "dynamic", "set_awake(false) puts it to sleep")
+	check(g.set_restitution(light, 2.0) == null and g.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"restitution 2 refused: %s" % g.get_last_error())
+	check(g.set_filter(light, -1, 0) == null and g.get_last_error().find("0..0xffffffff") >= 0, "filter -1 refused")
+
+	# Textures: an ImageTexture of an RGB8 image is read whole; an unimported PNG is refused, not an 8×8 body.
+	var img = Image.new()
+	img.create(12, 7, false, Image.FORMAT_RGB8)
+	img.fill(Color(1, 0, 0))
+	var tex = ImageTexture.new()
+	tex.create_from_image(img, 0)
+	var from_tex = g.add_body_image(tex, Vector2(300, 0))
+	check(is_int(from_tex) and g.get_size(from_tex) == Vector2(12, 7) and g.get_mass(from_tex) == 84.0,
+		"add_body_image(ImageTexture of RGB8): 12×7, mass %s" % g.get_mass(from_tex))
+	img.save_png("res://never_imported.png")
+	var placeholder = load("res://never_imported.png")
+	check(placeholder != null and g.add_body_image(placeholder, Vector2()) == null
+		and g.get_last_error().find("never imported") >= 0, "an unimported texture refused: %s" % g.get_last_error())
+	check(g.add_body_image(ImageTexture.new(), Vector2()) == null and g.get_last_error().find("no readable image") >= 0,
+		"a texture without an image refused: %s" % g.get_last_error())
 
 
 func _init():
@@ -414,6 +517,7 @@ func _init():
 	test_landing_and_impulses()
 	test_contact_events_switch()
 	test_one_way()
+	test_native_gains()
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.

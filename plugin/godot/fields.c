@@ -1,0 +1,273 @@
+/* Dictionaries of def fields for PhysPixWorld: a world's settings (create, get_settings) and a body's options
+ * (add_body_mask, add_body_image). Keys are the C field names; an unknown key or a value of the wrong type is
+ * refused, so a typo is never silently a default. Enums are the scene files' lower-case names. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "adapter.h"
+
+typedef enum field_kind { F_BOOL, F_FLOAT, F_INT, F_BITS, F_VEC2, F_ENUM } field_kind;
+
+/* One field: its key, what its value must be, and where it goes in the def. */
+typedef struct field {
+    const char *name;
+    field_kind kind;
+    size_t offset;
+    const char *const *names; /* F_ENUM: the enum's names by value */
+} field;
+
+static const char *const BACKENDS[] = {"auto", "cpu", "gpu", NULL};
+static const char *const NORMALS[] = {"area_gradient", "kernel", NULL};
+static const char *const CONTACTS[] = {"manifold", "centroid", NULL};
+static const char *const PRESETS[] = {"", "fast", "balanced", "accurate", NULL};
+
+#define W(name, kind) {#name, kind, offsetof(pp_world_def, name), NULL}
+static const field WORLD_FIELDS[] = {
+    W(gravity, F_VEC2),
+    W(substeps, F_INT),
+    W(solver_iterations, F_INT),
+    W(exact_solver, F_BOOL),
+    {"backend", F_ENUM, offsetof(pp_world_def, backend), BACKENDS},
+    {"normal_method", F_ENUM, offsetof(pp_world_def, normal_method), NORMALS},
+    {"contact_mode", F_ENUM, offsetof(pp_world_def, contact_mode), CONTACTS},
+    W(raster_stride, F_INT),
+    W(pixels_per_meter, F_FLOAT),
+    W(contact_slop, F_FLOAT),
+    W(contact_erp, F_FLOAT),
+    W(contact_cfm, F_FLOAT),
+    W(bounce_threshold, F_FLOAT),
+    W(allow_sleep, F_BOOL),
+    W(sleep_linear_speed, F_FLOAT),
+    W(sleep_angular_speed, F_FLOAT),
+    W(sleep_time, F_FLOAT),
+    W(continuous, F_BOOL),
+    W(max_correction_speed, F_FLOAT),
+    W(worker_threads, F_INT),
+    W(contact_events, F_BOOL),
+    W(exact_island_rows, F_INT),
+};
+#undef W
+
+/* "pivot" also sets custom_pivot, and "weights" (a plane) is read by body_special. */
+#define B(name, kind) {#name, kind, offsetof(pp_body_def, name), NULL}
+static const field BODY_FIELDS[] = {
+    B(angle, F_FLOAT),
+    B(pivot, F_VEC2),
+    B(linear_velocity, F_VEC2),
+    B(angular_velocity, F_FLOAT),
+    B(density, F_FLOAT),
+    B(friction, F_FLOAT),
+    B(restitution, F_FLOAT),
+    B(linear_damping, F_FLOAT),
+    B(angular_damping, F_FLOAT),
+    B(category_bits, F_BITS),
+    B(mask_bits, F_BITS),
+    B(fixed_rotation, F_BOOL),
+    B(alpha_threshold, F_INT),
+    B(detach_islands, F_BOOL),
+    B(bullet, F_BOOL),
+    B(is_sensor, F_BOOL),
+    B(one_way, F_BOOL),
+    B(one_way_direction, F_VEC2),
+};
+#undef B
+
+static const char *kind_name(field_kind k)
+{
+    switch (k) {
+    case F_BOOL: return "bool";
+    case F_FLOAT: return "float";
+    case F_INT: return "int";
+    case F_BITS: return "int (bits, 0..0xffffffff)";
+    case F_VEC2: return "Vector2";
+    default: return "String";
+    }
+}
+
+/* Writes one value into the def at f->offset; false (with the reason recorded) if it does not fit. */
+static bool set_field(call *c, const char *what, const field *f, const godot_variant *value, void *def)
+{
+    char *at = (char *)def + f->offset;
+    const int32_t t = gdn->godot_variant_get_type(value);
+    const bool number = t == GDN_INT || t == GDN_REAL;
+    bool good = false;
+    switch (f->kind) {
+    case F_BOOL:
+        if ((good = t == GDN_BOOL))
+            *(uint32_t *)at = gdn->godot_variant_as_bool(value) ? 1 : 0;
+        break;
+    case F_FLOAT:
+        if ((good = number))
+            *(float *)at = (float)gdn->godot_variant_as_real(value);
+        break;
+    case F_INT: {
+        const int64_t i = t == GDN_INT ? gdn->godot_variant_as_int(value) : 0;
+        if ((good = t == GDN_INT && i >= INT32_MIN && i <= INT32_MAX))
+            *(int32_t *)at = (int32_t)i;
+        break;
+    }
+    case F_BITS: {
+        const int64_t i = t == GDN_INT ? gdn->godot_variant_as_int(value) : -1;
+        if ((good = i >= 0 && i <= UINT32_MAX))
+            *(uint32_t *)at = (uint32_t)i;
+        break;
+    }
+    case F_VEC2:
+        if ((good = t == GDN_VECTOR2)) {
+            pp_vec2 *v = (pp_vec2 *)at;
+            gdn_vector2_read(value, &v->x, &v->y);
+        }
+        break;
+    case F_ENUM: {
+        char name[32] = "";
+        if (t == GDN_STRING)
+            gdn_string_to_utf8(value, name, sizeof name);
+        for (int k = 0; f->names[k]; k++)
+            if (f->names[k][0] && strcmp(name, f->names[k]) == 0) {
+                *(int32_t *)at = k;
+                return true;
+            }
+        char known[96] = "";
+        for (int k = 0; f->names[k]; k++)
+            if (f->names[k][0])
+                snprintf(known + strlen(known), sizeof known - strlen(known), "%s\"%s\"", known[0] ? ", " : "",
+                         f->names[k]);
+        return fail(c, "%s[\"%s\"] is %s%s%s, expected one of %s", what, f->name, gdn_type_name(value),
+                    name[0] ? " " : "", name, known);
+    }
+    }
+    return good || fail(c, "%s[\"%s\"] is %s, expected %s", what, f->name, gdn_type_name(value), kind_name(f->kind));
+}
+
+static const field *find_field(const field *fields, size_t n, const char *name)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(name, fields[i].name) == 0)
+            return &fields[i];
+    return NULL;
+}
+
+/* Called for a key before the table; returns 1 if it handled the key, 0 if not, -1 if it refused the value. */
+typedef int (*special_fn)(call *c, const char *key, const godot_variant *value, void *def, void *extra);
+
+/* Sets every field a Dictionary names. */
+static bool read_fields(call *c, const godot_variant *var, const char *what, const field *fields, size_t n, void *def,
+                        special_fn special, void *extra)
+{
+    godot_dictionary dict = gdn->godot_variant_as_dictionary(var);
+    godot_array keys = gdn->godot_dictionary_keys(&dict);
+    bool good = true;
+    for (int32_t k = 0, count = gdn->godot_array_size(&keys); good && k < count; k++) {
+        godot_variant key = gdn->godot_array_get(&keys, k);
+        godot_variant value = gdn->godot_dictionary_get(&dict, &key);
+        char name[32] = "";
+        const bool named = gdn->godot_variant_get_type(&key) == GDN_STRING &&
+                           gdn_string_to_utf8(&key, name, sizeof name) < sizeof name;
+        const int handled = named && special ? special(c, name, &value, def, extra) : 0;
+        const field *f = named && handled == 0 ? find_field(fields, n, name) : NULL;
+        if (handled < 0)
+            good = false;
+        else if (handled == 0 && !f)
+            good = fail(c, "%s has the key \"%s\", which is no %s field (keys are the C def's field names)", what,
+                        name[0] ? name : gdn_type_name(&key), what);
+        else if (f)
+            good = set_field(c, what, f, &value, def);
+        gdn->godot_variant_destroy(&value);
+        gdn->godot_variant_destroy(&key);
+    }
+    gdn->godot_array_destroy(&keys);
+    gdn->godot_dictionary_destroy(&dict);
+    return good;
+}
+
+/* "preset" was read first; here it is only skipped. */
+static int world_special(call *c, const char *key, const godot_variant *value, void *def, void *extra)
+{
+    return strcmp(key, "preset") == 0;
+}
+
+bool fields_world_def(call *c, const godot_variant *var, pp_world_def *out)
+{
+    *out = pp_world_def_default();
+    godot_dictionary dict = gdn->godot_variant_as_dictionary(var);
+    godot_variant key = gdn_string("preset");
+    bool good = true;
+    if (gdn->godot_dictionary_has(&dict, &key)) {
+        godot_variant value = gdn->godot_dictionary_get(&dict, &key);
+        int32_t preset = 0;
+        const field f = {"preset", F_ENUM, 0, PRESETS};
+        if ((good = set_field(c, "settings", &f, &value, &preset)))
+            *out = pp_world_def_preset((pp_preset)preset);
+        gdn->godot_variant_destroy(&value);
+    }
+    gdn->godot_variant_destroy(&key);
+    gdn->godot_dictionary_destroy(&dict);
+    return good && read_fields(c, var, "settings", WORLD_FIELDS, sizeof WORLD_FIELDS / sizeof WORLD_FIELDS[0], out,
+                               world_special, NULL);
+}
+
+godot_variant fields_world_dict(const pp_world_def *def)
+{
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    for (size_t i = 0; i < sizeof WORLD_FIELDS / sizeof WORLD_FIELDS[0]; i++) {
+        const field *f = &WORLD_FIELDS[i];
+        const char *at = (const char *)def + f->offset;
+        godot_variant v;
+        switch (f->kind) {
+        case F_BOOL: v = gdn_bool(*(const uint32_t *)at != 0); break;
+        case F_FLOAT: v = gdn_real(*(const float *)at); break;
+        case F_VEC2: v = gdn_vector2(((const pp_vec2 *)at)->x, ((const pp_vec2 *)at)->y); break;
+        case F_ENUM: {
+            const int32_t k = *(const int32_t *)at;
+            int n = 0;
+            while (f->names[n])
+                n++;
+            v = gdn_string(k >= 0 && k < n ? f->names[k] : "unknown");
+            break;
+        }
+        default: v = gdn_int(*(const int32_t *)at); break;
+        }
+        gdn_dict_put(&d, f->name, v);
+    }
+    return gdn_dict_variant(&d);
+}
+
+/* "pivot" sets custom_pivot too; "weights" is a PoolByteArray of width × height bytes, copied. */
+static int body_special(call *c, const char *key, const godot_variant *value, void *vdef, void *extra)
+{
+    pp_body_def *def = vdef;
+    if (strcmp(key, "pivot") == 0) {
+        def->custom_pivot = 1;
+        return 0; /* the table reads the value */
+    }
+    if (strcmp(key, "weights") != 0)
+        return 0;
+    if (gdn->godot_variant_get_type(value) != GDN_POOL_BYTE_ARRAY)
+        return fail(c, "options[\"weights\"] is %s, expected PoolByteArray", gdn_type_name(value)), -1;
+    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(value);
+    const int64_t have = gdn->godot_pool_byte_array_size(&pool), need = (int64_t)def->width * def->height;
+    uint8_t **weights = extra;
+    int r = 1;
+    if (have != need) {
+        r = (fail(c, "options[\"weights\"] has %lld bytes, expected %lld (%d × %d)", (long long)have, (long long)need,
+                  (int)def->width, (int)def->height), -1);
+    } else if (!(*weights = malloc((size_t)need))) {
+        r = (fail(c, "out of memory for %lld weights", (long long)need), -1);
+    } else {
+        godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
+        memcpy(*weights, gdn->godot_pool_byte_array_read_access_ptr(rd), (size_t)need);
+        gdn->godot_pool_byte_array_read_access_destroy(rd);
+        def->weights = *weights;
+    }
+    gdn->godot_pool_byte_array_destroy(&pool);
+    return r;
+}
+
+bool fields_body_def(call *c, const godot_variant *var, pp_body_def *def, uint8_t **weights)
+{
+    *weights = NULL;
+    return read_fields(c, var, "options", BODY_FIELDS, sizeof BODY_FIELDS / sizeof BODY_FIELDS[0], def, body_special,
+                       weights);
+}
