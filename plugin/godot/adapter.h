@@ -71,16 +71,26 @@ bool bitmap_size_ok(call *c, int64_t w, int64_t h);
  * (default dynamic), options args[first + 2] (default none); its int, or nil on failure. */
 godot_variant make_body(call *c, int first, pp_body_def *def);
 
+/* A body's planes read from its options, malloc'd; freed by the caller once the body is made. */
+typedef struct body_planes {
+    uint8_t *mask, *weights;
+} body_planes;
+
 /* fields.c: Dictionaries of def fields. The world's settings (a "preset" first, then any pp_world_def field)
- * into a def, and back; a body's options (pp_body_def fields, plus "pivot" and "weights") into a def whose
- * width and height are set. *weights receives a malloc'd copy of the "weights" plane (or NULL); the caller frees it. */
+ * into a def, and back; a body's options (pp_body_def fields, plus "pivot", "collision_mask" and "weights")
+ * into a def whose width and height are set. */
 bool fields_world_def(call *c, const godot_variant *dict, pp_world_def *out);
 godot_variant fields_world_dict(const pp_world_def *def);
-bool fields_body_def(call *c, const godot_variant *dict, pp_body_def *def, uint8_t **weights);
+bool fields_body_def(call *c, const godot_variant *dict, pp_body_def *def, body_planes *planes);
 
 /* pixels.c: Images and Textures in, a body's pixels out and in. */
 bool pixels_bind(char *err, size_t err_size);
 bool pixels_is_image_or_texture(godot_object *object);
+/* One byte a pixel of the def's size into *out (malloc'd) from a PoolByteArray (as it is) or an Image or Texture:
+ * a mask is 1 where alpha >= def->alpha_threshold and the brightest channel >= 128 (white on black or on
+ * transparent), weights are the red channel (a grey image's level). */
+bool pixels_plane(call *c, const godot_variant *src, const char *what, const pp_body_def *def, bool mask,
+                  uint8_t **out);
 godot_variant add_body_image(call *c);
 godot_variant read_mask(call *c);
 godot_variant read_rgba(call *c);

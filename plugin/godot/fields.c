@@ -2,7 +2,6 @@
  * (add_body_mask, add_body_image). Keys are the C field names; an unknown key or a value of the wrong type is
  * refused, so a typo is never silently a default. Enums are the scene files' lower-case names. */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "adapter.h"
@@ -234,40 +233,48 @@ godot_variant fields_world_dict(const pp_world_def *def)
     return gdn_dict_variant(&d);
 }
 
-/* "pivot" sets custom_pivot too; "weights" is a PoolByteArray of width × height bytes, copied. */
+/* The options' plane sources, kept until every field is read (the mask needs alpha_threshold). */
+typedef struct plane_sources {
+    godot_variant mask, weights;
+    bool has_mask, has_weights;
+} plane_sources;
+
+/* "pivot" sets custom_pivot too; "collision_mask" and "weights" are planes, read once the fields are. */
 static int body_special(call *c, const char *key, const godot_variant *value, void *vdef, void *extra)
 {
     pp_body_def *def = vdef;
+    plane_sources *src = extra;
     if (strcmp(key, "pivot") == 0) {
         def->custom_pivot = 1;
         return 0; /* the table reads the value */
     }
-    if (strcmp(key, "weights") != 0)
+    const bool mask = strcmp(key, "collision_mask") == 0;
+    if (!mask && strcmp(key, "weights") != 0)
         return 0;
-    if (gdn->godot_variant_get_type(value) != GDN_POOL_BYTE_ARRAY)
-        return fail(c, "options[\"weights\"] is %s, expected PoolByteArray", gdn_type_name(value)), -1;
-    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(value);
-    const int64_t have = gdn->godot_pool_byte_array_size(&pool), need = (int64_t)def->width * def->height;
-    uint8_t **weights = extra;
-    int r = 1;
-    if (have != need) {
-        r = (fail(c, "options[\"weights\"] has %lld bytes, expected %lld (%d × %d)", (long long)have, (long long)need,
-                  (int)def->width, (int)def->height), -1);
-    } else if (!(*weights = malloc((size_t)need))) {
-        r = (fail(c, "out of memory for %lld weights", (long long)need), -1);
-    } else {
-        godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
-        memcpy(*weights, gdn->godot_pool_byte_array_read_access_ptr(rd), (size_t)need);
-        gdn->godot_pool_byte_array_read_access_destroy(rd);
-        def->weights = *weights;
-    }
-    gdn->godot_pool_byte_array_destroy(&pool);
-    return r;
+    bool *has = mask ? &src->has_mask : &src->has_weights;
+    godot_variant *keep = mask ? &src->mask : &src->weights;
+    if (*has)
+        gdn->godot_variant_destroy(keep);
+    gdn->godot_variant_new_copy(keep, value);
+    *has = true;
+    return 1;
 }
 
-bool fields_body_def(call *c, const godot_variant *var, pp_body_def *def, uint8_t **weights)
+bool fields_body_def(call *c, const godot_variant *var, pp_body_def *def, body_planes *planes)
 {
-    *weights = NULL;
-    return read_fields(c, var, "options", BODY_FIELDS, sizeof BODY_FIELDS / sizeof BODY_FIELDS[0], def, body_special,
-                       weights);
+    *planes = (body_planes){NULL, NULL};
+    plane_sources src = {.has_mask = false, .has_weights = false};
+    bool good = read_fields(c, var, "options", BODY_FIELDS, sizeof BODY_FIELDS / sizeof BODY_FIELDS[0], def,
+                            body_special, &src);
+    if (src.has_mask) {
+        good = good && pixels_plane(c, &src.mask, "collision_mask", def, true, &planes->mask);
+        def->mask = planes->mask;
+        gdn->godot_variant_destroy(&src.mask);
+    }
+    if (src.has_weights) {
+        good = good && pixels_plane(c, &src.weights, "weights", def, false, &planes->weights);
+        def->weights = planes->weights;
+        gdn->godot_variant_destroy(&src.weights);
+    }
+    return good;
 }

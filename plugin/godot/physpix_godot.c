@@ -209,11 +209,12 @@ godot_variant make_body(call *c, int first, pp_body_def *def)
 {
     def->position = c->a[first].v;
     def->type = c->argc > first + 1 ? c->a[first + 1].type : PP_BODY_DYNAMIC;
-    uint8_t *weights = NULL;
+    body_planes planes = {NULL, NULL};
     pp_body b;
-    const bool made = (c->argc <= first + 2 || fields_body_def(c, c->a[first + 2].var, def, &weights)) &&
+    const bool made = (c->argc <= first + 2 || fields_body_def(c, c->a[first + 2].var, def, &planes)) &&
                       ok(c, pp_body_create(c->self->world, def, &b));
-    free(weights);
+    free(planes.mask);
+    free(planes.weights);
     return made ? body_int(b) : gdn_nil();
 }
 

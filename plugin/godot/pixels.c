@@ -174,6 +174,56 @@ godot_variant add_body_image(call *c)
     return r;
 }
 
+bool pixels_plane(call *c, const godot_variant *src, const char *what, const pp_body_def *def, bool mask,
+                  uint8_t **out)
+{
+    const int64_t n = (int64_t)def->width * def->height;
+    const int32_t t = gdn->godot_variant_get_type(src);
+    godot_object *object = t == GDN_OBJECT ? gdn->godot_variant_as_object(src) : NULL;
+    if (t != GDN_POOL_BYTE_ARRAY &&
+        !(object && gdn11->godot_is_instance_valid(object) && pixels_is_image_or_texture(object)))
+        return fail(c, "options[\"%s\"] is %s, expected PoolByteArray, Image or Texture", what, gdn_type_name(src));
+    godot_variant data, hold;
+    int64_t w = def->width, h = def->height;
+    if (t == GDN_POOL_BYTE_ARRAY) {
+        gdn->godot_variant_new_copy(&data, src);
+        hold = gdn_nil();
+    } else if (!rgba_of(c, object, &data, &hold, &w, &h)) {
+        gdn->godot_variant_destroy(&data);
+        gdn->godot_variant_destroy(&hold);
+        return false;
+    }
+    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(&data);
+    const int64_t have = gdn->godot_pool_byte_array_size(&pool), need = object ? n * 4 : n;
+    bool good = false;
+    if (object && (w != def->width || h != def->height || have < need))
+        fail(c, "options[\"%s\"] is an image of %lld × %lld pixels, the body's bitmap %d × %d", what, (long long)w,
+             (long long)h, (int)def->width, (int)def->height);
+    else if (!object && have != need)
+        fail(c, "options[\"%s\"] has %lld bytes, expected %lld (%d × %d)", what, (long long)have, (long long)need,
+             (int)def->width, (int)def->height);
+    else if (!(*out = malloc((size_t)n)))
+        fail(c, "out of memory for a %s of %lld bytes", what, (long long)n);
+    else
+        good = true;
+    if (good) {
+        godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
+        const uint8_t *p = gdn->godot_pool_byte_array_read_access_ptr(rd);
+        if (!object)
+            memcpy(*out, p, (size_t)n);
+        for (int64_t i = 0; object && i < n; i++) {
+            const uint8_t *px = p + 4 * i;
+            const uint8_t bright = px[0] > px[1] ? (px[0] > px[2] ? px[0] : px[2]) : (px[1] > px[2] ? px[1] : px[2]);
+            (*out)[i] = mask ? (px[3] >= def->alpha_threshold && bright >= 128) : px[0];
+        }
+        gdn->godot_pool_byte_array_read_access_destroy(rd);
+    }
+    gdn->godot_pool_byte_array_destroy(&pool);
+    gdn->godot_variant_destroy(&data);
+    gdn->godot_variant_destroy(&hold);
+    return good;
+}
+
 /* pp_body_read_mask and pp_body_read_rgba: a whole bitmap plane into out. */
 typedef pp_status (*read_fn)(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
 

@@ -291,12 +291,30 @@ func test_native_gains():
 	var from_tex = g.add_body_image(tex, Vector2(300, 0))
 	check(is_int(from_tex) and g.get_size(from_tex) == Vector2(12, 7) and g.get_mass(from_tex) == 84.0,
 		"add_body_image(ImageTexture of RGB8): 12×7, mass %s" % g.get_mass(from_tex))
+	var mask_img = Image.new()
+	mask_img.create(12, 7, false, Image.FORMAT_L8)
+	mask_img.fill(Color(0, 0, 0))
+	mask_img.lock()
+	for y in range(7):
+		for x in range(6):
+			mask_img.set_pixel(x, y, Color(1, 1, 1))  # white left half solid, black right half empty
+	mask_img.unlock()
+	var grey = Image.new()
+	grey.create(12, 7, false, Image.FORMAT_RGBA8)
+	grey.fill(Color8(51, 51, 51, 255))
+	var masked = g.add_body_image(tex, Vector2(400, 0), "dynamic", {"collision_mask": mask_img, "weights": grey})
+	check(is_int(masked) and near(g.get_mass(masked), 42 * 0.2, 1e-4) and g.read_mask(masked)[5] == 1
+		and g.read_mask(masked)[6] == 0, "collision_mask (L8, white solid) and weights (grey 51) images: mass %s %s"
+		% [g.get_mass(masked), g.get_last_error()])
+	check(g.add_body_image(tex, Vector2(), "dynamic", {"collision_mask": grey.get_rect(Rect2(0, 0, 4, 4))}) == null
+		and g.get_last_error().find("4 × 4 pixels") >= 0, "a mask image of another size refused: %s" % g.get_last_error())
 	img.save_png("res://never_imported.png")
 	var placeholder = load("res://never_imported.png")
 	check(placeholder != null and g.add_body_image(placeholder, Vector2()) == null
 		and g.get_last_error().find("never imported") >= 0, "an unimported texture refused: %s" % g.get_last_error())
 	check(g.add_body_image(ImageTexture.new(), Vector2()) == null and g.get_last_error().find("no readable image") >= 0,
 		"a texture without an image refused: %s" % g.get_last_error())
+	return true  # a runtime error returns null before this: the caller checks
 
 
 func _init():
@@ -517,7 +535,7 @@ func _init():
 	test_landing_and_impulses()
 	test_contact_events_switch()
 	test_one_way()
-	test_native_gains()
+	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.
