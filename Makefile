@@ -187,7 +187,7 @@ test: deps
 # The hosts: the Python package and the Godot 3.2 adapter keep their rules beside their code.
 include plugin/python/python.mk plugin/godot/godot.mk
 
-all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc $(PLUGIN) $(GODOT_LIB)
+all: $(SHARED) $(STATIC) $(BUILD)/physpix.pc $(PLUGIN) $(GODOT_ALL)
 
 # What a user meets outside the build tree: a fresh clone, the installed prefix, the wheel, the exports,
 # the version, the licence, the README's first program (tests/package).
@@ -325,12 +325,12 @@ bench: deps
 	$(VENV_PY) tests/bench/cost/plot.py $(BUILD)/bench/cost.csv $(BUILD)/bench/cost.png
 
 # Under PREFIX: lib/ (libraries, the plugin and its manifest, pkgconfig/physpix.pc), include/, and share/physpix/:
-# godot/ (a Godot 3.2 project's bin/ and resources, copied into a project whole) and python/ (the package's
+# godot/addons/physpix/ (the Godot 3.2 addon with its libraries, copied into a project's addons/) and python/ (the package's
 # source; `pip install PREFIX/share/physpix/python` builds a wheel that carries PREFIX/lib's library).
 INSTALL_LIB    = $(DESTDIR)$(PREFIX)/lib
 INSTALL_SHARE  = $(DESTDIR)$(PREFIX)/share/physpix
 install: all
-	install -d $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include $(INSTALL_SHARE)/godot/bin \
+	install -d $(INSTALL_LIB)/pkgconfig $(DESTDIR)$(PREFIX)/include $(INSTALL_SHARE)/godot/addons/physpix \
 	  $(INSTALL_SHARE)/python/physpix
 	install -m 644 include/physpix.h include/physpix_plugin.h $(DESTDIR)$(PREFIX)/include/
 	install -m 755 $(SHARED) $(INSTALL_LIB)/
@@ -340,9 +340,9 @@ install: all
 	sed 's|^prefix=.*|prefix=$(PREFIX)|' $(BUILD)/physpix.pc > $(INSTALL_LIB)/pkgconfig/physpix.pc
 	install -m 755 $(PLUGIN) $(INSTALL_LIB)/
 	sed 's|"../build/libphyspix_plugin.so"|"libphyspix_plugin.so"|' plugin/physpix.plugin > $(INSTALL_LIB)/physpix.plugin
-	install -m 755 $(GODOT_LIB) $(INSTALL_SHARE)/godot/bin/
-	install -m 755 $(SHARED) $(INSTALL_SHARE)/godot/bin/$(SONAME)
-	install -m 644 plugin/godot/physpix.gdnlib plugin/godot/physpix_world.gdns $(INSTALL_SHARE)/godot/
+	install -m 644 $(GODOT_ADDON_SRC) $(INSTALL_SHARE)/godot/addons/physpix/
+	install -m 755 $(GODOT_LIB) $(INSTALL_SHARE)/godot/addons/physpix/
+	install -m 755 $(SHARED) $(INSTALL_SHARE)/godot/addons/physpix/$(SONAME)
 	install -m 644 plugin/python/pyproject.toml plugin/python/setup.py plugin/python/README.md $(INSTALL_SHARE)/python/
 	install -m 644 plugin/python/physpix/*.py plugin/python/physpix/py.typed $(INSTALL_SHARE)/python/physpix/
 	install -m 644 LICENSE $(INSTALL_SHARE)/

@@ -1,9 +1,15 @@
 # The Godot 3.2 GDNative adapter: libphyspix_godot.so (NativeScript class PhysPixWorld) from the committed
-# API struct declarations, and test-godot, which runs the headless project in tests/godot inside godot3-server.
+# API struct declarations; the addon (plugin/godot/addons/physpix/ with both libraries beside its .gdnlib)
+# assembled in build/addons/physpix/, ready to copy into a project's addons/; and test-godot, which runs the
+# headless projects tests/godot and plugin/godot/example inside godot3-server.
 
 GODOT_API_H := plugin/godot/gdnative_api_structs.h
 GODOT_LIB   := $(BUILD)/libphyspix_godot.so
 GODOT_SRC   := $(wildcard plugin/godot/*.c)
+GODOT_ADDON_SRC := $(wildcard plugin/godot/addons/physpix/*)
+GODOT_ADDON := $(BUILD)/addons/physpix
+# What `make all` builds for Godot.
+GODOT_ALL   := $(GODOT_LIB) $(GODOT_ADDON)/libphyspix_godot.so
 
 .PHONY: godot-api
 
@@ -18,5 +24,12 @@ $(GODOT_LIB): $(GODOT_SRC) $(wildcard plugin/godot/*.h) include/physpix.h $(SHAR
 	$(CC) $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden $(USER_CFLAGS) -shared -Wl,--no-undefined \
 	  -o $@ $(GODOT_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN'
 
-test-godot: all $(GODOT_LIB)
+# -L: the soname is a symlink in build/; the addon needs the file itself.
+$(GODOT_ADDON)/libphyspix_godot.so: $(GODOT_LIB) $(SHARED) $(GODOT_ADDON_SRC)
+	rm -rf $(GODOT_ADDON) && mkdir -p $(GODOT_ADDON)
+	cp $(GODOT_ADDON_SRC) $(GODOT_ADDON)/
+	cp -L $(BUILD)/$(SONAME) $(GODOT_ADDON)/
+	cp $(GODOT_LIB) $(GODOT_ADDON)/
+
+test-godot: all
 	BUILD=$(BUILD) tests/godot/run.sh

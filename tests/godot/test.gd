@@ -8,7 +8,7 @@ extends SceneTree
 # from below and landed on from above; world settings, poses, pixels, states and properties (issue 25).
 # Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
 
-const PhysPixWorld = preload("res://physpix_world.gdns")
+const PhysPixWorld = preload("res://addons/physpix/physpix_world.gdns")
 const DT = 1.0 / 60.0
 
 var failures = 0

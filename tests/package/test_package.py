@@ -128,21 +128,26 @@ def prefix(tmp_path_factory):
     return prefix
 
 
+# The Godot addon as DESIGN.md names it, libraries beside its .gdnlib.
+GODOT_ADDON = ["plugin.cfg", "plugin.gd", "physpix.gdnlib", "physpix_world.gdns", "physpix_world_2d.gd",
+               "physpix_body_2d.gd", "libphyspix_godot.so", "libphyspix.so.0"]
+
+
 def test_install_puts_every_piece_under_the_prefix(prefix):
     version = header_version()
     expected = [f"lib/libphyspix.so.{version}", "lib/libphyspix.so.0", "lib/libphyspix.so", "lib/libphyspix.a",
                 "lib/pkgconfig/physpix.pc", "include/physpix.h", "include/physpix_plugin.h",
                 "lib/libphyspix_plugin.so", "lib/physpix.plugin",
-                "share/physpix/godot/bin/libphyspix_godot.so", "share/physpix/godot/bin/libphyspix.so.0",
-                "share/physpix/godot/physpix.gdnlib", "share/physpix/godot/physpix_world.gdns",
+                *(f"share/physpix/godot/addons/physpix/{f}" for f in GODOT_ADDON),
                 "share/physpix/python/pyproject.toml", "share/physpix/python/setup.py",
                 "share/physpix/python/physpix/__init__.py", "share/physpix/python/physpix/py.typed",
                 "share/physpix/LICENSE"]
     assert [p for p in expected if not (prefix / p).exists()] == []
     assert (prefix / "lib/pkgconfig/physpix.pc").read_text().startswith(f"prefix={prefix}\n")
-    # The Godot folder is self-contained: the adapter finds the library beside it.
-    ldd = run(["ldd", str(prefix / "share/physpix/godot/bin/libphyspix_godot.so")]).stdout
-    assert f"libphyspix.so.0 => {prefix}/share/physpix/godot/bin/libphyspix.so.0" in ldd, ldd
+    # The addon is self-contained: the adapter finds the library beside it.
+    addon = prefix / "share/physpix/godot/addons/physpix"
+    ldd = run(["ldd", str(addon / "libphyspix_godot.so")]).stdout
+    assert f"libphyspix.so.0 => {addon}/libphyspix.so.0" in ldd, ldd
 
 
 def pkg_config(prefix, *args):

@@ -1,0 +1,163 @@
+extends Node2D
+class_name PhysPixWorld2D
+# A PhysPix world: PhysPixBody2D nodes under it are its bodies. It steps in _physics_process, moves each
+# awake body's node to its pose, and turns PhysPix's events into signals with the nodes they concern.
+# Positions given to its methods are global; the world's own frame is this node's.
+
+signal body_split(parent, piece)  # PhysPixBody2D, and the new PhysPixBody2D sibling drawn with its pixels
+signal body_destroyed(body)  # PhysPixBody2D left without pixels; it is freed after the signal
+signal contact_begin(a, b, point, normal, speed)  # needs contact_events; speed: approach, px/s
+signal contact_end(a, b)
+signal sensor_begin(sensor, body)
+signal sensor_end(sensor, body)
+signal joint_broken(a, b)  # declared for joints, which the library does not have yet
+
+const PhysPixWorld = preload("res://addons/physpix/physpix_world.gdns")
+const BodyScript = preload("res://addons/physpix/physpix_body_2d.gd")
+
+export var gravity = Vector2(0, 980) setget set_gravity  # px/s²
+export(String, "fast", "balanced", "accurate") var preset = "balanced"
+export(int, 0, 64) var substeps = 0  # 0: the preset's
+export(int, 0, 1000) var solver_iterations = 0  # 0: the preset's
+export(String, "auto", "cpu", "gpu") var backend = "auto"
+export var contact_events = false setget set_contact_events
+export var settings = {}  # pp_world_def fields by their C names, e.g. {"allow_sleep": false}; they win
+
+var world = null  # the native PhysPixWorld, made when the first body or call needs it
+var last_step_ms = 0.0  # what the last physics frame cost: step, events and node updates
+var _nodes = {}  # body int -> PhysPixBody2D
+
+
+# The native world, created from the exported settings on first use.
+func get_world():
+	if world == null:
+		world = PhysPixWorld.new()
+		var def = {"preset": preset, "gravity": gravity, "backend": backend, "contact_events": contact_events}
+		if substeps > 0:
+			def["substeps"] = substeps
+		if solver_iterations > 0:
+			def["solver_iterations"] = solver_iterations
+		for k in settings:
+			def[k] = settings[k]
+		if world.create(def) != true:
+			push_error("PhysPixWorld2D %s: %s" % [name, world.get_last_error()])
+	return world
+
+
+func set_gravity(g):
+	gravity = g
+	if world != null:
+		world.set_gravity(g)
+
+
+func set_contact_events(on):
+	contact_events = on
+	if world != null:
+		world.set_contact_events(on)
+
+
+func _physics_process(delta):
+	var start = OS.get_ticks_usec()
+	get_world().step(delta)
+	_drain_events()
+	var frame = global_transform
+	for s in world.get_body_states():
+		var node = _nodes.get(s["body"])
+		if node != null and (s["awake"] or node._awake):
+			node._awake = s["awake"]
+			node.global_transform = frame * Transform2D(s["angle"], s["position"])
+	last_step_ms = (OS.get_ticks_usec() - start) / 1000.0
+
+
+# Erases the pixels of every body within radius (px) of a global point; returns how many.
+func erase_circle(center, radius):
+	var at = to_local(center)
+	var touched = get_world().query_circle(at, radius)
+	var erased = world.world_erase_circle(at, radius)
+	_drain_events()  # first: a body erased whole has no pixels left to draw
+	for b in touched:
+		var node = _nodes.get(b)
+		if node != null:
+			node._redraw_circle(at, radius)
+	return erased
+
+
+# Makes solid, with weight 1..255, the pixels within radius of a global point in every body the circle reaches.
+func paint_circle(center, radius, weight = 255):
+	var at = to_local(center)
+	var painted = 0
+	for b in get_world().query_circle(at, radius):
+		var n = world.paint_circle(b, at, radius, weight)
+		if n != null:
+			painted += n
+			if _nodes.has(b):
+				_nodes[b]._redraw_circle(at, radius)
+	return painted
+
+
+# The nearest solid pixel on the segment between two global points: {body (a node, or null for a body
+# without one), point (global), normal, fraction}, or null.
+func raycast(from, to, mask_bits = 0xffffffff):
+	var hit = get_world().raycast(to_local(from), to_local(to), mask_bits)
+	if hit == null:
+		return null
+	hit["body"] = _nodes.get(hit["body"])
+	hit["point"] = to_global(hit["point"])
+	hit["normal"] = global_transform.basis_xform(hit["normal"])
+	return hit
+
+
+# The node of a body int, or null.
+func node_of(body):
+	return _nodes.get(body)
+
+
+func _register(node):
+	_nodes[node.body] = node
+
+
+func _unregister(node):
+	_nodes.erase(node.body)
+
+
+# Events become signals; a split adds the piece's node first, a destroyed body's node goes after its signal.
+func _drain_events():
+	for e in world.get_events():
+		var a = _nodes.get(e["body"])
+		var b = _nodes.get(e["other"])
+		match e["type"]:
+			"split":
+				if a != null:
+					var piece = _add_piece(a, e["other"])
+					a._redraw_all()
+					emit_signal("body_split", a, piece)
+			"destroyed":
+				_nodes.erase(e["body"])
+				if a != null:
+					a.body = 0
+					emit_signal("body_destroyed", a)
+					a.queue_free()
+			"contact_begin":
+				emit_signal("contact_begin", a, b, to_global(e["point"]), global_transform.basis_xform(e["normal"]),
+					e["approach_speed"])
+			"contact_end":
+				emit_signal("contact_end", a, b)
+			"sensor_begin":
+				emit_signal("sensor_begin", a, b)
+			"sensor_end":
+				emit_signal("sensor_end", a, b)
+
+
+# A sibling of the parent's node for the piece body, with the parent's settings and the piece's own pixels.
+func _add_piece(parent, body):
+	var piece = BodyScript.new()
+	piece.body = body
+	piece.world_node = self
+	piece.name = parent.name + "Piece"
+	piece._copy_settings(parent)
+	piece.body_type = world.get_type(body)
+	piece._take_texture(null)
+	_nodes[body] = piece
+	parent.get_parent().add_child(piece)
+	piece.global_transform = global_transform * world.get_transform(body)
+	return piece
