@@ -11,7 +11,7 @@ GODOT_ADDON := $(BUILD)/addons/physpix
 # What `make all` builds for Godot.
 GODOT_ALL   := $(GODOT_LIB) $(GODOT_ADDON)/libphyspix_godot.so
 
-.PHONY: godot-api
+.PHONY: godot-api godot-example
 
 # The build never reads Godot's JSON; this regenerates the committed header from your own godot-headers
 # (gdnative_api.json of tag godot-3.2.3-stable): make godot-api GODOT_API_JSON=/path/to/gdnative_api.json
@@ -30,6 +30,13 @@ $(GODOT_ADDON)/libphyspix_godot.so: $(GODOT_LIB) $(SHARED) $(GODOT_ADDON_SRC)
 	cp $(GODOT_ADDON_SRC) $(GODOT_ADDON)/
 	cp -L $(BUILD)/$(SONAME) $(GODOT_ADDON)/
 	cp $(GODOT_LIB) $(GODOT_ADDON)/
+
+# The example with the addon in its addons/, ready to run: godot3 --path build/godot-example (-e: the editor).
+godot-example: $(GODOT_ADDON)/libphyspix_godot.so
+	rm -rf $(BUILD)/godot-example && mkdir -p $(BUILD)/godot-example/addons
+	cp -R plugin/godot/example/. $(BUILD)/godot-example/
+	cp -R $(GODOT_ADDON) $(BUILD)/godot-example/addons/
+	@echo "make godot-example: run it with godot3 --path $(BUILD)/godot-example (add -e to open the editor)"
 
 test-godot: all
 	BUILD=$(BUILD) tests/godot/run.sh

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs the Godot tests in godot3-server against the freshly built addon (make test-godot): test.gd (the
-# native PhysPixWorld) and test_nodes.gd (the PhysPixWorld2D and PhysPixBody2D nodes) in tests/godot.
-# Each project is copied under $BUILD/godot with
+# native PhysPixWorld) and test_nodes.gd (the PhysPixWorld2D and PhysPixBody2D nodes) in tests/godot, and
+# test_example.gd in a copy of plugin/godot/example. Each project is copied under $BUILD/godot with
 # addons/physpix from $BUILD/addons/physpix; each script runs under timeout and passes only on exit code 0,
 # the line "RESULT: PASS" and no "SCRIPT ERROR" (a runtime error in a frame does not stop the engine).
 set -u
@@ -36,10 +36,11 @@ godot() {
 }
 
 # $1 project name, $2 script; $3 "strict" also fails on any engine ERROR line (the example prints none).
+# --fixed-fps 60: every frame steps 1/60 s of game time, run as fast as the machine goes.
 run_script() {
     log=$root/$2.txt
     start=$(date +%s.%N)
-    godot --path "$root/$1" -s "$2" >"$log" 2>&1
+    godot --path "$root/$1" --fixed-fps 60 -s "$2" >"$log" 2>&1
     rc=$?
     end=$(date +%s.%N)
     cat "$log"
@@ -59,4 +60,8 @@ make_project tests/godot tests
 run_script tests test.gd
 run_script tests test_nodes.gd
 
+# The example's textures are PNGs: the editor imports them once (-e --quit), as a user's first opening does.
+make_project plugin/godot/example example tests/godot/test_example.gd
+godot --path "$root/example" -e --quit >"$root/import.txt" 2>&1 || { cat "$root/import.txt"; fail "importing the example"; }
+run_script example test_example.gd strict
 echo "test-godot: PASS"
