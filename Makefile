@@ -19,6 +19,9 @@ VERSION := $(SOMAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 # git clones the repository for the fresh-clone test; python3-venv gives Debian's python3 its venv module.
 DEPS := gcc g++ make pkg-config binutils git libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 \
         libgl1-mesa-dri libpng-dev libcjson-dev godot3-server python3 python3-venv clang libclang-rt-14-dev valgrind
+# godot3 (Godot 3.2's X11 build), xvfb and xauth render the Godot example's pictures (make godot-pictures) through
+# Mesa; no test needs them.
+DEPS += godot3 xvfb xauth
 # Box2D 2.4 and Chipmunk 7 are the stability benchmark's peers only (tests/bench/stability); no library or test links them.
 DEPS += libbox2d-dev libchipmunk-dev
 # The interpreter the project's virtual environment (build/venv, see plugin/python/python.mk) is made from.

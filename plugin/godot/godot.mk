@@ -11,7 +11,7 @@ GODOT_ADDON := $(BUILD)/addons/physpix
 # What `make all` builds for Godot.
 GODOT_ALL   := $(GODOT_LIB) $(GODOT_ADDON)/libphyspix_godot.so
 
-.PHONY: godot-api godot-example
+.PHONY: godot-api godot-example godot-pictures
 
 # The build never reads Godot's JSON; this regenerates the committed header from your own godot-headers
 # (gdnative_api.json of tag godot-3.2.3-stable): make godot-api GODOT_API_JSON=/path/to/gdnative_api.json
@@ -37,6 +37,17 @@ godot-example: $(GODOT_ADDON)/libphyspix_godot.so
 	cp -R plugin/godot/example/. $(BUILD)/godot-example/
 	cp -R $(GODOT_ADDON) $(BUILD)/godot-example/addons/
 	@echo "make godot-example: run it with godot3 --path $(BUILD)/godot-example (add -e to open the editor)"
+
+# One-off: the example rendered by the real Godot 3.2 (godot3 under Xvfb, Mesa's GLES2), its viewport saved at
+# the start and after blasts as plugin/godot/example-*.png (capture.gd). The editor imports the PNGs first.
+GODOT_ENV = env LANG=en_US.UTF-8 HOME=$(CURDIR)/$(BUILD)/godot-home XDG_CONFIG_HOME=$(CURDIR)/$(BUILD)/godot-home \
+  XDG_DATA_HOME=$(CURDIR)/$(BUILD)/godot-home XDG_CACHE_HOME=$(CURDIR)/$(BUILD)/godot-home
+godot-pictures: godot-example
+	cp plugin/godot/capture.gd $(BUILD)/godot-example/
+	mkdir -p $(BUILD)/godot-home
+	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -e --quit > $(BUILD)/godot-home/import.txt 2>&1
+	$(GODOT_ENV) timeout 300 xvfb-run -a -s "-screen 0 1024x600x24" godot3 --path $(BUILD)/godot-example --fixed-fps 60 \
+	  -s capture.gd -- $(CURDIR)/plugin/godot
 
 test-godot: all
 	BUILD=$(BUILD) tests/godot/run.sh

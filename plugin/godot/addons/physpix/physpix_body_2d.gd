@@ -2,7 +2,7 @@ extends Sprite
 class_name PhysPixBody2D
 # A PhysPix body drawn as a Sprite. Under a PhysPixWorld2D it makes its body when ready, from its texture
 # (alpha >= alpha_threshold is solid) or its collision_mask, at its pose; the world moves it each physics
-# frame. An edit redraws the rows it changed from the body's own pixels, so holes show at once; the
+# frame. An edit redraws the rows it changed from the body's pixels, so holes show at once; the
 # texture is then this node's own ImageTexture, never the shared resource it started from.
 
 export(Texture) var collision_mask = null  # white opaque pixels are solid; overrides the texture's alpha
@@ -24,6 +24,7 @@ var body = 0  # the native body int; 0 before the body is made and after it is d
 var world_node = null  # the PhysPixWorld2D it belongs to
 var _awake = true  # whether the world moved it last frame
 var _own_texture = false  # texture is this node's ImageTexture, drawn from the body's pixels
+var _picture = null  # the Image that texture shows, once it is its own
 var _texture_flags = 0  # of its own texture: no mipmaps (rows are updated in place); filter as the original had
 
 
@@ -180,7 +181,8 @@ func _redraw_all():
 		_redraw_rows(0, int(world_node.world.get_size(body).y))
 
 
-# Copies rows y..y+rows-1 of the body's look into the texture (only those rows go to the GPU).
+# Copies rows y..y+rows-1 of the body's look into the picture and shows it. Only those rows are read from
+# PhysPix; the texture is sent whole, since Godot 3.2's GLES2 renderer has no partial texture update.
 func _redraw_rows(y, rows):
 	if not _own_texture:
 		_take_texture(texture.get_data())
@@ -188,7 +190,8 @@ func _redraw_rows(y, rows):
 	var width = int(w.get_size(body).x)
 	var strip = Image.new()
 	strip.create_from_data(width, rows, false, Image.FORMAT_RGBA8, w.read_rgba(body, y, rows))
-	VisualServer.texture_set_data_partial(texture.get_rid(), strip, 0, 0, width, rows, 0, y, 0, 0)
+	_picture.blit_rect(strip, Rect2(0, 0, width, rows), Vector2(0, y))
+	texture.set_data(_picture)
 
 
 # Draws into an ImageTexture of this node's own: the picture it started from where that has the body's size
@@ -207,6 +210,7 @@ func _take_texture(picture):
 	var tex = ImageTexture.new()
 	tex.create_from_image(look, _texture_flags)
 	texture = tex
+	_picture = look
 	_own_texture = true
 	centered = true
 	offset = size / 2 - w.get_pivot(body)
