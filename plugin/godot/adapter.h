@@ -51,6 +51,9 @@ typedef struct method_def {
     const char *spec;
     method_fn fn;
     const char *usage; /* quoted in error messages */
+    /* The C call of a body float setter or getter ("bf" and "b" methods that share one handler). */
+    pp_status (*set_float)(pp_world w, pp_body b, float value);
+    pp_status (*get_float)(pp_world w, pp_body b, float *out);
 } method_def;
 
 

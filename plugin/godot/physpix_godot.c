@@ -329,26 +329,6 @@ static godot_variant set_transform(call *c)
     return done(c, pp_body_set_transform(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f));
 }
 
-static godot_variant set_friction(call *c)
-{
-    return done(c, pp_body_set_friction(c->self->world, c->a[0].body, c->a[1].f));
-}
-
-static godot_variant set_restitution(call *c)
-{
-    return done(c, pp_body_set_restitution(c->self->world, c->a[0].body, c->a[1].f));
-}
-
-static godot_variant set_density(call *c)
-{
-    return done(c, pp_body_set_density(c->self->world, c->a[0].body, c->a[1].f));
-}
-
-static godot_variant set_gravity_scale(call *c)
-{
-    return done(c, pp_body_set_gravity_scale(c->self->world, c->a[0].body, c->a[1].f));
-}
-
 static godot_variant set_damping(call *c)
 {
     return done(c, pp_body_set_damping(c->self->world, c->a[0].body, c->a[1].f, c->a[2].f));
@@ -369,47 +349,21 @@ static godot_variant apply_force(call *c)
     return done(c, pp_body_apply_force(c->self->world, c->a[0].body, c->a[1].v, c->a[2].v));
 }
 
-static godot_variant apply_torque(call *c)
-{
-    return done(c, pp_body_apply_torque(c->self->world, c->a[0].body, c->a[1].f));
-}
-
-static godot_variant apply_angular_impulse(call *c)
-{
-    return done(c, pp_body_apply_angular_impulse(c->self->world, c->a[0].body, c->a[1].f));
-}
-
 static godot_variant set_gravity(call *c)
 {
     return done(c, pp_world_set_gravity(c->self->world, c->a[0].v));
 }
 
-/* The float getters share one shape: pp_body_get_<x>(w, b, &out). */
-typedef pp_status (*float_getter)(pp_world w, pp_body b, float *out);
-static godot_variant get_float(call *c, float_getter fn)
+/* The body float setters and getters share one shape each; the table names the C call. */
+static godot_variant set_body_float(call *c)
+{
+    return done(c, c->def->set_float(c->self->world, c->a[0].body, c->a[1].f));
+}
+
+static godot_variant get_body_float(call *c)
 {
     float x;
-    return ok(c, fn(c->self->world, c->a[0].body, &x)) ? gdn_real(x) : gdn_nil();
-}
-
-static godot_variant get_friction(call *c)
-{
-    return get_float(c, pp_body_get_friction);
-}
-
-static godot_variant get_restitution(call *c)
-{
-    return get_float(c, pp_body_get_restitution);
-}
-
-static godot_variant get_density(call *c)
-{
-    return get_float(c, pp_body_get_density);
-}
-
-static godot_variant get_gravity_scale(call *c)
-{
-    return get_float(c, pp_body_get_gravity_scale);
+    return ok(c, c->def->get_float(c->self->world, c->a[0].body, &x)) ? gdn_real(x) : gdn_nil();
 }
 
 static godot_variant is_awake(call *c)
@@ -511,93 +465,93 @@ static void *read_list(call *c, list_fn fn, size_t item_size, int32_t *n)
     return items;
 }
 
-static godot_variant get_bodies(call *c)
+/* One list item as a variant. */
+typedef godot_variant (*item_fn)(const void *item);
+
+/* The whole list fn reads as an Array of one variant an item; nil on failure. */
+static godot_variant list_array(call *c, list_fn fn, size_t item_size, item_fn to_variant)
 {
     int32_t n;
-    pp_body *bodies = read_list(c, list_bodies, sizeof *bodies, &n);
+    char *items = read_list(c, fn, item_size, &n);
     if (n < 0)
         return gdn_nil();
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < n; i++)
-        gdn_array_put(&out, body_int(bodies[i]));
-    free(bodies);
+        gdn_array_put(&out, to_variant(items + (size_t)i * item_size));
+    free(items);
     return gdn_array_variant(&out);
+}
+
+static godot_variant body_item(const void *item)
+{
+    return body_int(*(const pp_body *)item);
+}
+
+static godot_variant contact_item(const void *item)
+{
+    const pp_contact *ct = item;
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "a", body_int(ct->a));
+    gdn_dict_put(&d, "b", body_int(ct->b));
+    gdn_dict_put(&d, "point", gdn_vector2(ct->point.x, ct->point.y));
+    gdn_dict_put(&d, "normal", gdn_vector2(ct->normal.x, ct->normal.y));
+    gdn_dict_put(&d, "depth", gdn_real(ct->depth));
+    gdn_dict_put(&d, "pixel_count", gdn_int(ct->pixel_count));
+    gdn_dict_put(&d, "normal_impulse", gdn_real(ct->normal_impulse));
+    return gdn_dict_variant(&d);
+}
+
+static godot_variant event_item(const void *item)
+{
+    const pp_event *e = item;
+    const uint32_t t = (uint32_t)e->type;
+    const bool named = t < sizeof EVENT_TYPE_NAMES / sizeof EVENT_TYPE_NAMES[0] && EVENT_TYPE_NAMES[t];
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "type", gdn_string(named ? EVENT_TYPE_NAMES[t] : "unknown"));
+    gdn_dict_put(&d, "body", body_int(e->body));
+    gdn_dict_put(&d, "other", body_int(e->other));
+    gdn_dict_put(&d, "point", gdn_vector2(e->point.x, e->point.y));
+    gdn_dict_put(&d, "normal", gdn_vector2(e->normal.x, e->normal.y));
+    gdn_dict_put(&d, "approach_speed", gdn_real(e->approach_speed));
+    return gdn_dict_variant(&d);
+}
+
+/* A body's pose and motion: what a host reads each frame to move its nodes. */
+static godot_variant state_item(const void *item)
+{
+    const pp_body_state *st = item;
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "body", body_int(st->body));
+    gdn_dict_put(&d, "position", gdn_vector2(st->position.x, st->position.y));
+    gdn_dict_put(&d, "angle", gdn_real(st->angle));
+    gdn_dict_put(&d, "linear_velocity", gdn_vector2(st->linear_velocity.x, st->linear_velocity.y));
+    gdn_dict_put(&d, "angular_velocity", gdn_real(st->angular_velocity));
+    gdn_dict_put(&d, "awake", gdn_bool(st->awake != 0));
+    return gdn_dict_variant(&d);
+}
+
+static godot_variant get_bodies(call *c)
+{
+    return list_array(c, list_bodies, sizeof(pp_body), body_item);
 }
 
 static godot_variant get_contacts(call *c)
 {
-    int32_t n;
-    pp_contact *cs = read_list(c, list_contacts, sizeof *cs, &n);
-    if (n < 0)
-        return gdn_nil();
-    godot_array out;
-    gdn->godot_array_new(&out);
-    for (int32_t i = 0; i < n; i++) {
-        godot_dictionary d;
-        gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "a", body_int(cs[i].a));
-        gdn_dict_put(&d, "b", body_int(cs[i].b));
-        gdn_dict_put(&d, "point", gdn_vector2(cs[i].point.x, cs[i].point.y));
-        gdn_dict_put(&d, "normal", gdn_vector2(cs[i].normal.x, cs[i].normal.y));
-        gdn_dict_put(&d, "depth", gdn_real(cs[i].depth));
-        gdn_dict_put(&d, "pixel_count", gdn_int(cs[i].pixel_count));
-        gdn_dict_put(&d, "normal_impulse", gdn_real(cs[i].normal_impulse));
-        gdn_array_put(&out, gdn_dict_variant(&d));
-    }
-    free(cs);
-    return gdn_array_variant(&out);
+    return list_array(c, list_contacts, sizeof(pp_contact), contact_item);
 }
 
 static godot_variant get_events(call *c)
 {
-    int32_t n;
-    pp_event *es = read_list(c, list_events, sizeof *es, &n);
-    if (n < 0)
-        return gdn_nil();
-    godot_array out;
-    gdn->godot_array_new(&out);
-    for (int32_t i = 0; i < n; i++) {
-        const uint32_t t = (uint32_t)es[i].type;
-        godot_dictionary d;
-        gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "type", gdn_string(t < sizeof EVENT_TYPE_NAMES / sizeof EVENT_TYPE_NAMES[0] &&
-                                                    EVENT_TYPE_NAMES[t]
-                                                ? EVENT_TYPE_NAMES[t]
-                                                : "unknown"));
-        gdn_dict_put(&d, "body", body_int(es[i].body));
-        gdn_dict_put(&d, "other", body_int(es[i].other));
-        gdn_dict_put(&d, "point", gdn_vector2(es[i].point.x, es[i].point.y));
-        gdn_dict_put(&d, "normal", gdn_vector2(es[i].normal.x, es[i].normal.y));
-        gdn_dict_put(&d, "approach_speed", gdn_real(es[i].approach_speed));
-        gdn_array_put(&out, gdn_dict_variant(&d));
-    }
-    free(es);
-    return gdn_array_variant(&out);
+    return list_array(c, list_events, sizeof(pp_event), event_item);
 }
 
-/* Every body's pose and motion in one call: what a host reads each frame to move its nodes. */
 static godot_variant get_body_states(call *c)
 {
-    int32_t n;
-    pp_body_state *st = read_list(c, list_states, sizeof *st, &n);
-    if (n < 0)
-        return gdn_nil();
-    godot_array out;
-    gdn->godot_array_new(&out);
-    for (int32_t i = 0; i < n; i++) {
-        godot_dictionary d;
-        gdn->godot_dictionary_new(&d);
-        gdn_dict_put(&d, "body", body_int(st[i].body));
-        gdn_dict_put(&d, "position", gdn_vector2(st[i].position.x, st[i].position.y));
-        gdn_dict_put(&d, "angle", gdn_real(st[i].angle));
-        gdn_dict_put(&d, "linear_velocity", gdn_vector2(st[i].linear_velocity.x, st[i].linear_velocity.y));
-        gdn_dict_put(&d, "angular_velocity", gdn_real(st[i].angular_velocity));
-        gdn_dict_put(&d, "awake", gdn_bool(st[i].awake != 0));
-        gdn_array_put(&out, gdn_dict_variant(&d));
-    }
-    free(st);
-    return gdn_array_variant(&out);
+    return list_array(c, list_states, sizeof(pp_body_state), state_item);
 }
 
 /* ---- raycasts and queries ------------------------------------------------------------- */
@@ -759,70 +713,79 @@ static godot_variant get_last_error(call *c)
 
 /* ---- the class ------------------------------------------------------------------------- */
 
+/* Designated, so that the float-call fields may be left out. */
+#define METHOD(n, s, f, u) {.name = (n), .spec = (s), .fn = (f), .usage = (u)}
+#define SET_FLOAT(n, u, c) {.name = (n), .spec = "bf", .fn = set_body_float, .usage = (u), .set_float = (c)}
+#define GET_FLOAT(n, u, c) {.name = (n), .spec = "b", .fn = get_body_float, .usage = (u), .get_float = (c)}
+
 static const method_def METHODS[] = {
-    {"add_body_mask", "Miiv|to", add_body_mask,
-     "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\","
-     " options: Dictionary = {}) -> int"},
-    {"add_body_image", "Iv|to", add_body_image,
-     "add_body_image(image: Image or Texture, position: Vector2, type: String = \"dynamic\", options: Dictionary = {})"
-     " -> int"},
-    {"destroy_body", "b", destroy_body, "destroy_body(body: int)"},
-    {"step", "f", step, "step(dt: float)"},
-    {"get_transform", "b", get_transform, "get_transform(body: int) -> Transform2D"},
-    {"get_position", "b", get_position, "get_position(body: int) -> Vector2"},
-    {"get_angle", "b", get_angle, "get_angle(body: int) -> float"},
-    {"get_linear_velocity", "b", get_linear_velocity, "get_linear_velocity(body: int) -> Vector2"},
-    {"get_angular_velocity", "b", get_angular_velocity, "get_angular_velocity(body: int) -> float"},
-    {"set_velocity", "bvf", set_velocity, "set_velocity(body: int, linear: Vector2, angular: float)"},
-    {"apply_impulse", "bvv", apply_impulse, "apply_impulse(body: int, impulse: Vector2, point: Vector2)"},
-    {"get_mass", "b", get_mass, "get_mass(body: int) -> float"},
-    {"set_transform", "bvf", set_transform, "set_transform(body: int, position: Vector2, angle: float)"},
-    {"get_size", "b", get_size, "get_size(body: int) -> Vector2"},
-    {"get_pivot", "b", get_pivot, "get_pivot(body: int) -> Vector2"},
-    {"get_type", "b", get_type, "get_type(body: int) -> String"},
-    {"is_awake", "b", is_awake, "is_awake(body: int) -> bool"},
-    {"get_body_states", "", get_body_states, "get_body_states() -> Array"},
-    {"set_friction", "bf", set_friction, "set_friction(body: int, friction: float)"},
-    {"get_friction", "b", get_friction, "get_friction(body: int) -> float"},
-    {"set_restitution", "bf", set_restitution, "set_restitution(body: int, restitution: float)"},
-    {"get_restitution", "b", get_restitution, "get_restitution(body: int) -> float"},
-    {"set_density", "bf", set_density, "set_density(body: int, density: float)"},
-    {"get_density", "b", get_density, "get_density(body: int) -> float"},
-    {"set_gravity_scale", "bf", set_gravity_scale, "set_gravity_scale(body: int, scale: float)"},
-    {"get_gravity_scale", "b", get_gravity_scale, "get_gravity_scale(body: int) -> float"},
-    {"set_damping", "bff", set_damping, "set_damping(body: int, linear: float, angular: float)"},
-    {"set_filter", "bmm", set_filter, "set_filter(body: int, category_bits: int, mask_bits: int)"},
-    {"set_awake", "bB", set_awake, "set_awake(body: int, awake: bool)"},
-    {"apply_force", "bvv", apply_force, "apply_force(body: int, force: Vector2, point: Vector2)"},
-    {"apply_torque", "bf", apply_torque, "apply_torque(body: int, torque: float)"},
-    {"apply_angular_impulse", "bf", apply_angular_impulse, "apply_angular_impulse(body: int, impulse: float)"},
-    {"read_mask", "b", read_mask, "read_mask(body: int) -> PoolByteArray"},
-    {"read_rgba", "b|ii", read_rgba, "read_rgba(body: int, first_row: int = 0, rows: int = all) -> PoolByteArray"},
-    {"write_pixels", "biiiiM|M", write_pixels,
-     "write_pixels(body: int, x: int, y: int, width: int, height: int, mask: PoolByteArray, weights: PoolByteArray"
-     " = all 255) -> bool"},
-    {"erase_circle", "bvf", erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"},
-    {"paint_circle", "bvfi", paint_circle,
-     "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"},
-    {"world_erase_circle", "vf", world_erase_circle, "world_erase_circle(center: Vector2, radius: float) -> int"},
-    {"get_bodies", "", get_bodies, "get_bodies() -> Array"},
-    {"get_contacts", "", get_contacts, "get_contacts() -> Array"},
-    {"get_events", "", get_events, "get_events() -> Array"},
-    {"raycast", "vv|m", raycast, "raycast(from: Vector2, to: Vector2, mask: int = 0xffffffff) -> Dictionary or null"},
-    {"query_point", "v|m", query_point, "query_point(point: Vector2, mask: int = 0xffffffff) -> Array"},
-    {"query_aabb", "vv|m", query_aabb, "query_aabb(lower: Vector2, upper: Vector2, mask: int = 0xffffffff) -> Array"},
-    {"query_circle", "vf|m", query_circle,
-     "query_circle(center: Vector2, radius: float, mask: int = 0xffffffff) -> Array"},
-    {"load_scene", "p", load_scene, "load_scene(path: String) -> bool"},
-    {"save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"},
-    {"load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"},
-    {"create", "|d", create, "create(settings: Dictionary = {}) -> bool"},
-    {"get_settings", "", get_settings, "get_settings() -> Dictionary"},
-    {"set_gravity", "v", set_gravity, "set_gravity(gravity: Vector2)"},
-    {"get_time", "", get_time, "get_time() -> float"},
-    {"set_contact_events", "B", set_contact_events, "set_contact_events(enabled: bool)"},
-    {"get_camera", "", get_camera, "get_camera() -> Dictionary"},
-    {"get_last_error", "", get_last_error, "get_last_error() -> String"},
+    METHOD("add_body_mask", "Miiv|to", add_body_mask,
+           "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\","
+           " options: Dictionary = {}) -> int"),
+    METHOD("add_body_image", "Iv|to", add_body_image,
+           "add_body_image(image: Image or Texture, position: Vector2, type: String = \"dynamic\", options: Dictionary"
+           " = {}) -> int"),
+    METHOD("destroy_body", "b", destroy_body, "destroy_body(body: int)"),
+    METHOD("step", "f", step, "step(dt: float)"),
+    METHOD("get_transform", "b", get_transform, "get_transform(body: int) -> Transform2D"),
+    METHOD("get_position", "b", get_position, "get_position(body: int) -> Vector2"),
+    METHOD("get_angle", "b", get_angle, "get_angle(body: int) -> float"),
+    METHOD("get_linear_velocity", "b", get_linear_velocity, "get_linear_velocity(body: int) -> Vector2"),
+    METHOD("get_angular_velocity", "b", get_angular_velocity, "get_angular_velocity(body: int) -> float"),
+    METHOD("set_velocity", "bvf", set_velocity, "set_velocity(body: int, linear: Vector2, angular: float)"),
+    METHOD("apply_impulse", "bvv", apply_impulse, "apply_impulse(body: int, impulse: Vector2, point: Vector2)"),
+    METHOD("get_mass", "b", get_mass, "get_mass(body: int) -> float"),
+    METHOD("set_transform", "bvf", set_transform, "set_transform(body: int, position: Vector2, angle: float)"),
+    METHOD("get_size", "b", get_size, "get_size(body: int) -> Vector2"),
+    METHOD("get_pivot", "b", get_pivot, "get_pivot(body: int) -> Vector2"),
+    METHOD("get_type", "b", get_type, "get_type(body: int) -> String"),
+    METHOD("is_awake", "b", is_awake, "is_awake(body: int) -> bool"),
+    METHOD("get_body_states", "", get_body_states, "get_body_states() -> Array"),
+    SET_FLOAT("set_friction", "set_friction(body: int, friction: float)", pp_body_set_friction),
+    GET_FLOAT("get_friction", "get_friction(body: int) -> float", pp_body_get_friction),
+    SET_FLOAT("set_restitution", "set_restitution(body: int, restitution: float)", pp_body_set_restitution),
+    GET_FLOAT("get_restitution", "get_restitution(body: int) -> float", pp_body_get_restitution),
+    SET_FLOAT("set_density", "set_density(body: int, density: float)", pp_body_set_density),
+    GET_FLOAT("get_density", "get_density(body: int) -> float", pp_body_get_density),
+    SET_FLOAT("set_gravity_scale", "set_gravity_scale(body: int, scale: float)", pp_body_set_gravity_scale),
+    GET_FLOAT("get_gravity_scale", "get_gravity_scale(body: int) -> float", pp_body_get_gravity_scale),
+    METHOD("set_damping", "bff", set_damping, "set_damping(body: int, linear: float, angular: float)"),
+    METHOD("set_filter", "bmm", set_filter, "set_filter(body: int, category_bits: int, mask_bits: int)"),
+    METHOD("set_awake", "bB", set_awake, "set_awake(body: int, awake: bool)"),
+    METHOD("apply_force", "bvv", apply_force, "apply_force(body: int, force: Vector2, point: Vector2)"),
+    SET_FLOAT("apply_torque", "apply_torque(body: int, torque: float)", pp_body_apply_torque),
+    SET_FLOAT("apply_angular_impulse", "apply_angular_impulse(body: int, impulse: float)",
+              pp_body_apply_angular_impulse),
+    METHOD("read_mask", "b", read_mask, "read_mask(body: int) -> PoolByteArray"),
+    METHOD("read_rgba", "b|ii", read_rgba,
+           "read_rgba(body: int, first_row: int = 0, rows: int = all) -> PoolByteArray"),
+    METHOD("write_pixels", "biiiiM|M", write_pixels,
+           "write_pixels(body: int, x: int, y: int, width: int, height: int, mask: PoolByteArray,"
+           " weights: PoolByteArray = all 255) -> bool"),
+    METHOD("erase_circle", "bvf", erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"),
+    METHOD("paint_circle", "bvfi", paint_circle,
+           "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"),
+    METHOD("world_erase_circle", "vf", world_erase_circle, "world_erase_circle(center: Vector2, radius: float) -> int"),
+    METHOD("get_bodies", "", get_bodies, "get_bodies() -> Array"),
+    METHOD("get_contacts", "", get_contacts, "get_contacts() -> Array"),
+    METHOD("get_events", "", get_events, "get_events() -> Array"),
+    METHOD("raycast", "vv|m", raycast,
+           "raycast(from: Vector2, to: Vector2, mask: int = 0xffffffff) -> Dictionary or null"),
+    METHOD("query_point", "v|m", query_point, "query_point(point: Vector2, mask: int = 0xffffffff) -> Array"),
+    METHOD("query_aabb", "vv|m", query_aabb,
+           "query_aabb(lower: Vector2, upper: Vector2, mask: int = 0xffffffff) -> Array"),
+    METHOD("query_circle", "vf|m", query_circle,
+           "query_circle(center: Vector2, radius: float, mask: int = 0xffffffff) -> Array"),
+    METHOD("load_scene", "p", load_scene, "load_scene(path: String) -> bool"),
+    METHOD("save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"),
+    METHOD("load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"),
+    METHOD("create", "|d", create, "create(settings: Dictionary = {}) -> bool"),
+    METHOD("get_settings", "", get_settings, "get_settings() -> Dictionary"),
+    METHOD("set_gravity", "v", set_gravity, "set_gravity(gravity: Vector2)"),
+    METHOD("get_time", "", get_time, "get_time() -> float"),
+    METHOD("set_contact_events", "B", set_contact_events, "set_contact_events(enabled: bool)"),
+    METHOD("get_camera", "", get_camera, "get_camera() -> Dictionary"),
+    METHOD("get_last_error", "", get_last_error, "get_last_error() -> String"),
 };
 
 /* Every method comes through here: count and types are checked before the handler runs. */

@@ -47,7 +47,7 @@ bool pixels_bind(char *err, size_t err_size)
                          api.get_path, api.texture_get_data};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (!all[i]) {
-            snprintf(err, err_size, "the engine lacks the Image, Texture or Resource methods PhysPix reads images with");
+            snprintf(err, err_size, "the engine lacks an Image, Texture or Resource method PhysPix reads images with");
             return false;
         }
     return true;

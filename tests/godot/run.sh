@@ -61,7 +61,7 @@ run_script tests test.gd
 run_script tests test_nodes.gd
 
 # The example's textures are PNGs: the editor imports them once (-e --quit), as a user's first opening does.
-make_project plugin/godot/example example tests/godot/test_example.gd
+make_project plugin/godot/example example tests/godot/test_example.gd tests/godot/checks.gd
 godot --path "$root/example" -e --quit >"$root/import.txt" 2>&1 || { cat "$root/import.txt"; fail "importing the example"; }
 run_script example test_example.gd strict
 echo "test-godot: PASS"

@@ -1,4 +1,4 @@
-extends SceneTree
+extends "res://checks.gd"
 # PhysPix inside a real Godot 3.2 through PhysPixWorld: a crate falls onto terrain and rests,
 # the terrain under it is erased and it falls again, a cut bar splits, bad calls are refused;
 # a scene file loads (user:// and plain paths), a malformed one is refused with its JSON path,
@@ -11,13 +11,7 @@ extends SceneTree
 const PhysPixWorld = preload("res://addons/physpix/physpix_world.gdns")
 const DT = 1.0 / 60.0
 
-var failures = 0
 
-
-func check(cond, what):
-	print(("ok   " if cond else "FAIL ") + what)
-	if not cond:
-		failures += 1
 
 
 func solid_mask(w, h):
@@ -84,9 +78,6 @@ const LANDING_SCENE = """{"world": {"contact_events": true, "allow_sleep": false
  "bodies": [{"type": "static", "box": [200, 40], "position": [100, 120]},
             {"box": [20, 20], "position": [100, 30], "restitution": 0}]}"""
 
-
-func near(a, b, tol):
-	return abs(a - b) <= tol
 
 
 func test_rays_and_queries():
@@ -549,8 +540,4 @@ func _init():
 		made += 1
 	check(made == 5000, "%d worlds made and dropped one after another (the destructor frees each)" % made)
 
-	if failures == 0:
-		print("RESULT: PASS")
-		quit(0)
-	else:
-		print("RESULT: FAIL (%d checks)" % failures)
+	finish()

@@ -1,4 +1,4 @@
-extends SceneTree
+extends "res://checks.gd"
 # The example scene (plugin/godot/example/main.tscn) run as it ships, its timer's blasts and all: the crates
 # come to rest, the first blast carves the terrain's texture and a crate falls into the crater, the second cuts
 # the bridge and its piece appears as a PhysPixBody2D node drawn with its pixels. run.sh also fails on any
@@ -7,7 +7,6 @@ extends SceneTree
 const Body2D = preload("res://addons/physpix/physpix_body_2d.gd")
 const FRAMES = 300  # 5 s: blasts at 1.5, 3 and 4.5 s
 
-var failures = 0
 var frame = 0
 var main
 var world
@@ -17,11 +16,6 @@ var splits = []  # [parent, piece]
 var destroyed = []
 var costs = []
 
-
-func check(cond, what):
-	print(("ok   " if cond else "FAIL ") + what)
-	if not cond:
-		failures += 1
 
 
 func crates():
@@ -117,11 +111,6 @@ func _iteration(delta):
 			total += c
 		print("frame cost: median %.3f ms, mean %.3f ms, max %.3f ms per physics frame over %d frames (%d bodies)"
 			% [costs[costs.size() / 2], total / costs.size(), costs[-1], costs.size(), world.get_world().get_bodies().size()])
-		if failures == 0:
-			print("RESULT: PASS")
-			quit(0)
-		else:
-			print("RESULT: FAIL (%d checks)" % failures)
-			quit(1)
+		finish()
 	if frame > FRAMES + 10:
 		quit(1)

@@ -103,16 +103,13 @@ func paint_circle(center, radius, weight = 255):
 
 # ---- motion: vectors global, forces mass·px/s², impulses mass·px/s ----
 
+# At a global point, or at the node's origin (the body's pivot) without one.
 func apply_impulse(impulse, point = null):
-	var frame = world_node.global_transform
-	var at = world_node.to_local(point) if point != null else world_node.world.get_position(body)
-	world_node.world.apply_impulse(body, frame.basis_xform_inv(impulse), at)
+	world_node.world.apply_impulse(body, _world_vector(impulse), _world_point(point))
 
 
 func apply_force(force, point = null):
-	var frame = world_node.global_transform
-	var at = world_node.to_local(point) if point != null else world_node.world.get_position(body)
-	world_node.world.apply_force(body, frame.basis_xform_inv(force), at)
+	world_node.world.apply_force(body, _world_vector(force), _world_point(point))
 
 
 func apply_torque(torque):
@@ -120,7 +117,15 @@ func apply_torque(torque):
 
 
 func set_velocity(linear, angular):
-	world_node.world.set_velocity(body, world_node.global_transform.basis_xform_inv(linear), angular)
+	world_node.world.set_velocity(body, _world_vector(linear), angular)
+
+
+func _world_vector(v):
+	return world_node.global_transform.basis_xform_inv(v)
+
+
+func _world_point(p):
+	return world_node.to_local(p) if p != null else world_node.world.get_position(body)
 
 
 func get_linear_velocity():
@@ -139,26 +144,28 @@ func get_mass():
 
 func set_density(v):
 	density = v
-	if body != 0:
-		world_node.world.set_density(body, v)
+	_send("set_density", v)
 
 
 func set_friction(v):
 	friction = v
-	if body != 0:
-		world_node.world.set_friction(body, v)
+	_send("set_friction", v)
 
 
 func set_restitution(v):
 	restitution = v
-	if body != 0:
-		world_node.world.set_restitution(body, v)
+	_send("set_restitution", v)
 
 
 func set_gravity_scale(v):
 	gravity_scale = v
+	_send("set_gravity_scale", v)
+
+
+# Passes a property's new value to the body, once there is one.
+func _send(setter, value):
 	if body != 0:
-		world_node.world.set_gravity_scale(body, v)
+		world_node.world.call(setter, body, value)
 
 
 # ---- drawing the body's pixels ----
