@@ -12,8 +12,10 @@ signal sensor_begin(sensor, body)
 signal sensor_end(sensor, body)
 signal joint_broken(a, b)  # declared for joints, which the library does not have yet
 
-const PhysPixWorld = preload("res://addons/physpix/physpix_world.gdns")
-const BodyScript = preload("res://addons/physpix/physpix_body_2d.gd")
+# Loaded when first needed, not preloaded: the editor's first scan of a project may parse this script while
+# the body script is still loading, and a preload then fails ("possible cyclic reference").
+const NATIVE_PATH = "res://addons/physpix/physpix_world.gdns"
+const BODY_PATH = "res://addons/physpix/physpix_body_2d.gd"
 
 export var gravity = Vector2(0, 980) setget set_gravity  # px/s²
 export(String, "fast", "balanced", "accurate") var preset = "balanced"
@@ -31,7 +33,7 @@ var _nodes = {}  # body int -> PhysPixBody2D
 # The native world, created from the exported settings on first use.
 func get_world():
 	if world == null:
-		world = PhysPixWorld.new()
+		world = load(NATIVE_PATH).new()
 		var def = {"preset": preset, "gravity": gravity, "backend": backend, "contact_events": contact_events}
 		if substeps > 0:
 			def["substeps"] = substeps
@@ -150,7 +152,7 @@ func _drain_events():
 
 # A sibling of the parent's node for the piece body, with the parent's settings and the piece's own pixels.
 func _add_piece(parent, body):
-	var piece = BodyScript.new()
+	var piece = load(BODY_PATH).new()
 	piece.body = body
 	piece.world_node = self
 	piece.name = parent.name + "Piece"
