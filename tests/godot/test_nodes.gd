@@ -18,6 +18,9 @@ var pebble
 var sensor
 var events = []  # [signal name, args...]
 var rest_y = 0.0
+var moved_world  # a second world, its node moved to (1000, 500): bodies and calls in its frame
+var moved_crate
+var pebble_at
 
 
 
@@ -76,6 +79,18 @@ func _initialize():
 	pebble = body("Pebble", texture(4, 4, Color(1, 1, 1)), Vector2(180, 136))
 	sensor = body("Sensor", texture(40, 4, Color(0, 1, 0, 0.5)), Vector2(100, 90),
 		{"body_type": "static", "is_sensor": true, "alpha_threshold": 100})
+	moved_world = World2D.new()
+	moved_world.position = Vector2(1000, 500)
+	root.add_child(moved_world)
+	var ground = Body2D.new()
+	ground.texture = texture(100, 20, Color(1, 1, 1))
+	ground.position = Vector2(0, 110)  # top at 100 in its world, 600 on screen
+	ground.body_type = "static"
+	moved_world.add_child(ground)
+	moved_crate = Body2D.new()
+	moved_crate.texture = texture(10, 10, Color(1, 1, 1))
+	moved_crate.position = Vector2(0, 60)
+	moved_world.add_child(moved_crate)
 	check(terrain.body != 0 and crate.body != 0 and bar.body != 0 and sensor.body != 0,
 		"the nodes made their bodies when ready")
 	var st = world.world.get_settings()
@@ -117,6 +132,10 @@ func _iteration(delta):
 		var hit = world.raycast(Vector2(150, 0), Vector2(150, 300))
 		check(hit != null and hit["body"] == terrain and near(hit["point"].y, 140, 0.5),
 			"world.raycast gives the terrain node at y 140: %s" % [hit])
+		check(moved_crate.global_position.distance_to(Vector2(1000, 595)) < 1.5
+			and moved_world.raycast(Vector2(1020, 0), Vector2(1020, 1000))["point"].distance_to(Vector2(1020, 600)) < 0.5,
+			"in a world node moved to (1000, 500) the crate rests at global %s and a global ray meets the ground at y 600"
+			% moved_crate.global_position)
 		crate.friction = 0.3
 		check(near(world.world.get_friction(crate.body), 0.3, 1e-6), "a node property reaches its body")
 
@@ -144,12 +163,16 @@ func _iteration(delta):
 			check(alpha_at(bar.texture, 30, 3) == 0.0, "the bar's texture shows the cut")
 		# The world's erase reaches the pebble and the terrain under it: one destroyed, the other carved.
 		var at = pebble.global_position
+		pebble_at = at
 		check(world.erase_circle(at, 6) > 16 and alpha_at(terrain.texture, int(at.x), 1) == 0.0,
 			"world.erase_circle carved the terrain's texture under the pebble")
 		check(seen("body_destroyed").size() == 1 and seen("body_destroyed")[0][1] == pebble,
 			"the pebble erased whole: body_destroyed(pebble) %s" % [seen("body_destroyed")])
 	if frame == 91:
 		check(not is_instance_valid(pebble), "the destroyed pebble's node is freed")
+		var filled = world.paint_circle(Vector2(pebble_at.x, 142), 3)  # inside the terrain's bitmap (top at 140)
+		check(filled > 0 and alpha_at(terrain.texture, int(pebble_at.x), 2) == 1.0,
+			"world.paint_circle filled %s pixels of the terrain back, drawn at once" % filled)
 		var n = world.world.get_bodies().size()
 		sensor.free()
 		check(world.world.get_bodies().size() == n - 1, "freeing a node destroys its body")

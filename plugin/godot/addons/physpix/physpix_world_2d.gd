@@ -84,15 +84,17 @@ func erase_circle(center, radius):
 	return erased
 
 
-# Makes solid, with weight 1..255, the pixels within radius of a global point in every body the circle reaches.
+# Makes solid, with weight 1..255, the pixels within radius of a global point in every body whose bitmap holds
+# the point (a crater's own body, though the circle may reach none of its pixels). Returns how many.
 func paint_circle(center, radius, weight = 255):
 	var at = to_local(center)
 	var painted = 0
-	for b in get_world().query_circle(at, radius):
-		var n = world.paint_circle(b, at, radius, weight)
-		if n != null:
-			painted += n
-			if _nodes.has(b):
+	for b in _nodes.keys():
+		var local = world.get_transform(b).affine_inverse().xform(at) + world.get_pivot(b)
+		if Rect2(Vector2(), world.get_size(b)).has_point(local):
+			var n = world.paint_circle(b, at, radius, weight)
+			if n != null:
+				painted += n
 				_nodes[b]._redraw_circle(at, radius)
 	return painted
 
