@@ -11,7 +11,7 @@ GODOT_ADDON := $(BUILD)/addons/physpix
 # What `make all` builds for Godot.
 GODOT_ALL   := $(GODOT_LIB) $(GODOT_ADDON)/libphyspix_godot.so
 
-.PHONY: godot-api godot-example godot-pictures
+.PHONY: godot-api godot-example godot-pictures godot-frame-cost
 
 # The build never reads Godot's JSON; this regenerates the committed header from your own godot-headers
 # (gdnative_api.json of tag godot-3.2.3-stable): make godot-api GODOT_API_JSON=/path/to/gdnative_api.json
@@ -48,6 +48,13 @@ godot-pictures: godot-example
 	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -e --quit > $(BUILD)/godot-home/import.txt 2>&1
 	$(GODOT_ENV) timeout 300 xvfb-run -a -s "-screen 0 1024x600x24" godot3 --path $(BUILD)/godot-example --fixed-fps 60 \
 	  -s capture.gd -- $(CURDIR)/plugin/godot
+
+# One-off: the example's cost per physics frame in godot3-server, in real time (measure.gd).
+godot-frame-cost: godot-example
+	cp plugin/godot/measure.gd $(BUILD)/godot-example/
+	mkdir -p $(BUILD)/godot-home
+	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -e --quit > $(BUILD)/godot-home/import.txt 2>&1
+	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -s measure.gd
 
 test-godot: all
 	BUILD=$(BUILD) tests/godot/run.sh

@@ -468,8 +468,11 @@ static void *read_list(call *c, list_fn fn, size_t item_size, int32_t *n)
 /* One list item as a variant. */
 typedef godot_variant (*item_fn)(const void *item);
 
+/* Whether a list item goes into the Array (NULL: all do). */
+typedef bool (*keep_fn)(const void *item);
+
 /* The whole list fn reads as an Array of one variant an item; nil on failure. */
-static godot_variant list_array(call *c, list_fn fn, size_t item_size, item_fn to_variant)
+static godot_variant list_array(call *c, list_fn fn, size_t item_size, item_fn to_variant, keep_fn keep)
 {
     int32_t n;
     char *items = read_list(c, fn, item_size, &n);
@@ -478,7 +481,8 @@ static godot_variant list_array(call *c, list_fn fn, size_t item_size, item_fn t
     godot_array out;
     gdn->godot_array_new(&out);
     for (int32_t i = 0; i < n; i++)
-        gdn_array_put(&out, to_variant(items + (size_t)i * item_size));
+        if (!keep || keep(items + (size_t)i * item_size))
+            gdn_array_put(&out, to_variant(items + (size_t)i * item_size));
     free(items);
     return gdn_array_variant(&out);
 }
@@ -536,22 +540,29 @@ static godot_variant state_item(const void *item)
 
 static godot_variant get_bodies(call *c)
 {
-    return list_array(c, list_bodies, sizeof(pp_body), body_item);
+    return list_array(c, list_bodies, sizeof(pp_body), body_item, NULL);
 }
 
 static godot_variant get_contacts(call *c)
 {
-    return list_array(c, list_contacts, sizeof(pp_contact), contact_item);
+    return list_array(c, list_contacts, sizeof(pp_contact), contact_item, NULL);
 }
 
 static godot_variant get_events(call *c)
 {
-    return list_array(c, list_events, sizeof(pp_event), event_item);
+    return list_array(c, list_events, sizeof(pp_event), event_item, NULL);
 }
 
+static bool state_awake(const void *item)
+{
+    return ((const pp_body_state *)item)->awake != 0;
+}
+
+/* Awake bodies only, on request: a frame's node updates then cost what moves, not what sleeps or is static. */
 static godot_variant get_body_states(call *c)
 {
-    return list_array(c, list_states, sizeof(pp_body_state), state_item);
+    const bool awake_only = c->argc > 0 && c->a[0].i;
+    return list_array(c, list_states, sizeof(pp_body_state), state_item, awake_only ? state_awake : NULL);
 }
 
 /* ---- raycasts and queries ------------------------------------------------------------- */
@@ -740,7 +751,7 @@ static const method_def METHODS[] = {
     METHOD("get_pivot", "b", get_pivot, "get_pivot(body: int) -> Vector2"),
     METHOD("get_type", "b", get_type, "get_type(body: int) -> String"),
     METHOD("is_awake", "b", is_awake, "is_awake(body: int) -> bool"),
-    METHOD("get_body_states", "", get_body_states, "get_body_states() -> Array"),
+    METHOD("get_body_states", "|B", get_body_states, "get_body_states(awake_only: bool = false) -> Array"),
     SET_FLOAT("set_friction", "set_friction(body: int, friction: float)", pp_body_set_friction),
     GET_FLOAT("get_friction", "get_friction(body: int) -> float", pp_body_get_friction),
     SET_FLOAT("set_restitution", "set_restitution(body: int, restitution: float)", pp_body_set_restitution),

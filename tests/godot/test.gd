@@ -245,6 +245,10 @@ func test_native_gains():
 	var states = g.get_body_states()
 	check(states.size() == 2 and states[0]["body"] == box and states[0]["position"] == g.get_position(box)
 		and states[0]["awake"] == true and states[1]["body"] == light, "get_body_states: %s" % [states])
+	g.set_awake(box, false)
+	check(g.get_body_states(true).size() == 1 and g.get_body_states(true)[0]["body"] == light
+		and g.get_body_states().size() == 2, "get_body_states(true) leaves out the body put to sleep")
+	g.set_awake(box, true)
 	g.set_gravity(Vector2(0, -100))
 	g.set_gravity_scale(light, 2.0)
 	g.step(DT)

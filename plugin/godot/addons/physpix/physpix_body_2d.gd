@@ -22,7 +22,6 @@ export var angular_velocity = 0.0  # at creation, rad/s
 
 var body = 0  # the native body int; 0 before the body is made and after it is destroyed
 var world_node = null  # the PhysPixWorld2D it belongs to
-var _awake = true  # whether the world moved it last frame
 var _own_texture = false  # texture is this node's ImageTexture, drawn from the body's pixels
 var _picture = null  # the Image that texture shows, once it is its own
 var _texture_flags = 0  # of its own texture: no mipmaps (rows are updated in place); filter as the original had

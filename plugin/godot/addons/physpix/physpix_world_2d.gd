@@ -63,10 +63,9 @@ func _physics_process(delta):
 	get_world().step(delta)
 	_drain_events()
 	var frame = global_transform
-	for s in world.get_body_states():
+	for s in world.get_body_states(true):  # sleeping and static bodies stay where they are
 		var node = _nodes.get(s["body"])
-		if node != null and (s["awake"] or node._awake):
-			node._awake = s["awake"]
+		if node != null:
 			node.global_transform = frame * Transform2D(s["angle"], s["position"])
 	last_step_ms = (OS.get_ticks_usec() - start) / 1000.0
 
