@@ -328,8 +328,8 @@ bench: deps
 	$(VENV_PY) tests/bench/cost/plot.py $(BUILD)/bench/cost.csv $(BUILD)/bench/cost.png
 
 # Under PREFIX: lib/ (libraries, the plugin and its manifest, pkgconfig/physpix.pc), include/, and share/physpix/:
-# godot/addons/physpix/ (the Godot 3.2 addon with its libraries, copied into a project's addons/) and python/ (the package's
-# source; `pip install PREFIX/share/physpix/python` builds a wheel that carries PREFIX/lib's library).
+# godot/addons/physpix/ (the Godot 3.2 addon with its libraries, copied into a project's addons/) and python/
+# (the package's source; `pip install PREFIX/share/physpix/python` builds a wheel that carries PREFIX/lib's library).
 INSTALL_LIB    = $(DESTDIR)$(PREFIX)/lib
 INSTALL_SHARE  = $(DESTDIR)$(PREFIX)/share/physpix
 install: all
