@@ -28,6 +28,10 @@ func _unhandled_input(event):
 
 func _on_timer():
 	explode(BLASTS[blasts % BLASTS.size()], blast_radius)
+	# Pieces thrown off the screen would fall for ever: freeing a node destroys its body.
+	for node in world.get_children():
+		if node.global_position.y > 2000:
+			node.queue_free()
 
 
 func explode(at, radius):
