@@ -199,7 +199,7 @@ typedef struct pp_world_def {
     pp_contact_mode contact_mode;   ///< contact points per pair (default MANIFOLD)
     int32_t raster_stride;          ///< collision grid coarsening: 1, 2 or 4 pixels per sample (default 1)
     float pixels_per_meter;         ///< internal length scale handed to ODE, px/m, > 0 (default 100)
-    float contact_slop;             ///< penetration left uncorrected, px, ≥ 0 (default 0.75)
+    float contact_slop;             ///< depth contacts rest at, px, ≥ 0: deeper is pushed out (default 0.75)
     float contact_erp;              ///< fraction of penetration corrected per solver step, 0..1 (default 0.2)
     float contact_cfm;              ///< contact softness, ODE constraint force mixing, non-dimensional, ≥ 0 (default 1e-5)
     float bounce_threshold;         ///< approach speed below which restitution is ignored, px/s, ≥ 0 (default 20)

@@ -251,6 +251,10 @@ void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
         /* Attached as (0, b), ODE swaps the bodies and flips the normal but not fdir1: the row then reads b past a. */
         ct.surface.motion1 = (c->a ? c->tangent_speed : -c->tangent_speed) * s->inv_ppm;
     }
+    if (c->closing_speed > 0) { /* the row's target: separate at −closing_speed, i.e. approach at most that */
+        ct.surface.mode |= dContactMotionN;
+        ct.surface.motionN = -c->closing_speed * s->inv_ppm;
+    }
     if (c->restitution > 0) {
         ct.surface.mode |= dContactBounce;
         ct.surface.bounce = c->restitution;

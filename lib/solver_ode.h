@@ -47,6 +47,7 @@ typedef struct solver_contact {
     double depth;              /* px */
     double friction, restitution;
     double tangent_speed;      /* px/s the friction row drives a's point past b's along (−normal.y, normal.x) */
+    double closing_speed;      /* px/s the pair may approach along the normal this substep (≥ 0) */
 } solver_contact;
 
 pp_status solver_create(const pp_world_def *def, pp_solver **out);
