@@ -270,7 +270,7 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         const solver_body_desc desc = {
             def->type, bd->mass.mass, bd->mass.inertia, body_com_world(bd), bd->angle,
             dv(def->linear_velocity.x, def->linear_velocity.y), def->fixed_rotation ? 0.0 : def->angular_velocity,
-            def->linear_damping, def->angular_damping, bd->fixed_rotation, bd,
+            bd->fixed_rotation, bd,
         };
         if ((st = solver_body_create(wd->solver, &desc, &bd->sb))) {
             body_free(wd, bd);

@@ -1,4 +1,4 @@
-/* Forces, torques and gravity scales (forces.h). A force or torque applies through every substep of the
+/* Forces, torques, gravity scales and damping (forces.h). A force or torque applies through every substep of the
  * next step and is then spent, as Box2D's are; a gravity scale stays until set back to 1. */
 #include "forces.h"
 #include "awake.h"
@@ -42,6 +42,20 @@ void forces_apply(world *wd)
             continue; /* ODE keeps a sleeper's sum until it steps it: it would get every substep's at once */
         const dvec2 f = dv_add(bd->force, dv_scale(g, (bd->gravity_scale - 1) * bd->mass.mass));
         solver_body_add_force(wd->solver, &bd->sb, f, bd->fixed_rotation ? 0.0 : bd->torque);
+    }
+}
+
+void forces_damp(world *wd, double h)
+{
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        const body *bd = wd->bodies[wd->awake_slots[k]];
+        if (bd->type != PP_BODY_DYNAMIC || (bd->linear_damping == 0 && bd->angular_damping == 0) ||
+            !solver_body_is_awake(&bd->sb))
+            continue;
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        solver_body_set_velocity(wd->solver, &bd->sb, dv_scale(s.velocity, exp(-bd->linear_damping * h)),
+                                 s.angular_velocity * exp(-bd->angular_damping * h));
     }
 }
 

@@ -11,6 +11,10 @@ struct body;
 /* Before each solver step of a substep: hand every listed awake body its force, torque and the part of
  * gravity its scale adds or takes away. */
 void forces_apply(struct world *wd);
+/* Before each solver step of a substep of h s: every awake dynamic body's velocities decay by their damping
+ * (1/s) as exp(−damping·h), so a second of substeps takes off the same whatever their count (kinematic
+ * bodies keep their set velocity). */
+void forces_damp(struct world *wd, double h);
 /* After a whole step: forces and torques are spent; a body whose gravity scale is 1 leaves the list. */
 void forces_step_done(struct world *wd);
 /* After a step is undone: what ODE was handed and did not use is dropped (the list keeps every force). */

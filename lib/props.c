@@ -57,8 +57,6 @@ PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float 
     if ((st = body_check_surface("pp_body_set_damping", bd->friction, bd->restitution, linear, angular)))
         return st;
     bd->linear_damping = linear, bd->angular_damping = angular;
-    if (bd->type == PP_BODY_DYNAMIC) /* as pp_body_create: kinematic bodies keep their set velocity */
-        solver_body_set_damping(&bd->sb, linear, angular);
     wake_touching(wd, bd);
     return PP_OK;
 }

@@ -118,12 +118,6 @@ void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, doub
         set_mass(s, (dBodyID)sb->body, mass, inertia);
 }
 
-void solver_body_set_damping(const solver_body *sb, double linear, double angular)
-{
-    dBodySetLinearDamping((dBodyID)sb->body, linear);
-    dBodySetAngularDamping((dBodyID)sb->body, angular);
-}
-
 void solver_body_add_force(pp_solver *s, const solver_body *sb, dvec2 f, double torque)
 {
     dBodyAddForce((dBodyID)sb->body, f.x * s->inv_ppm, f.y * s->inv_ppm, 0);
@@ -146,8 +140,6 @@ pp_status solver_body_create(pp_solver *s, const solver_body_desc *d, solver_bod
         dBodySetAutoDisableFlag(b, 0);
     } else {
         set_mass(s, b, d->mass, d->inertia);
-        dBodySetLinearDamping(b, d->linear_damping);
-        dBodySetAngularDamping(b, d->angular_damping);
     }
     dBodySetData(b, d->user);
     /* Every force and row is in the plane (contacts' normals and friction directions, gravity), so a body

@@ -25,7 +25,6 @@ typedef struct solver_body_desc {
     double angle;              /* rad */
     dvec2 velocity;            /* of the centre of mass, px/s */
     double angular_velocity;   /* rad/s */
-    double linear_damping, angular_damping;
     bool fixed_rotation;
     void *user;                /* the library's body record */
 } solver_body_desc;
@@ -59,8 +58,6 @@ void solver_body_set_pose(pp_solver *s, solver_body *sb, dvec2 com_world, double
 void solver_body_set_velocity(pp_solver *s, const solver_body *sb, dvec2 v, double w);
 /* New mass (mass units) and inertia about the centre of mass (mass·px²) after an edit. */
 void solver_body_set_mass(pp_solver *s, const solver_body *sb, double mass, double inertia);
-/* A dynamic body's velocity decay, as solver_body_desc's damping fields. */
-void solver_body_set_damping(const solver_body *sb, double linear, double angular);
 /* Add a force (mass·px/s², at the centre of mass) and a torque (mass·px²/s²) for the next solver step only. */
 void solver_body_add_force(pp_solver *s, const solver_body *sb, dvec2 force, double torque);
 /* Drop what solver_body_add_force gave a body that a failed step did not consume. */

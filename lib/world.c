@@ -866,6 +866,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         save_contact_bodies(wd);
         add_contact_joints(wd, h);
         forces_apply(wd);
+        forces_damp(wd, h);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
         island_list_woken(wd);

@@ -90,6 +90,32 @@ Test(props, friction_restitution_and_damping_set_after_creation_run_bit_for_bit_
     pp_world_destroy(made);
 }
 
+Test(props, damping_takes_velocity_down_as_exp_minus_c_t_whatever_the_substeps)
+{
+    /* Damping is a rate, 1/s: a second takes a box thrown in empty space to e^-c of its speed and spin at
+     * every preset (ODE's own damping is a fraction taken off each of its steps, so 1/s zeroed it). */
+    const pp_preset presets[3] = {PP_PRESET_FAST, PP_PRESET_BALANCED, PP_PRESET_ACCURATE};
+    for (int p = 0; p < 3; p++) {
+        pp_world_def wd = pp_world_def_preset(presets[p]);
+        wd.gravity = (pp_vec2){0, 0};
+        pp_world w = make_world_def(&wd);
+        pp_body_def d = body_def(PP_BODY_DYNAMIC, 300, 300, 0);
+        d.linear_velocity = (pp_vec2){100, -50};
+        d.angular_velocity = 2;
+        d.linear_damping = 1.0f;
+        pp_body box = add_rect(w, d, 16, 16);
+        PP_OK_OR_FAIL(pp_body_set_damping(w, box, 1.0f, 0.5f)); /* the angular part from now */
+        step_n(w, 1.0f / 60.0f, 60);
+        pp_vec2 v;
+        float av;
+        PP_OK_OR_FAIL(pp_body_get_velocity(w, box, &v, &av));
+        cr_assert_float_eq(v.x, 100 * exp(-1.0), 1e-3 * 100, "preset %d: vx %g", (int)presets[p], v.x);
+        cr_assert_float_eq(v.y, -50 * exp(-1.0), 1e-3 * 50, "preset %d: vy %g", (int)presets[p], v.y);
+        cr_assert_float_eq(av, 2 * exp(-0.5), 1e-3 * 2, "preset %d: w %g", (int)presets[p], av);
+        pp_world_destroy(w);
+    }
+}
+
 Test(props, a_box_that_sticks_on_a_30_degree_ramp_slides_as_coulomb_says_once_its_friction_drops)
 {
     const double a = DEG2RAD(30.0);
