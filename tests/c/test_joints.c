@@ -1,0 +1,331 @@
+/* Joints (issue 24): physics against analytic figures (a physical pendulum's period, a motor's speed,
+ * limits, lengths, a hanging box's reaction), breaking by force and by an erase, and the exact status of
+ * every misuse. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "helpers.h"
+#include "physpix.h"
+
+PP_TEST_SUITE(joints);
+
+#define DT (1.0f / 60.0f)
+#define G 980.0f
+
+static pp_joint make_joint(pp_world w, const pp_joint_def *d)
+{
+    pp_joint j = {0};
+    PP_OK_OR_FAIL(pp_joint_create(w, d, &j));
+    cr_assert_neq(j.id, 0);
+    return j;
+}
+
+static float joint_value(pp_world w, pp_joint j, float *speed)
+{
+    float v = 0, s = 0;
+    PP_OK_OR_FAIL(pp_joint_get_value(w, j, &v, &s));
+    if (speed)
+        *speed = s;
+    return v;
+}
+
+static double dist(pp_vec2 a, pp_vec2 b) { return hypot(a.x - b.x, a.y - b.y); }
+
+/* A 10 × 60 px rod hung from the world by a revolute joint `d` px above its centre of mass. */
+static pp_body hung_rod(pp_world w, double d, pp_joint *j)
+{
+    pp_body rod = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 200, 0), 10, 60);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = rod;
+    jd.anchor_a = v2(200, (float)(200 - d));
+    *j = make_joint(w, &jd);
+    return rod;
+}
+
+/* The mean time between the upward zero crossings of the joint's angle over `steps` steps, s. */
+static double swing_period(pp_world w, pp_joint j, int steps)
+{
+    double prev = joint_value(w, j, NULL), first = -1, last = -1;
+    int crossings = 0;
+    for (int k = 1; k <= steps; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const double v = joint_value(w, j, NULL);
+        if (prev < 0 && v >= 0) {
+            const double t = (k - 1 + prev / (prev - v)) * DT;
+            if (first < 0)
+                first = t;
+            last = t;
+            crossings++;
+        }
+        prev = v;
+    }
+    cr_assert_geq(crossings, 3, "the pendulum swung through zero %d times", crossings);
+    return (last - first) / (crossings - 1);
+}
+
+Test(joints, pendulum_period_matches_the_physical_pendulum)
+{
+    pp_world w = make_world(0, G);
+    const double d = 25;
+    pp_joint j;
+    pp_body rod = hung_rod(w, d, &j);
+    float m, I;
+    pp_vec2 c;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, rod, &m, &c, &I));
+    const double w0 = 0.2; /* rad/s: a swing of about 0.03 rad, where the period is the small-angle one */
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, rod, v2((float)(-w0 * d), 0), (float)w0));
+    const double T = swing_period(w, j, 600);
+    const double analytic = 2 * M_PI * sqrt((I + m * d * d) / (m * G * d));
+    cr_log_info("pendulum: period %.4f s, analytic 2π√(I/(m·g·d)) %.4f s (%+.2f %%)", T, analytic,
+                100 * (T / analytic - 1));
+    cr_assert(fabs(T / analytic - 1) < 0.02, "period %g s, analytic %g s", T, analytic);
+    pp_world_destroy(w);
+}
+
+Test(joints, revolute_motor_reaches_its_speed)
+{
+    pp_world w = make_world(0, 0);
+    pp_body wheel = add_disc(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = wheel;
+    jd.anchor_a = v2(100, 100);
+    jd.enable_motor = 1;
+    jd.motor_speed = 3;
+    jd.max_motor_force = 1e9f;
+    pp_joint j = make_joint(w, &jd);
+    step_n(w, DT, 30);
+    float speed;
+    joint_value(w, j, &speed);
+    pp_vec2 lin;
+    float ang;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, wheel, &lin, &ang));
+    cr_log_info("revolute motor: joint speed %.4f rad/s, body %.4f rad/s, asked 3", speed, ang);
+    cr_assert_float_eq(speed, 3.0f, 0.01f);
+    cr_assert_float_eq(ang, 3.0f, 0.01f);
+    cr_assert_lt(hypot(lin.x, lin.y), 1.0, "the wheel's centre stays on the hinge");
+    /* Against the world as body_b (a on the wheel), the joint reads the world's turn from the wheel. */
+    PP_OK_OR_FAIL(pp_joint_destroy(w, j));
+    jd.body_b = (pp_body){0};
+    jd.body_a = wheel;
+    j = make_joint(w, &jd);
+    step_n(w, DT, 30);
+    joint_value(w, j, &speed);
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, wheel, &lin, &ang));
+    cr_assert_float_eq(speed, 3.0f, 0.01f);
+    cr_assert_float_eq(ang, -3.0f, 0.01f);
+    pp_world_destroy(w);
+}
+
+Test(joints, revolute_limits_hold)
+{
+    pp_world w = make_world(0, G);
+    pp_joint j;
+    pp_body rod = hung_rod(w, 25, &j);
+    PP_OK_OR_FAIL(pp_joint_set_limits(w, j, 1, -0.2f, 0.3f));
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, rod, v2(-25 * 4.0f, 0), 4.0f)); /* would swing past 1 rad */
+    float lo = 0, hi = 0;
+    for (int k = 0; k < 120; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const float v = joint_value(w, j, NULL);
+        lo = fminf(lo, v), hi = fmaxf(hi, v);
+    }
+    cr_log_info("revolute limits -0.2..0.3 rad: swung over %.4f..%.4f rad", lo, hi);
+    cr_assert(lo > -0.22f && hi < 0.32f && hi > 0.25f, "swung over %g..%g rad", lo, hi);
+    pp_world_destroy(w);
+}
+
+/* A 20 px box on a horizontal prismatic joint to the world, at rest with no gravity. */
+static pp_body slider_box(pp_world w, pp_joint *j, pp_vec2 axis)
+{
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_PRISMATIC);
+    jd.body_b = box;
+    jd.anchor_a = jd.anchor_b = v2(100, 100);
+    jd.axis = axis;
+    *j = make_joint(w, &jd);
+    return box;
+}
+
+Test(joints, prismatic_motor_and_limits)
+{
+    pp_world w = make_world(0, G); /* gravity across the axis: the slider holds it */
+    pp_joint j;
+    pp_body box = slider_box(w, &j, v2(2, 0));
+    PP_OK_OR_FAIL(pp_joint_set_motor(w, j, 1, 50, 1e9f));
+    PP_OK_OR_FAIL(pp_joint_set_limits(w, j, 1, -10, 40));
+    step_n(w, DT, 30);
+    float speed, value = joint_value(w, j, &speed);
+    const pp_vec2 p = body_pos(w, box);
+    cr_log_info("prismatic motor 50 px/s: %.3f px/s after 0.5 s at %.3f px", speed, value);
+    cr_assert_float_eq(speed, 50.0f, 0.5f);
+    cr_assert_float_eq(value, 25.0f, 1.0f);
+    cr_assert_float_eq(p.y, 100.0f, 0.5f, "the box stays on the axis, y = %g", p.y);
+    cr_assert_float_eq(body_angle(w, box), 0.0f, 1e-3f);
+    step_n(w, DT, 60);
+    value = joint_value(w, j, &speed);
+    cr_log_info("prismatic limit 40 px: held at %.3f px", value);
+    cr_assert_float_eq(value, 40.0f, 0.5f);
+    PP_OK_OR_FAIL(pp_joint_set_motor(w, j, 1, -200, 1e9f));
+    step_n(w, DT, 60);
+    cr_assert_float_eq(joint_value(w, j, NULL), -10.0f, 0.5f);
+    pp_world_destroy(w);
+}
+
+/* A 16 px box hung `len` px below (200, 100) by a distance joint def `jd` (anchors and bodies filled in). */
+static pp_body hung_box(pp_world w, pp_joint_def jd, float len, pp_joint *j)
+{
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 200 + len, 100, 0), 16, 16);
+    jd.body_b = box;
+    jd.anchor_a = v2(200, 100);
+    jd.anchor_b = v2(200 + len, 100);
+    *j = make_joint(w, &jd);
+    return box;
+}
+
+Test(joints, distance_rigid_length_holds_through_a_swing)
+{
+    pp_world w = make_world(0, G);
+    pp_joint j;
+    hung_box(w, pp_joint_def_default(PP_JOINT_DISTANCE), 100, &j); /* starts level: swings down and back */
+    float worst = 0;
+    for (int k = 0; k < 120; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        worst = fmaxf(worst, fabsf(joint_value(w, j, NULL) - 100));
+    }
+    cr_log_info("distance 100 px rigid: worst error %.4f px over 2 s of swing", worst);
+    cr_assert_lt(worst, 1.0f);
+    pp_world_destroy(w);
+}
+
+Test(joints, rope_max_length_holds)
+{
+    pp_world w = make_world(0, G);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_DISTANCE);
+    jd.max_length = 100;
+    pp_joint j;
+    pp_body box = hung_box(w, jd, 50, &j); /* slack at first: falls free, then the rope catches it */
+    float longest = 0;
+    bool slack_fall = false;
+    for (int k = 0; k < 180; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const float len = joint_value(w, j, NULL);
+        longest = fmaxf(longest, len);
+        if (k == 10)
+            slack_fall = fabsf(body_vel(w, box).y - G * 11 * DT) < 0.05f * G * 11 * DT;
+    }
+    cr_log_info("rope max 100 px: longest %.4f px over 3 s", longest);
+    cr_assert(slack_fall, "the box falls freely while the rope is slack");
+    cr_assert_lt(longest, 101.0f);
+    cr_assert_gt(longest, 99.0f);
+    pp_world_destroy(w);
+}
+
+Test(joints, distance_spring_period)
+{
+    pp_world w = make_world(0, 0);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_DISTANCE);
+    jd.spring_hertz = 2;
+    pp_joint j;
+    pp_body box = hung_box(w, jd, 100, &j);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, box, v2(60, 0), 0)); /* stretch it along the spring */
+    double prev = joint_value(w, j, NULL) - 100, first = -1, last = -1;
+    int crossings = 0;
+    for (int k = 1; k <= 240; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const double v = joint_value(w, j, NULL) - 100;
+        if (prev < 0 && v >= 0) {
+            const double t = (k - 1 + prev / (prev - v)) * DT;
+            first = first < 0 ? t : first;
+            last = t;
+            crossings++;
+        }
+        prev = v;
+    }
+    cr_assert_geq(crossings, 3);
+    const double T = (last - first) / (crossings - 1);
+    cr_log_info("distance spring 2 Hz: period %.4f s (analytic 0.5 s, %+.2f %%)", T, 100 * (T / 0.5 - 1));
+    cr_assert(fabs(T / 0.5 - 1) < 0.03, "period %g s", T);
+    pp_world_destroy(w);
+}
+
+Test(joints, weld_sags_little)
+{
+    pp_world w = make_world(0, G);
+    pp_body plank = add_rect(w, body_def(PP_BODY_DYNAMIC, 150, 100, 0), 100, 10); /* from x 100 to 200 */
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_WELD);
+    jd.body_b = plank;
+    jd.anchor_a = v2(105, 100);
+    make_joint(w, &jd);
+    step_n(w, DT, 120);
+    const pp_vec2 p = body_pos(w, plank);
+    const float a = body_angle(w, plank);
+    cr_log_info("weld: a 100 px cantilever sags %.4f px at its centre, %.5f rad", p.y - 100, a);
+    cr_assert_lt(fabsf(p.y - 100), 0.5f);
+    cr_assert_lt(fabsf(a), 0.01f);
+    pp_world_destroy(w);
+}
+
+Test(joints, mouse_pulls_to_its_target)
+{
+    pp_world w = make_world(0, G);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_MOUSE);
+    jd.body_b = box;
+    jd.anchor_a = v2(100, 100);
+    pp_joint j = make_joint(w, &jd);
+    PP_OK_OR_FAIL(pp_joint_set_target(w, j, v2(200, 50)));
+    step_n(w, DT, 120);
+    const pp_vec2 p = body_pos(w, box);
+    /* 5 Hz under gravity: the spring sags g/ω² = 1.0 px. */
+    const double sag = G / pow(2 * M_PI * 5, 2);
+    cr_log_info("mouse: reached (%.3f, %.3f) for target (200, 50), sag %.3f px", p.x, p.y, sag);
+    cr_assert_lt(dist(p, v2(200, (float)(50 + sag))), 0.5);
+    pp_world_destroy(w);
+}
+
+Test(joints, mouse_force_is_capped)
+{
+    pp_world w = make_world(0, 0);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    float m, I;
+    pp_vec2 c;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_MOUSE);
+    jd.body_b = box;
+    jd.anchor_a = v2(100, 100);
+    jd.spring_damping_ratio = 0;
+    jd.max_force = 100 * m; /* at most 100 px/s² */
+    pp_joint j = make_joint(w, &jd);
+    PP_OK_OR_FAIL(pp_joint_set_target(w, j, v2(1100, 100)));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    pp_vec2 f;
+    PP_OK_OR_FAIL(pp_joint_get_reaction(w, j, &f, NULL));
+    const pp_vec2 v = body_vel(w, box);
+    /* The implicit spring gives up h·k·v of its pull as the body starts to move: 93 % here. */
+    cr_log_info("mouse capped at 100 px/s²: pull %.3f px/s², speed %.4f px/s after a step (%.4f at the cap)", f.x / m,
+                v.x, 100 * DT);
+    cr_assert(f.x / m > 90 && f.x / m <= 100, "pull %g px/s²", f.x / m);
+    cr_assert(v.x > 0.9f * 100 * DT && v.x <= 100 * DT, "speed %g px/s", v.x);
+    pp_world_destroy(w);
+}
+
+Test(joints, reaction_of_a_hanging_box_is_its_weight)
+{
+    pp_world w = make_world(0, G);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = box;
+    jd.anchor_a = v2(100, 92);
+    pp_joint j = make_joint(w, &jd);
+    step_n(w, DT, 60);
+    float m, I, t;
+    pp_vec2 c, f;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
+    PP_OK_OR_FAIL(pp_joint_get_reaction(w, j, &f, &t));
+    cr_log_info("reaction of a hanging box: (%.3f, %.3f), weight m·g = %.3f (%+.3f %%)", f.x, f.y, m * G,
+                100 * (-f.y / (m * G) - 1));
+    cr_assert(fabs(-f.y / (m * G) - 1) < 0.02, "reaction %g, weight %g", f.y, m * G);
+    cr_assert_lt(fabsf(f.x), 0.01f * m * G);
+    pp_world_destroy(w);
+}
