@@ -329,3 +329,294 @@ Test(joints, reaction_of_a_hanging_box_is_its_weight)
     cr_assert_lt(fabsf(f.x), 0.01f * m * G);
     pp_world_destroy(w);
 }
+
+/* The events queued since the last read, at most 16. */
+static int32_t read_events(pp_world w, pp_event *ev)
+{
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, 16, &n));
+    cr_assert_leq(n, 16);
+    return n;
+}
+
+static const pp_event *find_event(const pp_event *ev, int32_t n, pp_event_type type)
+{
+    for (int32_t i = 0; i < n; i++)
+        if (ev[i].type == type)
+            return &ev[i];
+    return NULL;
+}
+
+static int32_t joint_count(pp_world w)
+{
+    int32_t n = -1;
+    PP_OK_OR_FAIL(pp_world_get_joints(w, NULL, 0, &n));
+    return n;
+}
+
+Test(joints, a_joint_breaks_under_its_break_force)
+{
+    pp_world w = make_world(0, G);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    float m, I;
+    pp_vec2 c;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = box;
+    jd.anchor_a = v2(100, 92);
+    jd.break_force = 2 * m * G; /* holds the box's weight */
+    pp_joint j = make_joint(w, &jd);
+    step_n(w, DT, 30);
+    pp_event ev[16];
+    cr_assert_eq(read_events(w, ev), 0);
+    cr_assert_eq(joint_count(w), 1);
+    PP_OK_OR_FAIL(pp_body_apply_force(w, box, v2(0, 3 * m * G), body_pos(w, box))); /* pulls it past 2 m·g */
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    const int32_t n = read_events(w, ev);
+    const pp_event *e = find_event(ev, n, PP_EVENT_JOINT_BROKEN);
+    cr_assert_not_null(e, "no JOINT_BROKEN among %d events", n);
+    cr_assert(e->joint.id == j.id && e->body.id == 0 && e->other.id == box.id);
+    cr_assert_eq(joint_count(w), 0);
+    float v;
+    cr_assert_eq(pp_joint_get_value(w, j, &v, NULL), PP_ERR_INVALID_HANDLE);
+    const float y0 = body_pos(w, box).y;
+    step_n(w, DT, 10);
+    cr_assert_gt(body_pos(w, box).y, y0 + 10, "the box falls once the joint is gone");
+    pp_world_destroy(w);
+}
+
+/* A plank from x 100 to 300 at y 100, hung from the world by revolute joints 5 px in from each end. */
+static pp_body hung_plank(pp_world w, pp_joint *left, pp_joint *right)
+{
+    pp_body plank = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 100, 0), 200, 10);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = plank;
+    jd.anchor_a = v2(105, 100);
+    *left = make_joint(w, &jd);
+    jd.anchor_a = v2(295, 100);
+    *right = make_joint(w, &jd);
+    return plank;
+}
+
+Test(joints, erasing_an_anchor_breaks_its_joint)
+{
+    pp_world w = make_world(0, G);
+    pp_joint left, right;
+    pp_body plank = hung_plank(w, &left, &right);
+    step_n(w, DT, 10);
+    int32_t changed = 0;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, plank, v2(295, 100), 8, &changed)); /* the right end, anchor and all */
+    cr_assert_gt(changed, 0);
+    pp_event ev[16];
+    const int32_t n = read_events(w, ev);
+    const pp_event *e = find_event(ev, n, PP_EVENT_JOINT_BROKEN);
+    cr_assert_not_null(e, "no JOINT_BROKEN among %d events", n);
+    cr_assert(e->joint.id == right.id && e->other.id == plank.id);
+    cr_assert_eq(joint_count(w), 1);
+    float v;
+    PP_OK_OR_FAIL(pp_joint_get_value(w, left, &v, NULL));
+    /* Erasing near, but not under, the left anchor keeps it: a solid pixel is left within 1 px. */
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, plank, v2(108, 100), 2.5f, &changed));
+    cr_assert_gt(changed, 0);
+    cr_assert_eq(read_events(w, ev), 0);
+    step_n(w, DT, 60);
+    cr_assert_gt(joint_value(w, left, NULL), 0.5f, "the plank swings down about its left end");
+    pp_world_destroy(w);
+}
+
+Test(joints, a_split_keeps_each_joint_on_the_piece_holding_its_anchor)
+{
+    pp_world w = make_world(0, G);
+    pp_joint left, right;
+    pp_body plank = hung_plank(w, &left, &right);
+    int32_t changed = 0;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, plank, v2(200, 100), 12, &changed)); /* cut in two */
+    pp_event ev[16];
+    const int32_t n = read_events(w, ev);
+    const pp_event *split = find_event(ev, n, PP_EVENT_BODY_SPLIT);
+    cr_assert_not_null(split);
+    cr_assert_null(find_event(ev, n, PP_EVENT_JOINT_BROKEN));
+    pp_body a, b_left, b_right;
+    const pp_vec2 anchor_l = v2(105, 100), anchor_r = v2(295, 100);
+    PP_OK_OR_FAIL(pp_joint_get_bodies(w, left, &a, &b_left));
+    PP_OK_OR_FAIL(pp_joint_get_bodies(w, right, &a, &b_right));
+    cr_assert_neq(b_left.id, b_right.id, "each half holds one joint");
+    cr_assert(b_left.id == split->other.id || b_right.id == split->other.id);
+    const double rl = dist(body_pos(w, b_left), anchor_l), rr = dist(body_pos(w, b_right), anchor_r);
+    step_n(w, DT, 90);
+    /* Each half hangs from its own end: the left one turns down (+), the right one up (−, y down). */
+    const float vl = joint_value(w, left, NULL), vr = joint_value(w, right, NULL);
+    cr_log_info("split: the halves hang at %.3f and %.3f rad", vl, vr);
+    cr_assert_gt(vl, 0.5f);
+    cr_assert_lt(vr, -0.5f);
+    /* Each piece turns about its own anchor: the anchor stays put and the piece's distance from it holds. */
+    cr_assert_float_eq(dist(body_pos(w, b_left), anchor_l), rl, 0.5);
+    cr_assert_float_eq(dist(body_pos(w, b_right), anchor_r), rr, 0.5);
+    pp_world_destroy(w);
+}
+
+Test(joints, destroying_a_body_destroys_its_joints_without_events)
+{
+    pp_world w = make_world(0, G);
+    pp_joint left, right;
+    pp_body plank = hung_plank(w, &left, &right);
+    pp_body other = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 100, 0), 10, 10);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_DISTANCE);
+    jd.body_a = plank, jd.body_b = other;
+    jd.anchor_a = v2(290, 100), jd.anchor_b = v2(400, 100);
+    pp_joint d = make_joint(w, &jd);
+    cr_assert_eq(joint_count(w), 3);
+    PP_OK_OR_FAIL(pp_body_destroy(w, plank));
+    cr_assert_eq(joint_count(w), 0);
+    pp_event ev[16];
+    cr_assert_eq(read_events(w, ev), 0);
+    cr_assert_eq(pp_joint_destroy(w, left), PP_ERR_INVALID_HANDLE);
+    cr_assert_eq(pp_joint_destroy(w, d), PP_ERR_INVALID_HANDLE);
+    step_n(w, DT, 10);
+    cr_assert_gt(body_pos(w, other).y, 110.0f, "its partner falls free");
+    pp_world_destroy(w);
+}
+
+Test(joints, connected_bodies_collide_only_when_asked)
+{
+    for (uint32_t collide = 0; collide <= 1; collide++) {
+        pp_world w = make_world(0, 0);
+        pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+        pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 115, 100, 0), 20, 20); /* overlapping by 5 px */
+        pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+        jd.body_a = a, jd.body_b = b;
+        jd.anchor_a = v2(108, 100);
+        jd.collide_connected = collide;
+        make_joint(w, &jd);
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        int32_t n = -1;
+        PP_OK_OR_FAIL(pp_world_get_contacts(w, NULL, 0, &n));
+        cr_assert_eq(n > 0, collide == 1, "collide_connected %u: %d contacts", collide, n);
+        pp_world_destroy(w);
+    }
+}
+
+Test(joints, joined_bodies_sleep_and_wake_together)
+{
+    pp_world w = make_world(0, G);
+    pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 200, 220, 0), 400, 40);
+    (void)ground;
+    pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 190, 0), 20, 20);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 190, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_DISTANCE);
+    jd.body_a = a, jd.body_b = b;
+    jd.anchor_a = v2(100, 190), jd.anchor_b = v2(200, 190);
+    make_joint(w, &jd);
+    step_n(w, DT, 240);
+    int32_t awake_a = -1, awake_b = -1;
+    PP_OK_OR_FAIL(pp_body_is_awake(w, a, &awake_a));
+    PP_OK_OR_FAIL(pp_body_is_awake(w, b, &awake_b));
+    cr_assert(!awake_a && !awake_b, "both asleep: %d %d", awake_a, awake_b);
+    PP_OK_OR_FAIL(pp_body_apply_impulse(w, a, v2(-40000, 0), body_pos(w, a))); /* wakes a alone */
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    PP_OK_OR_FAIL(pp_body_is_awake(w, b, &awake_b));
+    cr_assert(awake_b, "b wakes with a");
+    cr_assert_float_eq(body_vel(w, b).x, body_vel(w, a).x, 0.01f, "and moves with it: %g and %g px/s",
+                       body_vel(w, b).x, body_vel(w, a).x);
+    cr_assert_lt(body_vel(w, b).x, -0.5f);
+    pp_world_destroy(w);
+}
+
+Test(joints, a_snapshot_of_a_world_with_joints_is_refused_for_now)
+{
+    pp_world w = make_world(0, G);
+    pp_joint left, right;
+    hung_plank(w, &left, &right);
+    char dir[] = "/tmp/pp_joints_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    char target[64];
+    snprintf(target, sizeof target, "%s/snap", dir);
+    EXPECT_ERR(pp_world_save_snapshot(w, target), PP_ERR_UNSUPPORTED, "joints");
+    cr_assert_eq(count_entries(dir), 0, "nothing written");
+    remove_tree(dir);
+    pp_world_destroy(w);
+}
+
+Test(joints, misuse_is_refused_with_its_status)
+{
+    pp_world w = make_world(0, G), other = make_world(0, G);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_body wall = add_rect(w, body_def(PP_BODY_STATIC, 300, 100, 0), 20, 20);
+    pp_body foreign = add_rect(other, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_joint_def d = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    d.body_b = box;
+    d.anchor_a = v2(100, 100);
+    pp_joint j = {0};
+    EXPECT_ERR(pp_joint_create(w, NULL, &j), PP_ERR_INVALID_ARGUMENT, "def");
+    EXPECT_ERR(pp_joint_create(w, &d, NULL), PP_ERR_INVALID_ARGUMENT, "out");
+    EXPECT_ERR(pp_joint_create((pp_world){0}, &d, &j), PP_ERR_INVALID_HANDLE, "world");
+    pp_joint_def bad = d;
+    bad.struct_size = 0;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_ABI, "struct_size");
+    bad = d, bad.type = (pp_joint_type)9;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "type");
+    bad = d, bad.body_a = box;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "same");
+    bad = d, bad.body_b = (pp_body){0};
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "same");
+    bad = d, bad.body_b = wall;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "neither body moves");
+    bad = d, bad.body_a = foreign;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_HANDLE, "belongs to world");
+    bad = d, bad.anchor_a.x = NAN;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "anchor_a");
+    bad = d, bad.lower = 0.5f, bad.upper = 0.1f;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "lower");
+    bad = d, bad.lower = -4, bad.upper = 0;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "within");
+    bad = d, bad.max_motor_force = -1;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "max_motor_force");
+    bad = d, bad.type = PP_JOINT_MOUSE, bad.max_force = -1;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "max_force");
+    bad = d, bad.type = PP_JOINT_MOUSE, bad.body_a = wall;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "mouse");
+    bad = d, bad.break_force = INFINITY;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "break_force");
+    bad = d, bad.type = PP_JOINT_PRISMATIC, bad.axis = v2(0, 0);
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "axis");
+    bad = d, bad.type = PP_JOINT_DISTANCE, bad.anchor_b = bad.anchor_a;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "coincide");
+    bad = d, bad.type = PP_JOINT_DISTANCE, bad.anchor_b = v2(120, 100), bad.min_length = 50, bad.max_length = 10;
+    EXPECT_ERR(pp_joint_create(w, &bad, &j), PP_ERR_INVALID_ARGUMENT, "min_length");
+    cr_assert_eq(j.id, 0, "no failed call wrote its out");
+    cr_assert_eq(joint_count(w), 0);
+
+    j = make_joint(w, &d);
+    pp_vec2 f;
+    float x;
+    int32_t n;
+    pp_joint stale = j, alien = {0};
+    EXPECT_ERR(pp_joint_get_reaction(w, j, NULL, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
+    EXPECT_ERR(pp_joint_get_value(w, j, NULL, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
+    EXPECT_ERR(pp_world_get_joints(w, NULL, 1, &n), PP_ERR_INVALID_ARGUMENT, "out");
+    EXPECT_ERR(pp_world_get_joints(w, NULL, 0, NULL), PP_ERR_INVALID_ARGUMENT, "count");
+    EXPECT_ERR(pp_joint_set_motor(w, j, 1, NAN, 1), PP_ERR_INVALID_ARGUMENT, "speed");
+    EXPECT_ERR(pp_joint_set_motor(w, j, 1, 1, -1), PP_ERR_INVALID_ARGUMENT, "max_force");
+    EXPECT_ERR(pp_joint_set_limits(w, j, 1, 1, -1), PP_ERR_INVALID_ARGUMENT, "lower");
+    EXPECT_ERR(pp_joint_set_target(w, j, v2(0, 0)), PP_ERR_INVALID_ARGUMENT, "mouse");
+    EXPECT_ERR(pp_joint_get_type(w, j, NULL), PP_ERR_INVALID_ARGUMENT, "out");
+    EXPECT_ERR(pp_joint_get_user_data(w, j, NULL), PP_ERR_INVALID_ARGUMENT, "out");
+    EXPECT_ERR(pp_joint_get_bodies(w, j, NULL, NULL), PP_ERR_INVALID_ARGUMENT, "body_a");
+    pp_joint_def md = pp_joint_def_default(PP_JOINT_MOUSE);
+    md.body_b = foreign;
+    pp_joint mouse = make_joint(other, &md);
+    EXPECT_ERR(pp_joint_set_target(other, mouse, v2(INFINITY, 0)), PP_ERR_INVALID_ARGUMENT, "target");
+    EXPECT_ERR(pp_joint_set_motor(other, mouse, 1, 1, 1), PP_ERR_INVALID_ARGUMENT, "motor");
+    EXPECT_ERR(pp_joint_set_limits(other, mouse, 1, 0, 1), PP_ERR_INVALID_ARGUMENT, "limits");
+    EXPECT_ERR(pp_joint_destroy(w, mouse), PP_ERR_INVALID_HANDLE, "belongs to world");
+    PP_OK_OR_FAIL(pp_joint_destroy(w, j));
+    EXPECT_ERR(pp_joint_destroy(w, stale), PP_ERR_INVALID_HANDLE, "stale");
+    EXPECT_ERR(pp_joint_get_reaction(w, stale, &f, &x), PP_ERR_INVALID_HANDLE, "stale");
+    EXPECT_ERR(pp_joint_get_value(w, alien, &x, &x), PP_ERR_INVALID_HANDLE, "null");
+    EXPECT_ERR(pp_joint_set_motor(w, stale, 0, 0, 0), PP_ERR_INVALID_HANDLE, "stale");
+    EXPECT_ERR(pp_joint_set_limits(w, stale, 0, 0, 0), PP_ERR_INVALID_HANDLE, "stale");
+    EXPECT_ERR(pp_joint_set_target(w, stale, v2(0, 0)), PP_ERR_INVALID_HANDLE, "stale");
+    cr_assert_eq(pp_joint_def_default((pp_joint_type)42).type, PP_JOINT_REVOLUTE);
+    pp_world_destroy(w);
+    pp_world_destroy(other);
+}
