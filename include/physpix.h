@@ -713,6 +713,7 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  *     "bodies": [ { "name": "terrain", "type": "static", "sprite": "terrain.png", "mask": "terrain_mask.png",
  *                   "position": [480, 400], "detach_islands": true },
  *                 { "name": "crate", "box": [32, 32], "position": [480, 300], "density": 2 } ],
+ *     "joints": [ { "type": "revolute", "body_b": "crate", "anchor_a": [480, 290], "break_force": 1e6 } ],
  *     "edits":  [ { "time": 1.0, "type": "erase", "center": [500, 420], "radius": 40 },
  *                 { "time": 2.0, "type": "paint", "body": "terrain", "center": [500, 420], "radius": 10,
  *                   "weight": 255 } ] }
@@ -730,6 +731,9 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  *           (a PNG of the same size, solid where red ≥ 128 and alpha ≥ 128), "weights" (a PNG of the same
  *           size, red is each pixel's weight 0..255; default all 255), or "box": [w, h] (integers, px: a
  *           solid rectangle; not with "sprite" or "mask").
+ * "joints": created in file order, after the bodies: "type" (required) revolute|prismatic|distance|weld|mouse,
+ *           "body_a" and "body_b" (bodies' names; absent is the static world), and every other pp_joint_def
+ *           field by name (anchors and axis as [x, y] world px, flags as true/false, "user_data" 0..2^53).
  * "edits":  pp_timed_edit's fields: "time" (s of world time, ≥ 0, default 0), "type" erase|paint (default
  *           erase), "body" (a body's name; default every body; required for paint), "center" (world px),
  *           "radius" (px; pixels whose centres lie within change), "weight" (1..255, default 255; paint only).

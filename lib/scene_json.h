@@ -58,7 +58,9 @@ typedef struct field {
     const char *const *names; /* FK_ENUM */
 } field;
 
-extern const field world_fields[], body_fields[], camera_fields[], edit_fields[];
+extern const field world_fields[], body_fields[], camera_fields[], edit_fields[], joint_fields[];
+/* pp_joint_type by index ("" at 0, which is none). */
+extern const char *const joint_type_names[];
 
 /* Read every field of a table present in obj into the struct at s; absent fields keep their value. */
 pp_status read_fields(const json_ctx *c, const cJSON *obj, const char *where, const field *t, void *s);

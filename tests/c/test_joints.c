@@ -620,3 +620,64 @@ Test(joints, misuse_is_refused_with_its_status)
     pp_world_destroy(w);
     pp_world_destroy(other);
 }
+
+/* Write text to a new file `name` in the folder dir. */
+static void write_file(const char *dir, const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+Test(joints, a_scene_names_its_joints_bodies)
+{
+    char dir[] = "/tmp/pp_joints_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    write_file(dir, "ok.json",
+               "{ \"world\": { \"backend\": \"cpu\" },\n"
+               "  \"bodies\": [ { \"name\": \"rod\", \"box\": [10, 60], \"position\": [200, 200] },\n"
+               "              { \"name\": \"bob\", \"box\": [10, 10], \"position\": [300, 200] } ],\n"
+               "  \"joints\": [ { \"type\": \"revolute\", \"body_b\": \"rod\", \"anchor_a\": [200, 175],\n"
+               "                \"enable_limit\": true, \"lower\": -0.5, \"upper\": 0.5, \"user_data\": 7 },\n"
+               "              { \"type\": \"distance\", \"body_a\": \"rod\", \"body_b\": \"bob\",\n"
+               "                \"anchor_a\": [200, 220], \"anchor_b\": [300, 200], \"max_length\": 120 } ] }\n");
+    write_file(dir, "unknown.json", "{ \"bodies\": [ { \"name\": \"rod\", \"box\": [10, 60] } ],\n"
+                                    "  \"joints\": [ { \"type\": \"revolute\", \"body_b\": \"nobody\" } ] }\n");
+    write_file(dir, "bad.json", "{ \"bodies\": [ { \"name\": \"rod\", \"box\": [10, 60] } ],\n"
+                                "  \"joints\": [ { \"type\": \"weld\", \"body_a\": \"rod\", \"body_b\": \"rod\" } ] }\n");
+    write_file(dir, "typeless.json", "{ \"joints\": [ { \"anchor_a\": [0, 0] } ] }\n");
+    char path[256];
+    snprintf(path, sizeof path, "%s/ok.json", dir);
+    pp_world w = {0};
+    PP_OK_OR_FAIL(pp_world_load_scene(path, &w));
+    pp_joint js[4];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_joints(w, js, 4, &n));
+    cr_assert_eq(n, 2);
+    pp_joint_type t;
+    uint64_t user = 0;
+    PP_OK_OR_FAIL(pp_joint_get_type(w, js[0], &t));
+    PP_OK_OR_FAIL(pp_joint_get_user_data(w, js[0], &user));
+    cr_assert(t == PP_JOINT_REVOLUTE && user == 7);
+    PP_OK_OR_FAIL(pp_joint_get_type(w, js[1], &t));
+    cr_assert_eq(t, PP_JOINT_DISTANCE);
+    float lo = 0, hi = 0;
+    for (int k = 0; k < 120; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const float v = joint_value(w, js[0], NULL);
+        lo = fminf(lo, v), hi = fmaxf(hi, v);
+        cr_assert_lt(joint_value(w, js[1], NULL), 121.0f);
+    }
+    cr_assert(lo > -0.52f && hi < 0.52f, "the scene's limits hold: %g..%g", lo, hi);
+    pp_world_destroy(w);
+    snprintf(path, sizeof path, "%s/unknown.json", dir);
+    EXPECT_ERR(pp_world_load_scene(path, &w), PP_ERR_FORMAT, "joints[0].body_b: no body is named 'nobody'");
+    snprintf(path, sizeof path, "%s/bad.json", dir);
+    EXPECT_ERR(pp_world_load_scene(path, &w), PP_ERR_FORMAT, "joints[0]");
+    snprintf(path, sizeof path, "%s/typeless.json", dir);
+    EXPECT_ERR(pp_world_load_scene(path, &w), PP_ERR_FORMAT, "joints[0].type: missing");
+    remove_tree(dir);
+}
