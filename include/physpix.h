@@ -573,7 +573,7 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
  * slider along an in-plane axis, DISTANCE ODE's distance ball (rigid, a rope between min_length and
  * max_length, or a spring), WELD a fixed joint (rigid or soft), MOUSE a soft pull of a body's point toward a
  * target. A zero body is the static world. Anchors are given in world px at creation and kept as bitmap
- * points of their bodies: an edit that leaves no solid pixel within 1 px of an anchor breaks the joint, and a
+ * points of their bodies (each within 4096 px, or the bitmap's size, of its bitmap): an edit that leaves no solid pixel within 1 px of an anchor breaks the joint, and a
  * split keeps each joint on the piece holding its anchor. A joint whose reaction passes break_force after a
  * step breaks. A broken joint queues PP_EVENT_JOINT_BROKEN; a joint of a body destroyed by pp_body_destroy
  * goes with it silently (the host asked). Joined bodies solve and sleep together; collide_connected 0 (the
@@ -757,7 +757,8 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
 PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
 
 /* Snapshots. A snapshot is a folder: world.json (settings, camera, clock, pending timed edits and events, the
- * body slot tables, and per body its settings, handle, creation order, pose, ODE state and sleep timer, every
+ * body slot tables, per body its settings, handle, creation order, pose, ODE state and sleep timer, and the joints
+ * with their slot table, settings and the poses their ODE joints were attached at, every
  * double printed so that it reads back bit for bit) and each body's planes as PNG (body<slot>_mask.png,
  * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
  * flushed and renamed into place (or swapped with an older snapshot, which is then removed whole, subfolders

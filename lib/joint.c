@@ -158,27 +158,42 @@ static double joint_mass(const world *wd, const joint *jt)
     return ia + ib > 0 ? 1.0 / (ia + ib) : 0;
 }
 
-/* Attach the ODE joint to its bodies as they are now, with its limits and motor. */
-static void joint_attach(world *wd, joint *jt)
+/* Attach the ODE joint with its recorded frame, then its limits, motor and length. */
+static void attach_recorded(world *wd, joint *jt)
 {
     const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
     const pp_joint_def *d = &jt->def;
-    double value, speed;
-    joint_value(wd, jt, &value, &speed);
-    const solver_joint_frame f = {
-        a && a->sb.body ? &a->sb : NULL, b && b->sb.body ? &b->sb : NULL,
-        local_to_world(a, jt->local_a), local_to_world(b, jt->local_b),
-        a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local, value,
-    };
+    const solver_joint_frame f = {a && a->sb.body ? &a->sb : NULL, b && b->sb.body ? &b->sb : NULL, jt->frame_a,
+                                  jt->frame_b, jt->frame_axis, jt->frame_angle};
     solver_joint_attach(wd->solver, d->type, &jt->sj, &f);
-    jt->dirty = false;
-    if (d->type == PP_JOINT_PRISMATIC)
-        jt->slider_offset = value;
     if (d->type == PP_JOINT_REVOLUTE || d->type == PP_JOINT_PRISMATIC) {
         solver_joint_set_limits(wd->solver, d->type, &jt->sj, d->enable_limit, d->lower - jt->slider_offset,
                                 d->upper - jt->slider_offset);
         solver_joint_set_motor(wd->solver, d->type, &jt->sj, d->enable_motor, d->motor_speed, d->max_motor_force);
     }
+    if (d->type == PP_JOINT_DISTANCE)
+        solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
+}
+
+/* Attach the ODE joint to its bodies as they are now, recording how for snapshots. */
+static void joint_attach(world *wd, joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    double value, speed;
+    joint_value(wd, jt, &value, &speed);
+    jt->frame_a = local_to_world(a, jt->local_a), jt->frame_b = local_to_world(b, jt->local_b);
+    jt->frame_axis = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local;
+    jt->frame_angle = value;
+    jt->at_a = jt->at_b = (solver_exact_state){0};
+    if (a && a->sb.body)
+        solver_body_save(&a->sb, &jt->at_a);
+    if (b && b->sb.body)
+        solver_body_save(&b->sb, &jt->at_b);
+    jt->attach_order = wd->joints.next_attach++;
+    jt->dirty = false;
+    if (jt->def.type == PP_JOINT_PRISMATIC)
+        jt->slider_offset = value;
+    attach_recorded(wd, jt);
 }
 
 /* ---- creation ---- */
@@ -246,11 +261,32 @@ static pp_status check_bodies(world *wd, const char *fn, const pp_joint_def *d, 
     return PP_OK;
 }
 
+/* An anchor a body can hold: within its bitmap grown by JOINT_REACH px or its own size on each side, so that
+ * the solver's lever arms stay near the body's (ODE's exact solver aborts on astronomical ones). */
+#define JOINT_REACH 4096.0
+
+static bool anchor_in_reach(const body *bd, dvec2 p)
+{
+    const double w = bd->raster.width, h = bd->raster.height, m = fmax(JOINT_REACH, w + h);
+    return p.x >= -m && p.x <= w + m && p.y >= -m && p.y <= h + m;
+}
+
+pp_status joint_check_anchors(const char *fn, const body *a, dvec2 local_a, const body *b, dvec2 local_b)
+{
+    if ((a && !anchor_in_reach(a, local_a)) || (b && !anchor_in_reach(b, local_b)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: an anchor lies farther than %g px or the body's size from its "
+                       "bitmap (bitmap (%g, %g) of body_a, (%g, %g) of body_b)", fn, JOINT_REACH, local_a.x, local_a.y,
+                       local_b.x, local_b.y);
+    return PP_OK;
+}
+
 /* Whether a bitmap point has a solid pixel within 1 px (the pixel's square, not its centre). */
 static bool anchor_held(const body *bd, dvec2 p, int32_t *hx, int32_t *hy)
 {
     const pp_raster *r = &bd->raster;
     double best = 2;
+    if (!anchor_in_reach(bd, p))
+        return false;
     for (int32_t y = (int32_t)floor(p.y) - 1; y <= (int32_t)floor(p.y) + 1; y++)
         for (int32_t x = (int32_t)floor(p.x) - 1; x <= (int32_t)floor(p.x) + 1; x++) {
             if (x < 0 || y < 0 || x >= r->width || y >= r->height || !raster_solid(r, x, y))
@@ -266,7 +302,18 @@ static bool anchor_held(const body *bd, dvec2 p, int32_t *hx, int32_t *hy)
 static bool anchor_pinned(const body *bd, dvec2 p)
 {
     int32_t x, y;
-    return bd && fabs(p.x) < 1e9 && fabs(p.y) < 1e9 && anchor_held(bd, p, &x, &y);
+    return bd && anchor_held(bd, p, &x, &y);
+}
+
+pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d)
+{
+    if (!(d->type >= PP_JOINT_REVOLUTE && d->type <= PP_JOINT_MOUSE))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is not a pp_joint_type", fn, (int)d->type);
+    body *a, *b;
+    pp_status st = check_bodies(wd, fn, d, &a, &b);
+    if (st || (st = check_def_values(fn, d)))
+        return st;
+    return check_limits(fn, d->type, d->lower, d->upper);
 }
 
 PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *out)
@@ -280,16 +327,17 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
     if (def->struct_size != sizeof *def)
         return pp_fail(PP_ERR_ABI, "%s: def.struct_size is %u, this library's pp_joint_def is %u bytes (use "
                        "pp_joint_def_default)", fn, (unsigned)def->struct_size, (unsigned)sizeof *def);
-    if (!(def->type >= PP_JOINT_REVOLUTE && def->type <= PP_JOINT_MOUSE))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is not a pp_joint_type", fn, (int)def->type);
-    body *a, *b;
-    pp_status st = check_bodies(wd, fn, def, &a, &b);
-    if (st || (st = check_def_values(fn, def)) || (st = check_limits(fn, def->type, def->lower, def->upper)))
+    pp_status st = joint_check_def(wd, fn, def);
+    if (st)
         return st;
+    body *a = side_body(wd, def->body_a), *b = side_body(wd, def->body_b);
     const bool one_anchor = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_WELD || def->type == PP_JOINT_MOUSE;
     const dvec2 wa = dv(def->anchor_a.x, def->anchor_a.y), wb = one_anchor ? wa : dv(def->anchor_b.x, def->anchor_b.y);
     if (def->type == PP_JOINT_DISTANCE && def->max_length == 0 && !(dv_norm(dv_sub(wb, wa)) >= 1e-3))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a rigid distance joint's anchors coincide (use a revolute joint)", fn);
+    const dvec2 local_a = def->type == PP_JOINT_MOUSE ? wa : world_to_local(a, wa), local_b = world_to_local(b, wb);
+    if ((st = joint_check_anchors(fn, a, local_a, b, local_b)))
+        return st;
     joint *jt = pp_calloc(1, sizeof *jt);
     if (!jt)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the joint", fn);
@@ -307,12 +355,10 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
     jt->index = slot;
     jt->handle = (pp_joint){handle_make(wd->tag, slot, t->generations[slot])};
     jt->def = *def;
-    jt->local_a = def->type == PP_JOINT_MOUSE ? wa : world_to_local(a, wa);
-    jt->local_b = world_to_local(b, wb);
+    jt->local_a = local_a, jt->local_b = local_b;
     jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);
     const dvec2 axis = dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y));
     jt->axis_local = a ? dv_unrot(axis, a->cos_a, a->sin_a) : axis;
-    jt->serial = t->next_serial++;
     t->items[slot] = jt;
     t->count++;
     if (a)
@@ -325,8 +371,6 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
     jt->ref = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_PRISMATIC ? value : 0;
     jt->length = def->type == PP_JOINT_DISTANCE ? value : 0;
     joint_attach(wd, jt);
-    if (def->type == PP_JOINT_DISTANCE)
-        solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
     if (def->type == PP_JOINT_MOUSE)
         solver_joint_set_target(wd->solver, &jt->sj, wa);
     if (a && a->sb.body)
@@ -629,11 +673,8 @@ void joint_prepare(world *wd, double h)
         if (!jt)
             continue;
         const pp_joint_def *d = &jt->def;
-        if (jt->dirty) {
+        if (jt->dirty)
             joint_attach(wd, jt);
-            if (d->type == PP_JOINT_DISTANCE)
-                solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
-        }
         const double m = joint_mass(wd, jt), omega = 2 * PP_PI * d->spring_hertz;
         const double k = m * omega * omega, c = 2 * m * d->spring_damping_ratio * omega;
         if (d->type == PP_JOINT_DISTANCE || d->type == PP_JOINT_WELD || d->type == PP_JOINT_MOUSE)
@@ -668,6 +709,81 @@ pp_status joint_step_done(world *wd)
     for (int32_t i = 0; i < wd->joints.capacity; i++)
         if (wd->joints.items[i] && over_break_force(wd, wd->joints.items[i]))
             joint_break(wd, wd->joints.items[i]);
+    return PP_OK;
+}
+
+/* Put a body's ODE body where `at` has it (pose only), saving where it was into *now. */
+static void pose_body_at(const body *bd, const solver_exact_state *at, solver_exact_state *now)
+{
+    if (!bd || !bd->sb.body)
+        return;
+    solver_body_save(&bd->sb, now);
+    solver_exact_state s = *now;
+    s.px = at->px, s.py = at->py, s.rotation_angle = at->rotation_angle;
+    solver_body_restore((solver_body *)&bd->sb, &s);
+}
+
+/* Whether a saved attach is one the API could have made: anchors in reach of the poses they were attached at,
+ * unit axes. */
+static bool attach_plausible(const world *wd, const joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const double ppm = wd->def.pixels_per_meter;
+    const body *side[2] = {a, b};
+    const solver_exact_state *at[2] = {&jt->at_a, &jt->at_b};
+    const dvec2 anchor[2] = {jt->frame_a, jt->frame_b};
+    for (int k = 0; k < 2; k++)
+        if (side[k] && side[k]->sb.body &&
+            !(dv_norm(dv_sub(anchor[k], dv(at[k]->px * ppm, at[k]->py * ppm))) <=
+              2 * (JOINT_REACH + side[k]->raster.width + side[k]->raster.height)))
+            return false;
+    return jt->def.type != PP_JOINT_PRISMATIC ||
+           (fabs(dv_norm(jt->frame_axis) - 1) < 1e-6 && fabs(dv_norm(jt->axis_local) - 1) < 1e-6);
+}
+
+pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
+{
+    joint_table *t = &wd->joints;
+    body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    if (!attach_plausible(wd, jt))
+        return pp_fail(PP_ERR_FORMAT, "pp_world_load_snapshot: joint %#llx was attached far from its bodies or along "
+                       "no axis", (unsigned long long)jt->handle.id);
+    pp_status st = solver_joint_create(wd->solver, jt->def.type, &jt->sj);
+    if (st)
+        return st;
+    solver_exact_state now_a, now_b;
+    pose_body_at(a, &jt->at_a, &now_a);
+    pose_body_at(b, &jt->at_b, &now_b);
+    attach_recorded(wd, jt);
+    if (a && a->sb.body)
+        solver_body_restore(&a->sb, &now_a);
+    if (b && b->sb.body)
+        solver_body_restore(&b->sb, &now_b);
+    solver_joint_set_feedback(&jt->sj, feedback);
+    t->items[jt->index] = jt;
+    t->count++;
+    if (a)
+        a->joint_count++;
+    if (b)
+        b->joint_count++;
+    return PP_OK;
+}
+
+pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t capacity, const uint32_t *free_slots,
+                              int32_t free_count)
+{
+    joint_table *t = &wd->joints;
+    PP_ASSERT(t->capacity == 0 && free_count <= capacity);
+    t->items = pp_calloc((size_t)capacity + 1, sizeof *t->items);
+    t->generations = pp_malloc(((size_t)capacity + 1) * sizeof *t->generations);
+    t->free_slots = pp_malloc(((size_t)capacity + 1) * sizeof *t->free_slots);
+    if (!t->items || !t->generations || !t->free_slots)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_load_snapshot: no memory for %d joint slots", (int)capacity);
+    if (capacity > 0) {
+        memcpy(t->generations, generations, (size_t)capacity * sizeof *generations);
+        memcpy(t->free_slots, free_slots, (size_t)free_count * sizeof *free_slots);
+    }
+    t->capacity = capacity, t->free_count = free_count;
     return PP_OK;
 }
 

@@ -399,6 +399,20 @@ void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 t
     dJointSetBallAnchor2(sj->joint, t.x * s->inv_ppm, t.y * s->inv_ppm, 0);
 }
 
+void solver_joint_feedback(const solver_joint *sj, double out[6])
+{
+    const dJointFeedback *fb = sj->feedback;
+    for (int k = 0; k < 3; k++)
+        out[k] = fb->f1[k], out[3 + k] = fb->t1[k];
+}
+
+void solver_joint_set_feedback(const solver_joint *sj, const double in[6])
+{
+    dJointFeedback *fb = sj->feedback;
+    for (int k = 0; k < 3; k++)
+        fb->f1[k] = in[k], fb->t1[k] = in[3 + k];
+}
+
 void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque)
 {
     const dJointFeedback *fb = sj->feedback;

@@ -107,6 +107,10 @@ void solver_joint_set_spring(const pp_solver *s, pp_joint_type type, const solve
 void solver_joint_set_length(const pp_solver *s, const solver_joint *sj, bool held, double length);
 /* MOUSE: the world point, px, the body's anchor is pulled to. */
 void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 target);
+/* ODE's own record of the last substep's force and torque on its first body (N, N·m: x, y, z each), for
+ * snapshots. */
+void solver_joint_feedback(const solver_joint *sj, double out[6]);
+void solver_joint_set_feedback(const solver_joint *sj, const double in[6]);
 /* The force (mass·px/s²) and torque (mass·px²/s²) the last substep applied to body_b. */
 void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque);
 

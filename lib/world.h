@@ -97,7 +97,7 @@ typedef struct joint_table {
     uint32_t *generations;   /* by slot */
     uint32_t *free_slots;
     int32_t capacity, free_count, count;
-    uint64_t next_serial;    /* the next ODE joint's creation order (snapshots recreate them in it) */
+    uint64_t next_attach;    /* the next attach's order: ODE lists a body's joints newest attached first */
 } joint_table;
 
 /* How a body's island is solved this substep (island.c). */
