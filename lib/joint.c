@@ -420,14 +420,28 @@ PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity
     return PP_OK;
 }
 
+/* A getter's joint with its out-pointer checked (`what` says which, e.g. "out is"); NULL and the status in *st
+ * on failure. */
+static joint *joint_for_out(pp_world w, pp_joint j, const char *fn, const void *out, const char *what, world **wd,
+                            pp_status *st)
+{
+    joint *jt = joint_lookup(w, j, fn, wd);
+    *st = jt ? PP_OK : PP_ERR_INVALID_HANDLE;
+    if (jt && !out) {
+        *st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s NULL", fn, what);
+        return NULL;
+    }
+    return jt;
+}
+
 PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, float *torque)
 {
     world *wd;
-    joint *jt = joint_lookup(w, j, "pp_joint_get_reaction", &wd);
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_reaction", force ? (void *)force : (void *)torque,
+                              "force and torque are both", &wd, &st);
     if (!jt)
-        return PP_ERR_INVALID_HANDLE;
-    if (!force && !torque)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_joint_get_reaction: force and torque are both NULL");
+        return st;
     dvec2 f;
     double t;
     solver_joint_reaction(wd->solver, &jt->sj, &f, &t);
@@ -441,11 +455,10 @@ PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, f
 PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float *speed)
 {
     world *wd;
-    joint *jt = joint_lookup(w, j, "pp_joint_get_value", &wd);
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_value", value ? value : speed, "value and speed are both", &wd, &st);
     if (!jt)
-        return PP_ERR_INVALID_HANDLE;
-    if (!value && !speed)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_joint_get_value: value and speed are both NULL");
+        return st;
     double v, s;
     joint_value(wd, jt, &v, &s);
     if (value)
@@ -517,37 +530,32 @@ PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target)
 PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out)
 {
     world *wd;
-    joint *jt = joint_lookup(w, j, "pp_joint_get_type", &wd);
-    if (!jt)
-        return PP_ERR_INVALID_HANDLE;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_joint_get_type: out is NULL");
-    *out = jt->def.type;
-    return PP_OK;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_type", out, "out is", &wd, &st);
+    if (jt)
+        *out = jt->def.type;
+    return st;
 }
 
 PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp_body *body_b)
 {
     world *wd;
-    joint *jt = joint_lookup(w, j, "pp_joint_get_bodies", &wd);
-    if (!jt)
-        return PP_ERR_INVALID_HANDLE;
-    if (!body_a || !body_b)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_joint_get_bodies: %s is NULL", body_a ? "body_b" : "body_a");
-    *body_a = jt->def.body_a, *body_b = jt->def.body_b;
-    return PP_OK;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_bodies", body_a && body_b ? body_a : NULL, "body_a or body_b is",
+                              &wd, &st);
+    if (jt)
+        *body_a = jt->def.body_a, *body_b = jt->def.body_b;
+    return st;
 }
 
 PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out)
 {
     world *wd;
-    joint *jt = joint_lookup(w, j, "pp_joint_get_user_data", &wd);
-    if (!jt)
-        return PP_ERR_INVALID_HANDLE;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_joint_get_user_data: out is NULL");
-    *out = jt->def.user_data;
-    return PP_OK;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_user_data", out, "out is", &wd, &st);
+    if (jt)
+        *out = jt->def.user_data;
+    return st;
 }
 
 /* ---- the step, edits, removal ---- */

@@ -138,17 +138,10 @@ static pp_status read_joint_body(const json_ctx *c, const cJSON *obj, const char
 static pp_status parse_joint(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
 {
     static const char *const extra[] = {"type", "body_a", "body_b", NULL};
-    if (!cJSON_IsObject(obj))
-        return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
-    int32_t type = 0;
-    pp_status st = check_keys(c, obj, where, joint_fields, extra);
-    if (st || (st = read_enum(c, obj, where, "type", joint_type_names, &type)))
-        return st;
-    if (!type)
-        return json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
-    pp_joint_def d = pp_joint_def_default((pp_joint_type)type);
+    pp_joint_def d;
     pp_joint j;
-    if ((st = read_fields(c, obj, where, joint_fields, &d)) ||
+    pp_status st;
+    if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
         (st = read_joint_body(c, obj, where, "body_a", bn, &d.body_a)) ||
         (st = read_joint_body(c, obj, where, "body_b", bn, &d.body_b)))
         return st;
@@ -157,29 +150,25 @@ static pp_status parse_joint(const json_ctx *c, const cJSON *obj, const char *wh
     return PP_OK;
 }
 
-static pp_status parse_joints(const json_ctx *c, const cJSON *arr, pp_world w, const body_names *bn)
+/* One timed edit, scheduled in w. */
+static pp_status add_edit(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
 {
-    int32_t i = 0;
-    for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
-        char where[32];
-        snprintf(where, sizeof where, "joints[%d]", (int)i);
-        pp_status st = parse_joint(c, it, where, w, bn);
-        if (st)
-            return st;
-    }
-    return PP_OK;
+    pp_timed_edit e;
+    pp_status st = parse_edit(c, obj, where, bn, &e);
+    if (st == PP_OK && (st = pp_world_schedule_edit(w, &e)))
+        st = json_fail_from_last(c, st, where, NULL);
+    return st;
 }
 
-static pp_status parse_edits(const json_ctx *c, const cJSON *arr, pp_world w, const body_names *bn)
+/* Each item of the array section `key` by `one`, named "<key>[i]" in messages. */
+static pp_status parse_each(const json_ctx *c, const cJSON *arr, const char *key, pp_world w, const body_names *bn,
+                            pp_status (*one)(const json_ctx *, const cJSON *, const char *, pp_world, const body_names *))
 {
     int32_t i = 0;
     for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
         char where[32];
-        snprintf(where, sizeof where, "edits[%d]", (int)i);
-        pp_timed_edit e;
-        pp_status st = parse_edit(c, it, where, bn, &e);
-        if (st == PP_OK && (st = pp_world_schedule_edit(w, &e)))
-            st = json_fail_from_last(c, st, where, NULL);
+        snprintf(where, sizeof where, "%s[%d]", key, (int)i);
+        pp_status st = one(c, it, where, w, bn);
         if (st)
             return st;
     }
@@ -212,8 +201,8 @@ static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out
         (st = pp_world_set_camera(w, &cam)))
         st = json_fail_from_last(c, st, "camera", NULL);
     if (st == PP_OK && (st = parse_bodies(c, bodies, w, &bn)) == PP_OK &&
-        (st = parse_joints(c, joints, w, &bn)) == PP_OK)
-        st = parse_edits(c, edits, w, &bn);
+        (st = parse_each(c, joints, "joints", w, &bn, parse_joint)) == PP_OK)
+        st = parse_each(c, edits, "edits", w, &bn, add_edit);
     pp_free(bn.names);
     pp_free(bn.bodies);
     pp_free(bn.table);

@@ -722,3 +722,18 @@ void json_done(json_ctx *c, cJSON *root)
         close(c->dir_fd);
     c->dir_fd = -1;
 }
+
+pp_status parse_joint_def(const json_ctx *c, const cJSON *obj, const char *where, const char *const *extra,
+                          pp_joint_def *d)
+{
+    if (!cJSON_IsObject(obj))
+        return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
+    int32_t type = 0;
+    pp_status st = check_keys(c, obj, where, joint_fields, extra);
+    if (st || (st = read_enum(c, obj, where, "type", joint_type_names, &type)))
+        return st;
+    if (!type)
+        return json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
+    *d = pp_joint_def_default((pp_joint_type)type);
+    return read_fields(c, obj, where, joint_fields, d);
+}

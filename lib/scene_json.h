@@ -78,6 +78,10 @@ cJSON *camera_to_json(const pp_camera *cam);
 /* A body's settings over *d (the caller checks keys); "pivot" sets custom_pivot. */
 pp_status parse_body_settings(const json_ctx *c, const cJSON *obj, const char *where, pp_body_def *d);
 cJSON *body_settings_to_json(const pp_body_def *d);
+/* A joint's "type" (required) and settings over its type's defaults; keys outside joint_fields must be in extra
+ * (NULL-terminated, "type" among them); the caller reads its bodies. */
+pp_status parse_joint_def(const json_ctx *c, const cJSON *obj, const char *where, const char *const *extra,
+                          pp_joint_def *d);
 /* A timed edit's fields, without a weight when it erases; the caller adds its body. */
 cJSON *edit_to_json(const pp_timed_edit *e);
 

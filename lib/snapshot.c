@@ -830,19 +830,12 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
 static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *where, world *wd, uint64_t order)
 {
     static const char *const extra[] = {"type", "handle", "body_a", "body_b", "state", "dirty", NULL};
-    if (!cJSON_IsObject(obj))
-        return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
-    int32_t type = 0;
     uint64_t id = 0;
     uint32_t dirty = 0;
     double v[JOINT_STATE_DOUBLES];
-    pp_status st = check_keys(c, obj, where, joint_fields, extra);
-    if (st || (st = read_enum(c, obj, where, "type", joint_type_names, &type)))
-        return st;
-    if (!type)
-        return json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
-    pp_joint_def d = pp_joint_def_default((pp_joint_type)type);
-    if ((st = read_fields(c, obj, where, joint_fields, &d)) ||
+    pp_joint_def d;
+    pp_status st;
+    if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
         (st = read_body_handle(c, obj, where, "handle", false, wd, &id)) ||
         (st = read_body_handle(c, obj, where, "body_a", true, wd, &d.body_a.id)) ||
         (st = read_body_handle(c, obj, where, "body_b", true, wd, &d.body_b.id)) ||

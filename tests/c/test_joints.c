@@ -266,13 +266,29 @@ Test(joints, weld_sags_little)
     pp_world_destroy(w);
 }
 
+/* A 20 px box at (100, 100) and a def of `type` holding it as body_b at (100, anchor_y). */
+static pp_joint_def def_on_box(pp_world w, pp_joint_type type, float anchor_y, pp_body *box)
+{
+    *box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(type);
+    jd.body_b = *box;
+    jd.anchor_a = v2(100, anchor_y);
+    return jd;
+}
+
+static float mass_of(pp_world w, pp_body b)
+{
+    float m, I;
+    pp_vec2 c;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b, &m, &c, &I));
+    return m;
+}
+
 Test(joints, mouse_pulls_to_its_target)
 {
     pp_world w = make_world(0, G);
-    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
-    pp_joint_def jd = pp_joint_def_default(PP_JOINT_MOUSE);
-    jd.body_b = box;
-    jd.anchor_a = v2(100, 100);
+    pp_body box;
+    pp_joint_def jd = def_on_box(w, PP_JOINT_MOUSE, 100, &box);
     pp_joint j = make_joint(w, &jd);
     PP_OK_OR_FAIL(pp_joint_set_target(w, j, v2(200, 50)));
     step_n(w, DT, 120);
@@ -287,13 +303,9 @@ Test(joints, mouse_pulls_to_its_target)
 Test(joints, mouse_force_is_capped)
 {
     pp_world w = make_world(0, 0);
-    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
-    float m, I;
-    pp_vec2 c;
-    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
-    pp_joint_def jd = pp_joint_def_default(PP_JOINT_MOUSE);
-    jd.body_b = box;
-    jd.anchor_a = v2(100, 100);
+    pp_body box;
+    pp_joint_def jd = def_on_box(w, PP_JOINT_MOUSE, 100, &box);
+    const float m = mass_of(w, box);
     jd.spring_damping_ratio = 0;
     jd.max_force = 100 * m; /* at most 100 px/s² */
     pp_joint j = make_joint(w, &jd);
@@ -313,15 +325,13 @@ Test(joints, mouse_force_is_capped)
 Test(joints, reaction_of_a_hanging_box_is_its_weight)
 {
     pp_world w = make_world(0, G);
-    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
-    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
-    jd.body_b = box;
-    jd.anchor_a = v2(100, 92);
+    pp_body box;
+    pp_joint_def jd = def_on_box(w, PP_JOINT_REVOLUTE, 92, &box);
     pp_joint j = make_joint(w, &jd);
     step_n(w, DT, 60);
-    float m, I, t;
-    pp_vec2 c, f;
-    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
+    const float m = mass_of(w, box);
+    float t;
+    pp_vec2 f;
     PP_OK_OR_FAIL(pp_joint_get_reaction(w, j, &f, &t));
     cr_log_info("reaction of a hanging box: (%.3f, %.3f), weight m·g = %.3f (%+.3f %%)", f.x, f.y, m * G,
                 100 * (-f.y / (m * G) - 1));
@@ -357,13 +367,9 @@ static int32_t joint_count(pp_world w)
 Test(joints, a_joint_breaks_under_its_break_force)
 {
     pp_world w = make_world(0, G);
-    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 20);
-    float m, I;
-    pp_vec2 c;
-    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &m, &c, &I));
-    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
-    jd.body_b = box;
-    jd.anchor_a = v2(100, 92);
+    pp_body box;
+    pp_joint_def jd = def_on_box(w, PP_JOINT_REVOLUTE, 92, &box);
+    const float m = mass_of(w, box);
     jd.break_force = 2 * m * G; /* holds the box's weight */
     pp_joint j = make_joint(w, &jd);
     step_n(w, DT, 30);

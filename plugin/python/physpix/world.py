@@ -596,19 +596,20 @@ class World:
         return cells, normals, view
 
 
-class Body:
-    """A body of a World: a value handle; equal when world and body ids are."""
+class _InWorld:
+    """A value handle of something in a World (a body, a joint); equal when world and ids are."""
 
     __slots__ = ("_world", "_handle")
     _world: World
-    _handle: N.pp_body
+    _handle: Any
+    _ctype: Type[ctypes.Structure]  # the C handle struct, set by each kind
 
-    def __init__(self, world: World, body_id: int) -> None:
+    def __init__(self, world: World, handle_id: int) -> None:
         self._world = world
-        self._handle = N.pp_body(_c_int(body_id, c_uint64, "body_id"))
+        self._handle = self._ctype(_c_int(handle_id, c_uint64, f"{type(self).__name__.lower()}_id"))
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, Body) and self._key() == other._key()
+        return isinstance(other, type(self)) and self._key() == other._key()
 
     def __hash__(self) -> int:
         return hash(self._key())
@@ -617,20 +618,27 @@ class Body:
         return self._world._handle.id, self._handle.id
 
     def __repr__(self) -> str:
-        return f"<physpix.Body id={self._handle.id:#x}>"
+        return f"<physpix.{type(self).__name__} id={self._handle.id:#x}>"
 
     def _call(self, fn: Callable[..., Any], *args: Any) -> Any:
         return fn(self._world._handle, self._handle, *args)
 
     @property
     def world(self) -> World:
-        """The World the body lives in."""
+        """The World it lives in."""
         return self._world
 
     @property
     def id(self) -> int:
-        """The opaque pp_body handle value."""
+        """The opaque handle value (pp_body's, pp_joint's)."""
         return self._handle.id
+
+
+class Body(_InWorld):
+    """A body of a World: a value handle; equal when world and body ids are."""
+
+    __slots__ = ()
+    _ctype = N.pp_body
 
     def destroy(self) -> None:
         """Destroy the body; its handle becomes stale."""
@@ -864,41 +872,11 @@ class Body:
         return out
 
 
-class Joint:
+class Joint(_InWorld):
     """A joint of a World: a value handle; equal when world and joint ids are."""
 
-    __slots__ = ("_world", "_handle")
-    _world: World
-    _handle: N.pp_joint
-
-    def __init__(self, world: World, joint_id: int) -> None:
-        self._world = world
-        self._handle = N.pp_joint(_c_int(joint_id, c_uint64, "joint_id"))
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, Joint) and self._key() == other._key()
-
-    def __hash__(self) -> int:
-        return hash(self._key())
-
-    def _key(self) -> Tuple[int, int]:
-        return self._world._handle.id, self._handle.id
-
-    def __repr__(self) -> str:
-        return f"<physpix.Joint id={self._handle.id:#x}>"
-
-    def _call(self, fn: Callable[..., Any], *args: Any) -> Any:
-        return fn(self._world._handle, self._handle, *args)
-
-    @property
-    def world(self) -> World:
-        """The World the joint lives in."""
-        return self._world
-
-    @property
-    def id(self) -> int:
-        """The opaque pp_joint handle value."""
-        return self._handle.id
+    __slots__ = ()
+    _ctype = N.pp_joint
 
     def destroy(self) -> None:
         """Destroy the joint; its handle becomes stale."""
