@@ -608,7 +608,8 @@ typedef struct pp_joint_def {
     float max_motor_force;       ///< ≥ 0: mass·px/s² (PRISMATIC) or a torque in mass·px²/s² (REVOLUTE)
     float min_length;            ///< DISTANCE: shortest anchor distance, px, ≥ 0; min 0 and max 0 keep it rigid
     float max_length;            ///< DISTANCE: longest anchor distance, px, ≥ min_length (a rope has min 0)
-    float spring_hertz;          ///< DISTANCE, WELD, MOUSE: spring frequency, Hz, ≥ 0; 0 is rigid (MOUSE default 5)
+    float spring_hertz;          ///< DISTANCE, WELD (its translation; it turns rigidly), MOUSE: spring frequency, Hz, ≥ 0;
+                                 ///< 0 is rigid (MOUSE default 5)
     float spring_damping_ratio;  ///< DISTANCE, WELD, MOUSE: damping ratio, ≥ 0, 1 critical (MOUSE default 0.7)
     float max_force;             ///< MOUSE: largest pull of the spring (its damping acts on top), mass·px/s², ≥ 0; 0: no cap
     float break_force;           ///< the reaction force that breaks the joint after a step, mass·px/s², ≥ 0; 0 never

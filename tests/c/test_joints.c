@@ -263,6 +263,16 @@ Test(joints, weld_sags_little)
     cr_log_info("weld: a 100 px cantilever sags %.4f px at its centre, %.5f rad", p.y - 100, a);
     cr_assert_lt(fabsf(p.y - 100), 0.5f);
     cr_assert_lt(fabsf(a), 0.01f);
+    /* A second plank welded to the first's free end: a weld between two moving bodies. */
+    pp_body tip = add_rect(w, body_def(PP_BODY_DYNAMIC, 250, 100, 0), 100, 10);
+    jd.body_a = plank, jd.body_b = tip, jd.anchor_a = v2(200, 100);
+    make_joint(w, &jd);
+    step_n(w, DT, 120);
+    const float sag = body_pos(w, tip).y - 100;
+    cr_log_info("weld: the second plank of a 200 px two-weld cantilever sags %.4f px at its centre, %.5f rad", sag,
+                body_angle(w, tip));
+    cr_assert_lt(fabsf(sag), 1.0f);
+    cr_assert_lt(fabsf(body_angle(w, tip)), 0.01f);
     pp_world_destroy(w);
 }
 
@@ -749,4 +759,24 @@ Test(joints, a_scene_names_its_joints_bodies)
     snprintf(path, sizeof path, "%s/typeless.json", dir);
     EXPECT_ERR(pp_world_load_scene(path, &w), PP_ERR_FORMAT, "joints[0].type: missing");
     remove_tree(dir);
+}
+
+Test(joints, a_soft_weld_deflects_by_weight_over_stiffness)
+{
+    pp_world w = make_world(0, G);
+    pp_body plank = add_rect(w, body_def(PP_BODY_DYNAMIC, 150, 100, 0), 100, 10);
+    pp_body tip = add_rect(w, body_def(PP_BODY_DYNAMIC, 250, 100, 0), 100, 10);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_WELD);
+    jd.body_b = plank, jd.anchor_a = v2(105, 100);
+    make_joint(w, &jd);
+    jd.body_a = plank, jd.body_b = tip, jd.anchor_a = v2(200, 100);
+    jd.spring_hertz = 2, jd.spring_damping_ratio = 1;
+    make_joint(w, &jd);
+    step_n(w, DT, 120);
+    /* k = m_reduced·(2π·2 Hz)²; the weld carries the tip's weight (its rotation stays rigid in ODE's fixed joint). */
+    const double ma = mass_of(w, plank), mb = mass_of(w, tip), k = ma * mb / (ma + mb) * pow(4 * M_PI, 2);
+    const double sag = body_pos(w, tip).y - 100, analytic = mb * G / k;
+    cr_log_info("soft weld 2 Hz: the tip sags %.4f px, m·g/k = %.4f px", sag, analytic);
+    cr_assert(fabs(sag / analytic - 1) < 0.02, "sag %g px, m·g/k %g px", sag, analytic);
+    pp_world_destroy(w);
 }
