@@ -40,7 +40,7 @@ extern "C" {
 /// Library major version (the soname carries it).
 #define PHYSPIX_VERSION_MAJOR 0
 /// Library minor version.
-#define PHYSPIX_VERSION_MINOR 2
+#define PHYSPIX_VERSION_MINOR 3
 /// Library patch version.
 #define PHYSPIX_VERSION_PATCH 0
 
