@@ -528,6 +528,13 @@ PP_API pp_status pp_body_set_friction(pp_world w, pp_body b, float friction);
 PP_API pp_status pp_body_set_restitution(pp_world w, pp_body b, float restitution);
 /// Set the body's velocity decay, 1/s (≥ 0), linear and angular, as pp_body_def's damping fields.
 PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float angular);
+/// Make the body static, dynamic or kinematic: the pose stays, a moving body keeps its velocity (a static one
+/// starts at rest), mass and inertia come from its pixels; one that stops being dynamic drops its forces and
+/// gravity scale. Refused for massless pixels made dynamic, or a static body left on a joint holding nothing
+/// that moves. Wakes it and what it touches.
+PP_API pp_status pp_body_set_type(pp_world w, pp_body b, pp_body_type type);
+/// Hold the body's rotation (nonzero: angular velocity 0 from now, as pp_body_def's fixed_rotation) or free it.
+PP_API pp_status pp_body_set_fixed_rotation(pp_world w, pp_body b, uint32_t fixed);
 /// Set the mass per solid pixel (> 0, pp_body_def's density): mass and inertia follow, the velocity stays.
 PP_API pp_status pp_body_set_density(pp_world w, pp_body b, float density);
 /// Set the categories the body is in and those it collides with (pp_body_def's category_bits, mask_bits).
@@ -552,6 +559,8 @@ PP_API pp_status pp_body_get_restitution(pp_world w, pp_body b, float *out);
 PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out);
 /// The body's gravity scale (1 unless set).
 PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out);
+/// Whether the body's rotation is held (1) or free (0).
+PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out);
 /// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
 PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
 

@@ -305,6 +305,34 @@ void body_unmake(world *wd, body *bd)
     wd->next_serial--;
 }
 
+void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotation)
+{
+    solver_body_state s = {0};
+    if (bd->sb.body) {
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        solver_body_destroy(wd->solver, &bd->sb);
+    }
+    bd->type = type;
+    bd->fixed_rotation = fixed_rotation;
+    bd->mass = type == PP_BODY_STATIC ? (pp_mass){0}
+                                      : mass_from_sums(&bd->sums, bd->raster.width, bd->raster.height, bd->density);
+    if (type != PP_BODY_DYNAMIC) {
+        forces_forget(wd, bd);
+        bd->force = dv(0, 0), bd->torque = 0, bd->gravity_scale = 1;
+    }
+    if (type != PP_BODY_STATIC) {
+        const solver_body_desc desc = {
+            type, bd->mass.mass, bd->mass.inertia, body_com_world(bd), bd->angle, s.velocity,
+            fixed_rotation ? 0.0 : s.angular_velocity, fixed_rotation, bd,
+        };
+        (void)solver_body_create(wd->solver, &desc, &bd->sb); /* ODE's creation cannot fail */
+    }
+    bd->slow_time = 0;
+    bd->serial = wd->next_serial++; /* ODE's newest body: a snapshot remakes it last too */
+    joint_body_changed(wd, bd);
+    awake_add(wd, bd); /* the broadphase hears of the new type */
+}
+
 void body_remove(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;

@@ -585,6 +585,19 @@ void joint_body_changed(world *wd, const body *bd)
     }
 }
 
+bool joint_needs_mover(const world *wd, const body *bd)
+{
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        if (!jt || !joint_has(jt, bd))
+            continue;
+        const body *other = jt->def.body_a.id == bd->handle.id ? joint_body_b(wd, jt) : joint_body_a(wd, jt);
+        if (jt->def.type == PP_JOINT_MOUSE || !other || !other->sb.body)
+            return true;
+    }
+    return false;
+}
+
 bool joint_keeps_apart(const world *wd, const body *a, const body *b)
 {
     if (a->joint_count == 0 || b->joint_count == 0)

@@ -42,6 +42,9 @@ void joint_body_removed(world *wd, body *bd);
 /* A body's ODE body was moved to a new centre of mass, remade or given a new mass: its joints attach
  * again before the next solver step. */
 void joint_body_changed(world *wd, const body *bd);
+/* Whether one of bd's joints would hold nothing that moves were bd static: its other side is the world or a
+ * static body, or it is a mouse joint pulling bd. */
+bool joint_needs_mover(const world *wd, const body *bd);
 /* Whether a joint without collide_connected joins the two bodies. */
 bool joint_keeps_apart(const world *wd, const body *a, const body *b);
 /* After an edit of bd's pixels, before its split `p` (NULL: none) is committed: a joint whose pinned anchor

@@ -3,6 +3,9 @@
 #include "awake.h"
 #include "check.h"
 #include "edit.h"
+#include "forces.h"
+#include "joint.h"
+#include "massprops.h"
 #include "status.h"
 #include "world.h"
 
@@ -57,6 +60,45 @@ PP_API pp_status pp_body_set_damping(pp_world w, pp_body b, float linear, float 
     if ((st = body_check_surface("pp_body_set_damping", bd->friction, bd->restitution, linear, angular)))
         return st;
     bd->linear_damping = linear, bd->angular_damping = angular;
+    wake_touching(wd, bd);
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_set_type(pp_world w, pp_body b, pp_body_type type)
+{
+    static const char *fn = "pp_body_set_type";
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
+    if (st)
+        return st;
+    if (type != PP_BODY_STATIC && type != PP_BODY_DYNAMIC && type != PP_BODY_KINEMATIC)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is none of static, dynamic, kinematic", fn, (int)type);
+    if (type == bd->type)
+        return PP_OK;
+    if (type == PP_BODY_DYNAMIC && !(mass_from_sums(&bd->sums, bd->raster.width, bd->raster.height, bd->density).mass > 0))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the body's pixels weigh nothing, so it cannot be dynamic", fn);
+    if (type == PP_BODY_STATIC && joint_needs_mover(wd, bd))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "%s: a joint of the body would hold nothing that moves; destroy it first", fn);
+    wake_touching(wd, bd); /* before: a static body is no mover to wake */
+    body_remake_solver(wd, bd, type, bd->fixed_rotation);
+    return PP_OK;
+}
+
+PP_API pp_status pp_body_set_fixed_rotation(pp_world w, pp_body b, uint32_t fixed)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_set_fixed_rotation", &wd, &bd);
+    if (st)
+        return st;
+    if ((fixed != 0) == bd->fixed_rotation)
+        return PP_OK;
+    if (bd->sb.body)
+        body_remake_solver(wd, bd, bd->type, fixed != 0);
+    else
+        bd->fixed_rotation = fixed != 0; /* a static body turns only when set_transform says so */
     wake_touching(wd, bd);
     return PP_OK;
 }
@@ -195,4 +237,17 @@ PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out)
 PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out)
 {
     return get_float(w, b, "pp_body_get_gravity_scale", out, gravity_scale_of);
+}
+
+PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out)
+{
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, "pp_body_get_fixed_rotation", &wd, &bd);
+    if (st)
+        return st;
+    if (!out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_fixed_rotation: out is NULL");
+    *out = bd->fixed_rotation;
+    return PP_OK;
 }

@@ -202,6 +202,10 @@ pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, b
 
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
+/* Give bd the ODE body its new type and fixed rotation ask for (none when static), keeping its pose and, where
+ * it still moves, its velocity; forces and gravity scale go with a body that stops being dynamic. The caller
+ * checked the change (a dynamic body has mass; no joint is left holding nothing that moves). */
+void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotation);
 
 /* Undo the latest pp_body_create exactly, for a call that fails after making bodies: the slot, its
  * generation and the creation serial come back as they were. Newest first when undoing several. */

@@ -490,3 +490,140 @@ Test(props, getters_read_back_the_defaults_and_what_was_set)
     EXPECT_ERR(pp_body_get_friction(w, box, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
     pp_world_destroy(w);
 }
+
+Test(props, a_static_box_made_dynamic_falls_from_where_it_was_and_made_static_again_stops_dead)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body box = add_rect(w, body_def(PP_BODY_STATIC, 400, 200, 0.3f), 16, 16);
+    step_n(w, DT, 10);
+    PP_OK_OR_FAIL(pp_body_set_type(w, box, PP_BODY_DYNAMIC));
+    pp_body_type t = PP_BODY_STATIC;
+    PP_OK_OR_FAIL(pp_body_get_type(w, box, &t));
+    cr_assert_eq(t, PP_BODY_DYNAMIC);
+    cr_assert_eq(awake(w, box), 1);
+    float mass = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, box, &mass, NULL, NULL));
+    cr_assert_float_eq(mass, 256.0f, 1e-3f, "mass %g from 256 solid pixels of density 1", mass);
+    const pp_vec2 p0 = body_pos(w, box);
+    cr_assert(p0.x == 400.0f && p0.y == 200.0f && body_angle(w, box) == 0.3f, "the pose stays");
+    step_n(w, DT, 20);
+    cr_assert_float_eq(body_pos(w, box).y - p0.y, fall(980, 20), 1e-2, "fell %g px", body_pos(w, box).y - p0.y);
+    PP_OK_OR_FAIL(pp_body_set_type(w, box, PP_BODY_STATIC));
+    const pp_vec2 p1 = body_pos(w, box);
+    step_n(w, DT, 20);
+    const pp_vec2 p2 = body_pos(w, box);
+    cr_assert(p1.x == p2.x && p1.y == p2.y, "a static body stays: (%g, %g) then (%g, %g)", p1.x, p1.y, p2.x, p2.y);
+    cr_assert_eq(awake(w, box), 0);
+    pp_world_destroy(w);
+}
+
+Test(props, a_kinematic_body_keeps_the_velocity_it_had_as_dynamic_and_ignores_gravity)
+{
+    pp_world w = make_world(0, 980);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 200, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, box, v2(60, -30), 1.5f));
+    PP_OK_OR_FAIL(pp_body_set_type(w, box, PP_BODY_KINEMATIC));
+    const pp_vec2 p0 = body_pos(w, box);
+    step_n(w, DT, 60);
+    const pp_vec2 v = body_vel(w, box), p = body_pos(w, box);
+    cr_assert(v.x == 60.0f && v.y == -30.0f, "velocity (%g, %g)", v.x, v.y);
+    cr_assert_float_eq(p.x - p0.x, 60.0, 1e-3);
+    cr_assert_float_eq(p.y - p0.y, -30.0, 1e-3);
+    cr_assert_float_eq(body_angle(w, box), 1.5, 1e-4);
+    PP_OK_OR_FAIL(pp_body_set_type(w, box, PP_BODY_DYNAMIC)); /* and back: gravity takes it again */
+    step_n(w, DT, 30);
+    cr_assert_float_eq(body_vel(w, box).y, -30.0 + 980.0 * 30 * DT, 1e-2, "vy %g", body_vel(w, box).y);
+    pp_world_destroy(w);
+}
+
+Test(props, a_platform_made_dynamic_drops_the_sleeping_box_on_it)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body shelf = add_rect(w, body_def(PP_BODY_STATIC, 400, 300, 0), 64, 8);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300 - 4 - 8, 0), 16, 16);
+    step_n(w, DT, 120);
+    cr_assert_eq(awake(w, box), 0, "the box sleeps on the shelf");
+    const float y0 = body_pos(w, box).y;
+    PP_OK_OR_FAIL(pp_body_set_type(w, shelf, PP_BODY_DYNAMIC));
+    cr_assert_eq(awake(w, box), 1, "what the shelf touches wakes");
+    step_n(w, DT, 120);
+    /* On the shelf (8 px) on the ground: its centre 8 + 8 px above the ground's top, give or take the slop. */
+    cr_assert_float_eq(body_pos(w, box).y, GROUND_TOP - 16, 2.0f, "the box fell with the shelf to the ground: y %g (from %g)",
+                       body_pos(w, box).y, y0);
+    pp_world_destroy(w);
+}
+
+Test(props, fixed_rotation_set_holds_a_spinning_box_and_released_lets_a_torque_turn_it)
+{
+    pp_world w = make_world(0, 0);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, box, v2(10, 0), 2));
+    step_n(w, DT, 10);
+    PP_OK_OR_FAIL(pp_body_set_fixed_rotation(w, box, 1));
+    uint32_t fixed = 0;
+    PP_OK_OR_FAIL(pp_body_get_fixed_rotation(w, box, &fixed));
+    cr_assert_eq(fixed, 1);
+    const float a0 = body_angle(w, box);
+    PP_OK_OR_FAIL(pp_body_apply_torque(w, box, 1e6f));
+    step_n(w, DT, 30);
+    cr_assert_eq(body_angle(w, box), a0, "held: %g then %g", a0, body_angle(w, box));
+    cr_assert_float_eq(body_vel(w, box).x, 10, 1e-4, "the linear velocity stays");
+    PP_OK_OR_FAIL(pp_body_set_fixed_rotation(w, box, 0));
+    float inertia = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, box, NULL, NULL, &inertia));
+    PP_OK_OR_FAIL(pp_body_apply_torque(w, box, (float)(3 * inertia)));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    float spin = 0;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, box, NULL, &spin));
+    cr_assert_float_eq(spin, 3 * DT, 1e-5, "τ·dt/I: %g", spin);
+    pp_world_destroy(w);
+}
+
+Test(props, set_type_and_fixed_rotation_refuse_what_cannot_be)
+{
+    pp_world w = make_world(0, 980);
+    pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 300, 0), 16, 16);
+    EXPECT_ERR(pp_body_set_type(w, box, (pp_body_type)7), PP_ERR_INVALID_ARGUMENT, "type 7");
+    /* Pixels of weight 0 have no mass: static is fine, dynamic is not. */
+    static uint8_t mask[64], weights[64];
+    memset(mask, 1, sizeof mask);
+    pp_body_def d = body_def(PP_BODY_STATIC, 200, 300, 0);
+    d.width = d.height = 8, d.mask = mask, d.weights = weights;
+    pp_body ghost;
+    PP_OK_OR_FAIL(pp_body_create(w, &d, &ghost));
+    EXPECT_ERR(pp_body_set_type(w, ghost, PP_BODY_DYNAMIC), PP_ERR_INVALID_ARGUMENT, "weigh nothing");
+    pp_body_type t;
+    PP_OK_OR_FAIL(pp_body_get_type(w, ghost, &t));
+    cr_assert_eq(t, PP_BODY_STATIC);
+    /* A box hung on the world by a hinge: static, the joint would hold nothing. */
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = box, jd.anchor_a = v2(400, 292);
+    pp_joint j;
+    PP_OK_OR_FAIL(pp_joint_create(w, &jd, &j));
+    EXPECT_ERR(pp_body_set_type(w, box, PP_BODY_STATIC), PP_ERR_INVALID_ARGUMENT, "joint");
+    PP_OK_OR_FAIL(pp_body_get_type(w, box, &t));
+    cr_assert_eq(t, PP_BODY_DYNAMIC);
+    PP_OK_OR_FAIL(pp_body_set_type(w, box, PP_BODY_KINEMATIC)); /* still moves: the joint holds on */
+    pp_body stale = box;
+    PP_OK_OR_FAIL(pp_body_destroy(w, box));
+    EXPECT_ERR(pp_body_set_type(w, stale, PP_BODY_DYNAMIC), PP_ERR_INVALID_HANDLE, "pp_body_set_type");
+    EXPECT_ERR(pp_body_set_fixed_rotation(w, stale, 1), PP_ERR_INVALID_HANDLE, "pp_body_set_fixed_rotation");
+    pp_world_destroy(w);
+}
+
+Test(props, a_body_whose_type_and_rotation_changed_continues_bit_for_bit_through_a_snapshot)
+{
+    pp_world w = make_world(0, 980);
+    add_ground(w);
+    pp_body a = add_rect(w, body_def(PP_BODY_STATIC, 380, 300, 0.2f), 16, 16);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 420, 300, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, b, v2(-30, 0), 4));
+    step_n(w, DT, 5);
+    PP_OK_OR_FAIL(pp_body_set_type(w, a, PP_BODY_DYNAMIC));
+    PP_OK_OR_FAIL(pp_body_set_fixed_rotation(w, b, 1));
+    step_n(w, DT, 5);
+    expect_snapshot_continues(w, 90);
+    pp_world_destroy(w);
+}

@@ -115,3 +115,24 @@ def test_friction_restitution_density_and_gravity_scale_are_settable_properties(
     assert box.position[1] == y  # gravity scale 0: it floats
     raises_from_library(physpix.InvalidArgumentError, ["restitution"], setattr, box, "restitution", 2.0)
     assert box.restitution == 0.5
+
+
+def test_type_and_fixed_rotation_set_from_python(world):
+    shelf = rect(world, 64, 8, position=(400, 300), type="static")
+    box = rect(world, 16, 16, position=(400, 200))
+    assert shelf.type == physpix.BodyType.STATIC
+    shelf.type = "dynamic"
+    assert shelf.type == physpix.BodyType.DYNAMIC and shelf.mass == pytest.approx(512)
+    y0 = shelf.position[1]
+    for _ in range(30):
+        world.step(DT)
+    assert shelf.position[1] - y0 == pytest.approx(0.5 * 980 * 0.5 ** 2, rel=0.03)  # it falls as g says
+    box.type = physpix.BodyType.KINEMATIC
+    box.velocity = (10, 0)
+    box.fixed_rotation = True
+    assert box.fixed_rotation
+    for _ in range(60):
+        world.step(DT)
+    assert box.velocity == pytest.approx((10, 0))  # no gravity on a kinematic body
+    with pytest.raises(ValueError, match="type"):
+        box.type = "floating"

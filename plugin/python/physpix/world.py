@@ -826,6 +826,23 @@ class Body(_InWorld):
         self._call(lib.pp_body_get_type, byref(t))
         return BodyType(t.value)
 
+    @type.setter
+    def type(self, value: Union[BodyType, int, str]) -> None:
+        """Settable as a BodyType, an int or a lower-case name ("dynamic", "static", "kinematic"): the pose
+        stays, a moving body keeps its velocity."""
+        self._call(lib.pp_body_set_type, enum_value(BodyType, value, "type"))
+
+    @property
+    def fixed_rotation(self) -> bool:
+        """Whether the body's rotation is held; settable."""
+        out = c_uint32()
+        self._call(lib.pp_body_get_fixed_rotation, byref(out))
+        return out.value != 0
+
+    @fixed_rotation.setter
+    def fixed_rotation(self, value: bool) -> None:
+        self._call(lib.pp_body_set_fixed_rotation, 1 if value else 0)
+
     @property
     def user_data(self) -> int:
         """The host's integer given as user_data at creation."""
