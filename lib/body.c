@@ -297,6 +297,7 @@ void body_unmake(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;
     awake_forget(wd, bd);
+    forces_forget(wd, bd);
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
     PP_ASSERT(wd->free_count < wd->body_capacity);

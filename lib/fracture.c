@@ -5,6 +5,7 @@
 #include "alloc.h"
 #include "awake.h"
 #include "edit.h"
+#include "forces.h"
 #include "status.h"
 
 #include <stdlib.h>
@@ -93,7 +94,10 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     child->pos = pos;
     child->angle = parent->angle, child->cos_a = parent->cos_a, child->sin_a = parent->sin_a;
     body_update_pose_cache(child);
-    return PP_OK;
+    if (child->type != PP_BODY_DYNAMIC || parent->gravity_scale == 1)
+        return PP_OK;
+    child->gravity_scale = parent->gravity_scale; /* a piece falls as its parent did */
+    return forces_list(wd, child, "a split"); /* on failure the plan's cancel unmakes the child */
 }
 
 /* The child moves as the parent's material where it lies: v + ω × r. */

@@ -627,3 +627,27 @@ Test(props, a_body_whose_type_and_rotation_changed_continues_bit_for_bit_through
     expect_snapshot_continues(w, 90);
     pp_world_destroy(w);
 }
+
+Test(props, the_pieces_of_a_floating_body_cut_in_two_float_as_it_did)
+{
+    pp_world w = make_world(0, 980);
+    pp_body plank = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 200, 0), 64, 8);
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, plank, 0));
+    int32_t changed = 0;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, plank, v2(400, 200), 6, &changed));
+    pp_body bodies[4];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 4, &n));
+    cr_assert_eq(n, 2, "the cut leaves two pieces, got %d", n);
+    float y0[2];
+    for (int i = 0; i < 2; i++) {
+        float scale = -1;
+        PP_OK_OR_FAIL(pp_body_get_gravity_scale(w, bodies[i], &scale));
+        cr_assert_eq(scale, 0.0f, "piece %d has gravity scale %g", i, scale);
+        y0[i] = body_pos(w, bodies[i]).y;
+    }
+    step_n(w, DT, 60);
+    for (int i = 0; i < 2; i++)
+        cr_assert_eq(body_pos(w, bodies[i]).y, y0[i], "piece %d moved from %g to %g", i, y0[i], body_pos(w, bodies[i]).y);
+    pp_world_destroy(w);
+}
