@@ -239,7 +239,9 @@ static bool write_joints(const world *wd, cJSON *root)
         return false;
     }
     /* Each add is made (and frees its item if it fails), so that nothing leaks. */
-    return add(root, "joint_generations", gens) & add(root, "joint_free_slots", free_slots) & add(root, "joints", arr);
+    const bool g = add(root, "joint_generations", gens), f = add(root, "joint_free_slots", free_slots);
+    const bool j = add(root, "joints", arr);
+    return g && f && j;
 }
 
 static int by_serial(const void *a, const void *b)

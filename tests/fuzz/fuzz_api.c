@@ -1,6 +1,6 @@
 /* libFuzzer target: the API as a sequence of calls. Each input byte stream is read as operations on a few
  * worlds and bodies: creating and destroying them, edits, pixels, poses, impulses, timed edits, steps, every
- * read-out, pair queries and snapshots — with stale, zero and random handles, NULL out-pointers, NaN and
+ * read-out, pair queries, snapshots, joints and the runtime setters — with stale, zero and random handles, NULL out-pointers, NaN and
  * infinite floats, sizes past the limits and capacities that do not match. Every status is checked, and the
  * invariants that hold whatever the arguments (a refused create adds no body, a destroyed handle is refused
  * with PP_ERR_INVALID_HANDLE). An op can make a later allocation fail (pp_set_allocator): the call must then
@@ -16,6 +16,7 @@
 #define MAX_SIDE 32     /* bitmap side on the common path */
 #define MAX_STEPS 12    /* steps per input */
 #define MAX_SNAPSHOTS 2 /* snapshot save+load per input */
+#define MAX_JOINTS 8    /* tracked per world, live or stale */
 
 typedef struct reader {
     const uint8_t *p;
@@ -65,6 +66,8 @@ typedef struct tracked_world {
     pp_body bodies[MAX_BODIES];
     int body_live[MAX_BODIES]; /* 1: created and not destroyed by the harness; 0: destroyed, a stale handle */
     int nbodies;
+    pp_joint joints[MAX_JOINTS]; /* every joint the harness made (a body's destroy or an edit may end it) */
+    int njoints;
 } tracked_world;
 
 static tracked_world worlds[MAX_WORLDS];
@@ -655,6 +658,120 @@ static void op_snapshot(reader *r)
 }
 
 /* A ray or a point, box or circle query: a hit lies on the segment and names a live body. */
+/* A joint handle of world t: mostly one it made (maybe since ended), sometimes zero or random. */
+static pp_joint pick_joint(reader *r, tracked_world *t)
+{
+    const uint8_t k = u8(r);
+    if (t && t->njoints && k < 220)
+        return t->joints[k % t->njoints];
+    return k < 240 ? (pp_joint){0} : (pp_joint){(uint64_t)u32(r) << 32 | u32(r)};
+}
+
+static void op_joint_create(reader *r)
+{
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    int stale_a, stale_b;
+    pp_joint_def d = pp_joint_def_default((pp_joint_type)(u8(r) % 7)); /* 0 and 6 are no type */
+    d.type = (pp_joint_type)(u8(r) % 7);
+    d.body_a = u8(r) < 64 ? (pp_body){0} : pick_body(r, t, &stale_a);
+    d.body_b = pick_body(r, t, &stale_b);
+    d.anchor_a = (pp_vec2){f32(r, 300), f32(r, 300)};
+    d.anchor_b = (pp_vec2){f32(r, 300), f32(r, 300)};
+    d.axis = (pp_vec2){f32(r, 2), f32(r, 2)};
+    const uint8_t flags = u8(r);
+    d.collide_connected = flags & 1, d.enable_limit = flags & 2, d.enable_motor = flags & 4;
+    d.lower = f32(r, 4), d.upper = f32(r, 4);
+    d.motor_speed = f32(r, 10), d.max_motor_force = f32(r, 1e6f);
+    d.min_length = f32(r, 100), d.max_length = f32(r, 100);
+    d.spring_hertz = f32(r, 10), d.spring_damping_ratio = f32(r, 2);
+    d.max_force = f32(r, 1e6f), d.break_force = f32(r, 1e7f);
+    if (flags & 8)
+        d.struct_size = u8(r);
+    pp_joint j = {0};
+    const pp_status st = ST(pp_joint_create(w, (flags & 16) ? NULL : &d, (flags & 32) ? NULL : &j));
+    if (!t)
+        FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE || st == PP_ERR_INVALID_ARGUMENT, "joint in a dead world: %d", (int)st);
+    if (st == PP_OK) {
+        FUZZ_CHECK(t && j.id != 0, "a joint made without a handle");
+        pp_joint_type type;
+        FUZZ_CHECK(ST(pp_joint_get_type(w, j, &type)) == PP_OK && type == d.type, "the joint's type");
+        if (t->njoints < MAX_JOINTS)
+            t->joints[t->njoints++] = j;
+        else
+            ST(pp_joint_destroy(w, j));
+    }
+}
+
+static void op_joint_use(reader *r)
+{
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    const pp_joint j = pick_joint(r, t);
+    const uint8_t k = u8(r);
+    const float x = f32(r, 100), y = f32(r, 100);
+    pp_vec2 f;
+    float a, b;
+    pp_body ba, bb;
+    pp_status st;
+    switch (k % 8) {
+    case 0: st = ST(pp_joint_destroy(w, j)); break;
+    case 1: st = ST(pp_joint_get_reaction(w, j, k & 8 ? NULL : &f, &a)); break;
+    case 2: st = ST(pp_joint_get_value(w, j, &a, k & 8 ? NULL : &b)); break;
+    case 3: st = ST(pp_joint_set_motor(w, j, k & 8, x, y)); break;
+    case 4: st = ST(pp_joint_set_limits(w, j, k & 8, x, y)); break;
+    case 5: st = ST(pp_joint_set_target(w, j, (pp_vec2){x, y})); break;
+    case 6: st = ST(pp_joint_get_bodies(w, j, &ba, k & 8 ? NULL : &bb)); break;
+    default: {
+        pp_joint out[4];
+        int32_t n = -1;
+        st = ST(pp_world_get_joints(w, k & 8 ? NULL : out, (int32_t)(u8(r) % 6) - 1, &n));
+        if (st == PP_OK)
+            FUZZ_CHECK(n >= 0, "joint count %d", (int)n);
+    }
+    }
+    if (!t || (j.id == 0 && k % 8 != 7))
+        FUZZ_CHECK(st != PP_OK, "a joint call (%d) on a dead world or a zero joint succeeded", k % 8);
+    if ((k % 8) == 0 && st == PP_OK)
+        FUZZ_CHECK(ST(pp_joint_destroy(w, j)) == PP_ERR_INVALID_HANDLE, "a joint destroyed twice");
+}
+
+/* The runtime setters, forces and the bulk state read. */
+static void op_props(reader *r)
+{
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    int stale;
+    const pp_body b = pick_body(r, t, &stale);
+    const uint8_t k = u8(r);
+    const float x = f32(r, 10), y = f32(r, 10);
+    pp_status st;
+    switch (k % 12) {
+    case 0: st = ST(pp_body_set_type(w, b, (pp_body_type)(u8(r) % 4))); break;
+    case 1: st = ST(pp_body_set_fixed_rotation(w, b, k & 16)); break;
+    case 2: st = ST(pp_body_set_damping(w, b, x, y)); break;
+    case 3: st = ST(pp_body_set_density(w, b, x)); break;
+    case 4: st = ST(pp_body_set_friction(w, b, x)); break;
+    case 5: st = ST(pp_body_set_restitution(w, b, x)); break;
+    case 6: st = ST(pp_body_set_gravity_scale(w, b, x)); break;
+    case 7: st = ST(pp_body_set_awake(w, b, k & 16)); break;
+    case 8: st = ST(pp_body_apply_force(w, b, (pp_vec2){x * 1e4f, y * 1e4f}, (pp_vec2){f32(r, 300), f32(r, 300)})); break;
+    case 9: st = ST(pp_body_apply_torque(w, b, x * 1e6f)); break;
+    case 10: st = ST(pp_world_set_gravity(w, (pp_vec2){x * 100, y * 100})); break;
+    default: {
+        pp_body_state s[4];
+        int32_t n = -1;
+        st = ST(pp_world_get_body_states(w, k & 16 ? NULL : s, (int32_t)(u8(r) % 6) - 1, &n));
+        if (st == PP_OK)
+            FUZZ_CHECK(n >= 0, "state count %d", (int)n);
+    }
+    }
+    if ((k % 12) < 10)
+        expect_handle_refused(st, !t || b.id == 0 || stale, "a body setter");
+    if ((k % 12) >= 2 && (k % 12) <= 6 && (!isfinite(x) || ((k % 12) == 2 && !isfinite(y))))
+        FUZZ_CHECK(st != PP_OK, "a non-finite setting (%d) accepted", k % 12);
+}
+
 static void op_query(reader *r)
 {
     tracked_world *t;
@@ -704,7 +821,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fail_countdown = 0;
     for (int ops = 0; r->n && ops < 200; ops++) {
         injected = 0;
-        switch (u8(r) % 24) {
+        const uint8_t op = u8(r);
+        switch (op % 24) {
         case 0: case 1: op_world_create(r); break;
         case 2: op_world_destroy(r); break;
         case 3: case 4: case 5: op_body_create(r); break;
@@ -724,7 +842,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 20: op_collide(r, 1); break;
         case 21: op_snapshot(r); break;
         case 22: op_query(r); break;
-        default: op_fail_soon(r); break;
+        default: /* bytes 215 and 239, once fail-soon, drive the later ops: older seeds keep their meaning */
+            if (op == 215 || op == 239) {
+                const uint8_t sub = u8(r) % 3;
+                if (sub == 0)
+                    op_joint_create(r);
+                else if (sub == 1)
+                    op_joint_use(r);
+                else
+                    op_props(r);
+            } else
+                op_fail_soon(r);
         }
         FUZZ_CHECK(pp_status_name((pp_status)u8(r)) != NULL, "status name");
     }

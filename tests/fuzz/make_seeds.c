@@ -229,6 +229,30 @@ static void snapshots(void)
         pp_world_step(w, 1.0f / 60);
     save(w, "touching");
 
+    /* A pendulum on a hinge to the world, a prismatic pair and a rope, mid-swing: the joint tables and frames. */
+    w = small_world();
+    pp_body bob = add_body(w, PP_BODY_DYNAMIC, 40, 40, 6, 6, 0, 0);
+    pp_body cart = add_body(w, PP_BODY_DYNAMIC, 20, 20, 8, 4, 0, 0);
+    pp_body load = add_body(w, PP_BODY_DYNAMIC, 20, 40, 4, 4, 0, 0);
+    pp_body_set_velocity(w, bob, (pp_vec2){20, 0}, 0);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = bob, jd.anchor_a = (pp_vec2){40, 20};
+    pp_joint j;
+    if (pp_joint_create(w, &jd, &j) != PP_OK)
+        fail("hinge");
+    jd = pp_joint_def_default(PP_JOINT_PRISMATIC);
+    jd.body_b = cart, jd.anchor_a = jd.anchor_b = (pp_vec2){20, 20}, jd.enable_limit = 1, jd.lower = -5, jd.upper = 5;
+    if (pp_joint_create(w, &jd, &j) != PP_OK)
+        fail("slider");
+    jd = pp_joint_def_default(PP_JOINT_DISTANCE);
+    jd.body_a = cart, jd.body_b = load, jd.anchor_a = (pp_vec2){20, 20}, jd.anchor_b = (pp_vec2){20, 40};
+    jd.max_length = 25, jd.break_force = 1e9f;
+    if (pp_joint_create(w, &jd, &j) != PP_OK)
+        fail("rope");
+    for (int i = 0; i < 6; i++)
+        pp_world_step(w, 1.0f / 60);
+    save(w, "joints");
+
     /* An empty world with another camera. */
     w = small_world();
     pp_camera cam = {{10, 10}, 2, 64, 48};
