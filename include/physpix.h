@@ -158,6 +158,11 @@ typedef struct pp_body {
     uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
 } pp_body;
 
+/// A joint handle; id 0 is never valid. It names its world, as a body's does.
+typedef struct pp_joint {
+    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
+} pp_joint;
+
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
  * a dynamic AABB tree of the solid pixels' world boxes, queried by the awake bodies only (static–static,
  * filtered and sleeping–sleeping pairs are skipped; a sleeping body costs a step nothing), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
@@ -302,6 +307,8 @@ typedef enum pp_event_type {
     PP_EVENT_CONTACT_END = 4,    ///< `body` and `other` stopped touching, or one of them was destroyed
     PP_EVENT_SENSOR_BEGIN = 5,   ///< `other` started overlapping the sensor `body`
     PP_EVENT_SENSOR_END = 6,     ///< `other` stopped overlapping the sensor `body`, or one of them was destroyed
+    PP_EVENT_JOINT_BROKEN = 7,   ///< `joint` (between `body` = body_a and `other` = body_b) broke: its reaction passed
+                                 ///< break_force, or an edit left no solid pixel within 1 px of an anchor; now stale
     PP_EVENT_TYPE_FORCE_U32 = 0x7fffffff
 } pp_event_type;
 
@@ -316,6 +323,7 @@ typedef struct pp_event {
     float approach_speed; ///< CONTACT_BEGIN, SENSOR_BEGIN: speed at which the bodies closed along the normal
                           ///< at the point before the solver acted, px/s, ≥ 0; else zero
     uint32_t reserved2;   ///< zero
+    pp_joint joint;       ///< JOINT_BROKEN: the joint, now stale; else zero
 } pp_event;
 
 /* Rays (pp_world_raycast) walk each body's pixel grid in the body's frame, an exact DDA over the pixel
@@ -561,6 +569,81 @@ typedef struct pp_body_state {
 /// live bodies there are, even when capacity is short (then only capacity are written).
 PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_t capacity, int32_t *count);
 
+/* Joints hold two bodies together through ODE's joints in the plane: REVOLUTE a hinge about z, PRISMATIC a
+ * slider along an in-plane axis, DISTANCE ODE's distance ball (rigid, a rope between min_length and
+ * max_length, or a spring), WELD a fixed joint (rigid or soft), MOUSE a soft pull of a body's point toward a
+ * target. A zero body is the static world. Anchors are given in world px at creation and kept as bitmap
+ * points of their bodies (each within 4096 px, or the bitmap's size, of its bitmap): an edit that leaves no solid pixel within 1 px of an anchor breaks the joint, and a
+ * split keeps each joint on the piece holding its anchor. A joint whose reaction passes break_force after a
+ * step breaks. A broken joint queues PP_EVENT_JOINT_BROKEN; a joint of a body destroyed by pp_body_destroy
+ * goes with it silently (the host asked). Joined bodies solve and sleep together; collide_connected 0 (the
+ * default) keeps the two from colliding. Springs are given by frequency (Hz) and damping ratio, made into
+ * ODE's ERP and CFM from the pair's reduced mass; 0 Hz is rigid. */
+
+/// What a joint holds.
+typedef enum pp_joint_type {
+    PP_JOINT_REVOLUTE = 1,  ///< a shared point; the bodies turn about it (angle limits, motor)
+    PP_JOINT_PRISMATIC = 2, ///< b slides along an axis fixed in a, without turning (translation limits, motor)
+    PP_JOINT_DISTANCE = 3,  ///< the anchors' distance held rigid, between min and max (rope), or by a spring
+    PP_JOINT_WELD = 4,      ///< the bodies held together, rigid or by a spring
+    PP_JOINT_MOUSE = 5,     ///< body_b's anchor pulled toward a target by a spring under max_force
+    PP_JOINT_TYPE_FORCE_U32 = 0x7fffffff
+} pp_joint_type;
+
+/// A joint's description, filled by pp_joint_def_default(type).
+typedef struct pp_joint_def {
+    uint32_t struct_size;        ///< sizeof(pp_joint_def), set by pp_joint_def_default
+    pp_joint_type type;          ///< the kind of joint
+    pp_body body_a;              ///< first body; zero is the static world
+    pp_body body_b;              ///< second body; zero is the static world (not both zero, not the same body)
+    pp_vec2 anchor_a;            ///< world px at creation; REVOLUTE, WELD and MOUSE use anchor_a alone
+    pp_vec2 anchor_b;            ///< world px at creation (PRISMATIC, DISTANCE)
+    pp_vec2 axis;                ///< PRISMATIC: the slide direction in the world, any length > 0 (default (1, 0))
+    uint32_t collide_connected;  ///< nonzero: the two bodies still collide with each other (default 0)
+    uint32_t enable_limit;       ///< nonzero: lower..upper hold (REVOLUTE, PRISMATIC)
+    float lower;                 ///< lowest angle (rad, within −π..π) or translation (px), ≤ upper
+    float upper;                 ///< highest angle (rad) or translation (px)
+    uint32_t enable_motor;       ///< nonzero: drive toward motor_speed under max_motor_force (REVOLUTE, PRISMATIC)
+    float motor_speed;           ///< rad/s (REVOLUTE) or px/s (PRISMATIC), b relative to a
+    float max_motor_force;       ///< ≥ 0: mass·px/s² (PRISMATIC) or a torque in mass·px²/s² (REVOLUTE)
+    float min_length;            ///< DISTANCE: shortest anchor distance, px, ≥ 0; min 0 and max 0 keep it rigid
+    float max_length;            ///< DISTANCE: longest anchor distance, px, ≥ min_length (a rope has min 0)
+    float spring_hertz;          ///< DISTANCE, WELD (its translation; it turns rigidly), MOUSE: spring frequency, Hz, ≥ 0;
+                                 ///< 0 is rigid (MOUSE default 5)
+    float spring_damping_ratio;  ///< DISTANCE, WELD, MOUSE: damping ratio, ≥ 0, 1 critical (MOUSE default 0.7)
+    float max_force;             ///< MOUSE: largest pull of the spring (its damping acts on top), mass·px/s², ≥ 0; 0: no cap
+    float break_force;           ///< the reaction force that breaks the joint after a step, mass·px/s², ≥ 0; 0 never
+    uint32_t reserved;           ///< zero
+    uint64_t user_data;          ///< the host's value, returned by pp_joint_get_user_data
+} pp_joint_def;
+
+/// A joint def with the defaults of its type (struct_size set; type PP_JOINT_REVOLUTE for an unknown type).
+PP_API pp_joint_def pp_joint_def_default(pp_joint_type type);
+/// Create a joint from a def; anchors in world px at the bodies' current poses. Wakes both bodies.
+PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *out);
+/// Destroy a joint; its handle goes stale. Wakes its bodies.
+PP_API pp_status pp_joint_destroy(pp_world w, pp_joint j);
+/// Every live joint, in slot order; count receives the total even when capacity is short.
+PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity, int32_t *count);
+/// The force (mass·px/s²) and torque (mass·px²/s², about body_b's centre of mass) the joint applied to
+/// body_b in the last substep; zeros before the first step and while asleep.
+PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, float *torque);
+/// REVOLUTE: angle of b relative to a since creation, rad (−π..π), and its rate, rad/s; PRISMATIC:
+/// translation of b along the axis since creation, px, px/s; DISTANCE: anchor distance, px, px/s; others 0.
+PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float *speed);
+/// REVOLUTE, PRISMATIC: switch the motor; speed in rad/s or px/s, max_force ≥ 0 (torque for REVOLUTE).
+PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, float speed, float max_force);
+/// REVOLUTE (rad, −π..π), PRISMATIC (px), DISTANCE (min and max length, px): switch and set the limits.
+PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, float lower, float upper);
+/// MOUSE: move the target, world px. Wakes the body.
+PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target);
+/// The joint's type.
+PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out);
+/// The joint's two bodies (zero for the static world).
+PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp_body *body_b);
+/// The host's value given in the joint's def.
+PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out);
+
 /* Edits change pixels between steps, and the next step sees them. The mass sums and the solid bounds follow
  * from the changed pixels alone; the pivot stays put and the body moves to its new centre of mass with the
  * velocity its material had; bodies around the edit wake. A dynamic body cut into several 8-connected
@@ -631,6 +714,7 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  *     "bodies": [ { "name": "terrain", "type": "static", "sprite": "terrain.png", "mask": "terrain_mask.png",
  *                   "position": [480, 400], "detach_islands": true },
  *                 { "name": "crate", "box": [32, 32], "position": [480, 300], "density": 2 } ],
+ *     "joints": [ { "type": "revolute", "body_b": "crate", "anchor_a": [480, 290], "break_force": 1e6 } ],
  *     "edits":  [ { "time": 1.0, "type": "erase", "center": [500, 420], "radius": 40 },
  *                 { "time": 2.0, "type": "paint", "body": "terrain", "center": [500, 420], "radius": 10,
  *                   "weight": 255 } ] }
@@ -648,6 +732,9 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  *           (a PNG of the same size, solid where red ≥ 128 and alpha ≥ 128), "weights" (a PNG of the same
  *           size, red is each pixel's weight 0..255; default all 255), or "box": [w, h] (integers, px: a
  *           solid rectangle; not with "sprite" or "mask").
+ * "joints": created in file order, after the bodies: "type" (required) revolute|prismatic|distance|weld|mouse,
+ *           "body_a" and "body_b" (bodies' names; absent is the static world), and every other pp_joint_def
+ *           field by name (anchors and axis as [x, y] world px, flags as true/false, "user_data" 0..2^53).
  * "edits":  pp_timed_edit's fields: "time" (s of world time, ≥ 0, default 0), "type" erase|paint (default
  *           erase), "body" (a body's name; default every body; required for paint), "center" (world px),
  *           "radius" (px; pixels whose centres lie within change), "weight" (1..255, default 255; paint only).
@@ -671,7 +758,8 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
 PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
 
 /* Snapshots. A snapshot is a folder: world.json (settings, camera, clock, pending timed edits and events, the
- * body slot tables, and per body its settings, handle, creation order, pose, ODE state and sleep timer, every
+ * body slot tables, per body its settings, handle, creation order, pose, ODE state and sleep timer, and the joints
+ * with their slot table, settings and the poses their ODE joints were attached at, every
  * double printed so that it reads back bit for bit) and each body's planes as PNG (body<slot>_mask.png,
  * body<slot>_weights.png, body<slot>_sprite.png). It is written into a temporary folder beside the target,
  * flushed and renamed into place (or swapped with an older snapshot, which is then removed whole, subfolders

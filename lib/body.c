@@ -4,6 +4,7 @@
 #include "awake.h"
 #include "forces.h"
 #include "handle.h"
+#include "joint.h"
 #include "status.h"
 #include "world.h"
 
@@ -308,6 +309,7 @@ void body_remove(world *wd, body *bd)
 {
     const uint32_t slot = bd->index;
     const pp_body b = bd->handle;
+    joint_body_removed(wd, bd);
     awake_forget(wd, bd);
     forces_forget(wd, bd);
     wd->touch_body_gone = true;

@@ -6,6 +6,7 @@
 #include "awake.h"
 #include "cover.h"
 #include "edit.h"
+#include "joint.h"
 #include "status.h"
 
 #include <stdlib.h>
@@ -43,6 +44,7 @@ void edit_update_solver_body(world *wd, body *bd)
     solver_body_set_pose(wd->solver, &bd->sb, com, bd->angle);
     solver_body_set_velocity(wd->solver, &bd->sb, v, s.angular_velocity);
     awake_wake(wd, bd);
+    joint_body_changed(wd, bd);
 }
 
 /* Bodies whose box comes within this many pixels of an edited pixel wake: one resting on the edited
@@ -92,7 +94,8 @@ static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t 
 {
     const pp_raster *r = &bd->raster;
     *j = (edit_job){.bd = bd, .sums = bd->sums};
-    pp_status st = world_reserve_events(wd, ++*events);
+    *events += 1 + (removes ? bd->joint_count : 0); /* destroyed, and each joint an anchor's pixels may break */
+    pp_status st = world_reserve_events(wd, *events);
     if (st || !removes || !may_split(bd))
         return st;
     j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
@@ -156,6 +159,8 @@ static void job_commit(world *wd, edit_job *j)
     body_update_pose_cache(bd);
     awake_add(wd, bd); /* new bounds, even for a static body */
     wake_around(wd, edited_region(bd, e));
+    if (e->removed && bd->joint_count > 0)
+        joint_edit_done(wd, bd, &j->plan);
     if (job_destroys(j)) {
         const pp_body gone = bd->handle;
         body_remove(wd, bd);

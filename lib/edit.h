@@ -36,6 +36,10 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
 /* Make the split: move the pieces' pixels out of the parent, set them moving, send the events. */
 void fracture_commit(world *wd, body *bd, fracture_plan *p);
 
+/* The island of a prepared split holding bitmap pixel (x, y) of the parent, and that island's top-left
+ * corner in the parent's bitmap (a piece's bitmap starts there); false for an empty pixel or none split. */
+bool fracture_island_at(const fracture_plan *p, int32_t x, int32_t y, int32_t *k, dvec2 *origin);
+
 /* Take a prepared split back: the pieces go as if never made. */
 void fracture_cancel(world *wd, fracture_plan *p);
 

@@ -221,6 +221,18 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
     fracture_cancel(wd, p);
 }
 
+bool fracture_island_at(const fracture_plan *p, int32_t x, int32_t y, int32_t *k, dvec2 *origin)
+{
+    if (p->count < 2 || x < p->bx || y < p->by || x >= p->bx + p->bw || y >= p->by + p->bh)
+        return false;
+    const int32_t l = p->label[(int64_t)(y - p->by) * p->bw + (x - p->bx)];
+    if (l == 0)
+        return false;
+    *k = l - 1;
+    *origin = dv(p->islands[l - 1].x0, p->islands[l - 1].y0);
+    return true;
+}
+
 void fracture_cancel(world *wd, fracture_plan *p)
 {
     for (int32_t k = p->count - 1; k >= 0; k--) /* newest first, so slots and serials come back in order */

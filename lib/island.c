@@ -8,9 +8,10 @@
  * bodies (a sleeper touched by an awake body). A sleeping island is never visited. */
 #include "island.h"
 #include "awake.h"
+#include "joint.h"
 
-/* Constraint rows a contact costs: the normal and one in-plane friction row. */
-enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4 };
+/* Constraint rows a contact costs (the normal and one in-plane friction row), and at most a joint's. */
+enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
 
 static bool within_reach(const world *wd, const body *bd)
 {
@@ -28,6 +29,31 @@ static void add_node(world *wd, const body *bd)
         return;
     wd->node_mark[i] = wd->node_pass;
     wd->nodes[wd->node_count++] = i;
+}
+
+/* Both bodies of a joint with an ODE body on each side, or false. */
+static bool joint_movers(const world *wd, const joint *jt, const body **a, const body **b)
+{
+    *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
+    return *a && *b && (*a)->sb.body && (*b)->sb.body;
+}
+
+/* Joined bodies solve and sleep together: a node's joint partners are nodes too, along whole chains. */
+static void add_joint_nodes(world *wd)
+{
+    for (bool added = true; added;) {
+        added = false;
+        for (int32_t i = 0; i < wd->joints.capacity; i++) {
+            const body *a, *b;
+            if (!joint_movers(wd, wd->joints.items[i], &a, &b))
+                continue;
+            const bool na = wd->node_mark[a->index] == wd->node_pass, nb = wd->node_mark[b->index] == wd->node_pass;
+            if (na != nb) {
+                add_node(wd, na ? b : a);
+                added = true;
+            }
+        }
+    }
 }
 
 /* The substep's nodes into wd->nodes, in slot order for the awake set's part. */
@@ -57,7 +83,23 @@ static pp_status collect_nodes(world *wd)
         add_node(wd, body_of(wd, wd->contacts[k].a));
         add_node(wd, body_of(wd, wd->contacts[k].b));
     }
+    if (wd->joints.count > 0)
+        add_joint_nodes(wd);
     return PP_OK;
+}
+
+/* Join a's and b's islands (either may have no ODE body) and count the rows joining them costs. */
+static void join_island(int32_t *parent, int32_t *rows, int32_t *dynamic, const body *a, const body *b, int32_t n)
+{
+    int32_t ra = a && a->sb.body ? world_group_root(parent, (int32_t)a->index) : -1;
+    int32_t rb = b && b->sb.body ? world_group_root(parent, (int32_t)b->index) : -1;
+    if (ra >= 0 && rb >= 0 && ra != rb) {
+        parent[ra] = rb;
+        rows[rb] += rows[ra];
+        dynamic[rb] += dynamic[ra];
+    }
+    if (ra >= 0 || rb >= 0)
+        rows[rb >= 0 ? rb : ra] += n;
 }
 
 pp_status island_plan(world *wd, solver_islands *out)
@@ -84,16 +126,15 @@ pp_status island_plan(world *wd, solver_islands *out)
         rows[i] = bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
         dynamic[i] = bd->type == PP_BODY_DYNAMIC;
     }
-    for (int32_t k = 0; k < wd->contact_count; k++) {
-        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
-        int32_t ra = a->sb.body ? world_group_root(parent, (int32_t)a->index) : -1;
-        int32_t rb = b->sb.body ? world_group_root(parent, (int32_t)b->index) : -1;
-        if (ra >= 0 && rb >= 0 && ra != rb) {
-            parent[ra] = rb;
-            rows[rb] += rows[ra];
-            dynamic[rb] += dynamic[ra];
-        }
-        rows[rb >= 0 ? rb : ra] += ROWS_PER_CONTACT;
+    for (int32_t k = 0; k < wd->contact_count; k++)
+        join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
+                    ROWS_PER_CONTACT);
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
+        if ((a && a->sb.body && wd->node_mark[a->index] == wd->node_pass) ||
+            (b && b->sb.body && wd->node_mark[b->index] == wd->node_pass))
+            join_island(parent, rows, dynamic, a, b, ROWS_PER_JOINT);
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
@@ -165,6 +206,12 @@ void island_sleep(world *wd, double h)
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
+            parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
+    }
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+        const body *a, *b;
+        if (joint_movers(wd, wd->joints.items[i], &a, &b) && a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
+            wd->node_mark[a->index] == wd->node_pass)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
     }
     /* A group with a body not yet ready stays awake. */

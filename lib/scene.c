@@ -1,4 +1,4 @@
-/* JSON scenes: a world's settings, camera, bodies with PNG bitmaps, and timed edits naming bodies.
+/* JSON scenes: a world's settings, camera, bodies with PNG bitmaps, joints and timed edits naming bodies.
  * The reading itself is scene_json.c's; every complaint names the JSON path of the value at fault. */
 #include "alloc.h"
 #include "scene_json.h"
@@ -121,33 +121,72 @@ static pp_status parse_edit(const json_ctx *c, const cJSON *obj, const char *whe
     return PP_OK;
 }
 
-static pp_status parse_edits(const json_ctx *c, const cJSON *arr, pp_world w, const body_names *bn)
+/* A joint's "body_a" or "body_b": a body's name, absent for the static world. */
+static pp_status read_joint_body(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                 const body_names *bn, pp_body *out)
+{
+    const char *name = NULL;
+    pp_status st = read_string(c, obj, where, key, &name);
+    const int32_t i = !st && name ? find_body(bn, name) : -1;
+    if (!st && name && i < 0)
+        st = json_fail(c, PP_ERR_FORMAT, where, key, "no body is named '%s'", name);
+    *out = i >= 0 ? bn->bodies[i] : (pp_body){0};
+    return st;
+}
+
+/* One joint: "type" (required), bodies by name, the pp_joint_def fields. */
+static pp_status parse_joint(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
+{
+    static const char *const extra[] = {"type", "body_a", "body_b", NULL};
+    pp_joint_def d;
+    pp_joint j;
+    pp_status st;
+    if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
+        (st = read_joint_body(c, obj, where, "body_a", bn, &d.body_a)) ||
+        (st = read_joint_body(c, obj, where, "body_b", bn, &d.body_b)))
+        return st;
+    if ((st = pp_joint_create(w, &d, &j)))
+        return json_fail_from_last(c, st, where, NULL);
+    return PP_OK;
+}
+
+/* One timed edit, scheduled in w. */
+static pp_status add_edit(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
+{
+    pp_timed_edit e;
+    pp_status st = parse_edit(c, obj, where, bn, &e);
+    if (st == PP_OK && (st = pp_world_schedule_edit(w, &e)))
+        st = json_fail_from_last(c, st, where, NULL);
+    return st;
+}
+
+/* Each item of the array section `key` by `one`, named "<key>[i]" in messages. */
+static pp_status parse_each(const json_ctx *c, const cJSON *arr, const char *key, pp_world w, const body_names *bn,
+                            pp_status (*one)(const json_ctx *, const cJSON *, const char *, pp_world, const body_names *))
 {
     int32_t i = 0;
     for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
         char where[32];
-        snprintf(where, sizeof where, "edits[%d]", (int)i);
-        pp_timed_edit e;
-        pp_status st = parse_edit(c, it, where, bn, &e);
-        if (st == PP_OK && (st = pp_world_schedule_edit(w, &e)))
-            st = json_fail_from_last(c, st, where, NULL);
+        snprintf(where, sizeof where, "%s[%d]", key, (int)i);
+        pp_status st = one(c, it, where, w, bn);
         if (st)
             return st;
     }
     return PP_OK;
 }
 
-/* World, camera, bodies, edits, in that order, into a new world; nothing is left behind on failure. */
+/* World, camera, bodies, joints, edits, in that order, into a new world; nothing is left behind on failure. */
 static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out)
 {
-    static const char *const top_keys[] = {"world", "camera", "bodies", "edits", NULL};
+    static const char *const top_keys[] = {"world", "camera", "bodies", "joints", "edits", NULL};
     if (!cJSON_IsObject(root))
         return json_fail(c, PP_ERR_FORMAT, "(root)", NULL, "expected an object");
-    const cJSON *wobj, *cobj, *bodies, *edits;
+    const cJSON *wobj, *cobj, *bodies, *joints, *edits;
     pp_status st = check_keys(c, root, "", NULL, top_keys);
     if (st || (st = read_section(c, root, "", "world", false, &wobj)) ||
         (st = read_section(c, root, "", "camera", false, &cobj)) ||
         (st = read_section(c, root, "", "bodies", true, &bodies)) ||
+        (st = read_section(c, root, "", "joints", true, &joints)) ||
         (st = read_section(c, root, "", "edits", true, &edits)))
         return st;
     pp_world_def d = pp_world_def_default();
@@ -161,8 +200,9 @@ static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out
     if (cobj && (st = pp_world_get_camera(w, &cam)) == PP_OK && (st = parse_camera(c, cobj, "camera", &cam)) == PP_OK &&
         (st = pp_world_set_camera(w, &cam)))
         st = json_fail_from_last(c, st, "camera", NULL);
-    if (st == PP_OK && (st = parse_bodies(c, bodies, w, &bn)) == PP_OK)
-        st = parse_edits(c, edits, w, &bn);
+    if (st == PP_OK && (st = parse_bodies(c, bodies, w, &bn)) == PP_OK &&
+        (st = parse_each(c, joints, "joints", w, &bn, parse_joint)) == PP_OK)
+        st = parse_each(c, edits, "edits", w, &bn, add_edit);
     pp_free(bn.names);
     pp_free(bn.bodies);
     pp_free(bn.table);

@@ -192,6 +192,7 @@ static const char *const backend_names[] = {"auto", "cpu", "gpu", NULL};
 static const char *const normal_names[] = {"area_gradient", "kernel", NULL};
 static const char *const contact_names[] = {"manifold", "centroid", NULL};
 static const char *const body_type_names[] = {"dynamic", "static", "kinematic", NULL};
+const char *const joint_type_names[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", NULL};
 static const char *const edit_type_names[] = {"", "erase", "paint", NULL};
 
 const field world_fields[] = {
@@ -243,6 +244,28 @@ const field body_fields[] = {
     F_BOOL(pp_body_def, one_way),
     F_VEC2(pp_body_def, one_way_direction),
     F_INT(pp_body_def, user_data, 0, JSON_MAX_EXACT_INT),
+    {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
+};
+
+/* A joint's settings but its type and bodies, which a scene gives by name. */
+const field joint_fields[] = {
+    F_VEC2(pp_joint_def, anchor_a),
+    F_VEC2(pp_joint_def, anchor_b),
+    F_VEC2(pp_joint_def, axis),
+    F_BOOL(pp_joint_def, collide_connected),
+    F_BOOL(pp_joint_def, enable_limit),
+    F_FLOAT(pp_joint_def, lower, NUM_FINITE),
+    F_FLOAT(pp_joint_def, upper, NUM_FINITE),
+    F_BOOL(pp_joint_def, enable_motor),
+    F_FLOAT(pp_joint_def, motor_speed, NUM_FINITE),
+    F_FLOAT(pp_joint_def, max_motor_force, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, min_length, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, max_length, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, spring_hertz, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, spring_damping_ratio, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, max_force, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, break_force, NUM_NONNEG),
+    F_INT(pp_joint_def, user_data, 0, JSON_MAX_EXACT_INT),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 
@@ -698,4 +721,19 @@ void json_done(json_ctx *c, cJSON *root)
     if (c->dir_fd >= 0)
         close(c->dir_fd);
     c->dir_fd = -1;
+}
+
+pp_status parse_joint_def(const json_ctx *c, const cJSON *obj, const char *where, const char *const *extra,
+                          pp_joint_def *d)
+{
+    if (!cJSON_IsObject(obj))
+        return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
+    int32_t type = 0;
+    pp_status st = check_keys(c, obj, where, joint_fields, extra);
+    if (st || (st = read_enum(c, obj, where, "type", joint_type_names, &type)))
+        return st;
+    if (!type)
+        return json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
+    *d = pp_joint_def_default((pp_joint_type)type);
+    return read_fields(c, obj, where, joint_fields, d);
 }

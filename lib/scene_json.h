@@ -58,7 +58,9 @@ typedef struct field {
     const char *const *names; /* FK_ENUM */
 } field;
 
-extern const field world_fields[], body_fields[], camera_fields[], edit_fields[];
+extern const field world_fields[], body_fields[], camera_fields[], edit_fields[], joint_fields[];
+/* pp_joint_type by index ("" at 0, which is none). */
+extern const char *const joint_type_names[];
 
 /* Read every field of a table present in obj into the struct at s; absent fields keep their value. */
 pp_status read_fields(const json_ctx *c, const cJSON *obj, const char *where, const field *t, void *s);
@@ -76,6 +78,10 @@ cJSON *camera_to_json(const pp_camera *cam);
 /* A body's settings over *d (the caller checks keys); "pivot" sets custom_pivot. */
 pp_status parse_body_settings(const json_ctx *c, const cJSON *obj, const char *where, pp_body_def *d);
 cJSON *body_settings_to_json(const pp_body_def *d);
+/* A joint's "type" (required) and settings over its type's defaults; keys outside joint_fields must be in extra
+ * (NULL-terminated, "type" among them); the caller reads its bodies. */
+pp_status parse_joint_def(const json_ctx *c, const cJSON *obj, const char *where, const char *const *extra,
+                          pp_joint_def *d);
 /* A timed edit's fields, without a weight when it erases; the caller adds its body. */
 cJSON *edit_to_json(const pp_timed_edit *e);
 

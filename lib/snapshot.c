@@ -7,6 +7,7 @@
 #include "forces.h"
 #include "files.h"
 #include "handle.h"
+#include "joint.h"
 #include "image.h"
 #include "scene_json.h"
 #include "status.h"
@@ -28,7 +29,7 @@
 #define SNAPSHOT_VERSION 1
 
 static const char *const event_names[] = {"",           "split",        "destroyed",  "contact_begin",
-                                          "contact_end", "sensor_begin", "sensor_end", NULL};
+                                          "contact_end", "sensor_begin", "sensor_end", "joint_broken", NULL};
 
 /* ---- writing ------------------------------------------------------------------------------------ */
 
@@ -170,6 +171,77 @@ static pp_status write_body(const save_dir *dir, const body *bd, cJSON *arr)
     return write_planes(dir, bd, obj);
 }
 
+/* A joint's state beyond its def, in the order write_joint saves it: local anchors (4), axis in a (2), ref, length,
+ * slider offset, the last attach's frame (7) and ODE poses (6), ODE's feedback (6), pinned flags (2). */
+enum { JOINT_STATE_DOUBLES = 31 };
+
+static int joint_state(const joint *jt, double *v)
+{
+    const double s[JOINT_STATE_DOUBLES] = {
+        jt->local_a.x, jt->local_a.y, jt->local_b.x, jt->local_b.y, jt->axis_local.x, jt->axis_local.y, jt->ref,
+        jt->length, jt->slider_offset, jt->frame_a.x, jt->frame_a.y, jt->frame_b.x, jt->frame_b.y, jt->frame_axis.x,
+        jt->frame_axis.y, jt->frame_angle, jt->at_a.px, jt->at_a.py, jt->at_a.rotation_angle, jt->at_b.px,
+        jt->at_b.py, jt->at_b.rotation_angle, 0, 0, 0, 0, 0, 0, jt->pinned_a, jt->pinned_b, 0,
+    };
+    memcpy(v, s, sizeof s);
+    solver_joint_feedback(&jt->sj, v + 22);
+    return JOINT_STATE_DOUBLES - 1;
+}
+
+/* A joint: its def as a scene writes it, its type, handle and bodies, and its exact state. */
+static bool write_joint(const joint *jt, cJSON *arr)
+{
+    double v[JOINT_STATE_DOUBLES];
+    const int n = joint_state(jt, v);
+    cJSON *obj = fields_to_json(joint_fields, &jt->def);
+    if (!obj || !cJSON_AddItemToArray(arr, obj)) {
+        cJSON_Delete(obj);
+        return false;
+    }
+    return add(obj, "type", cJSON_CreateString(joint_type_names[jt->def.type])) &&
+           add(obj, "handle", json_handle(handle_saved(jt->handle.id))) &&
+           (!jt->def.body_a.id || add(obj, "body_a", json_handle(handle_saved(jt->def.body_a.id)))) &&
+           (!jt->def.body_b.id || add(obj, "body_b", json_handle(handle_saved(jt->def.body_b.id)))) &&
+           add(obj, "state", json_doubles(v, n)) && add(obj, "dirty", cJSON_CreateBool(jt->dirty));
+}
+
+static int by_attach(const void *a, const void *b)
+{
+    const uint64_t x = (*(const joint *const *)a)->attach_order, y = (*(const joint *const *)b)->attach_order;
+    return (x > y) - (x < y);
+}
+
+/* The joint table and the joints in the order they were last attached, the order ODE lists each body's joints
+ * in; nothing for a world that never had one, so that its snapshot reads as before joints. */
+static bool write_joints(const world *wd, cJSON *root)
+{
+    const joint_table *t = &wd->joints;
+    if (t->capacity == 0)
+        return true;
+    cJSON *gens = cJSON_CreateArray(), *free_slots = cJSON_CreateArray(), *arr = cJSON_CreateArray();
+    joint **live = pp_malloc(((size_t)t->count + 1) * sizeof *live);
+    bool ok = gens && free_slots && arr && live;
+    int32_t n = 0;
+    for (int32_t i = 0; ok && i < t->capacity; i++) {
+        ok = cJSON_AddItemToArray(gens, json_number(t->generations[i], false));
+        if (t->items[i])
+            live[n++] = t->items[i];
+    }
+    for (int32_t i = 0; ok && i < t->free_count; i++)
+        ok = cJSON_AddItemToArray(free_slots, json_number(t->free_slots[i], false));
+    if (ok)
+        qsort(live, (size_t)n, sizeof *live, by_attach);
+    for (int32_t i = 0; ok && i < n; i++)
+        ok = write_joint(live[i], arr);
+    pp_free(live);
+    if (!ok) {
+        cJSON_Delete(gens), cJSON_Delete(free_slots), cJSON_Delete(arr);
+        return false;
+    }
+    /* Each add is made (and frees its item if it fails), so that nothing leaks. */
+    return add(root, "joint_generations", gens) & add(root, "joint_free_slots", free_slots) & add(root, "joints", arr);
+}
+
 static int by_serial(const void *a, const void *b)
 {
     const uint64_t x = (*(const body *const *)a)->serial, y = (*(const body *const *)b)->serial;
@@ -218,6 +290,8 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
              add(e, "body", json_handle(handle_saved(ev->body.id))) &&
              add(e, "other", json_handle(handle_saved(ev->other.id)));
+        if (ok && ev->type == PP_EVENT_JOINT_BROKEN)
+            ok = add(e, "joint", json_handle(handle_saved(ev->joint.id)));
         if (ok && (ev->type == PP_EVENT_CONTACT_BEGIN || ev->type == PP_EVENT_SENSOR_BEGIN)) {
             const double point[2] = {ev->point.x, ev->point.y}, normal[2] = {ev->normal.x, ev->normal.y};
             ok = add(e, "point", json_doubles(point, 2)) && add(e, "normal", json_doubles(normal, 2)) &&
@@ -258,6 +332,14 @@ static bool write_touching(const world *wd, cJSON *root)
 static pp_status check_savable(const world *wd)
 {
     static const char *fn = "pp_world_save_snapshot";
+    for (int32_t i = 0; i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        double v[JOINT_STATE_DOUBLES];
+        for (int k = 0; jt && k < joint_state(jt, v); k++)
+            if (!(fabs(v[k]) <= FLT_MAX))
+                return pp_fail(PP_ERR_LIMIT, "%s: joint %#llx holds %g, which a snapshot cannot; nothing was written",
+                               fn, (unsigned long long)jt->handle.id, v[k]);
+    }
     for (int32_t i = 0; i < wd->body_capacity; i++) {
         const body *bd = wd->bodies[i];
         if (!bd)
@@ -296,7 +378,7 @@ static pp_status write_world(const save_dir *dir, const world *wd, cJSON *root)
               add(root, "time", json_number(wd->time, false)) &&
               add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
-              write_edits_and_events(wd, root) && write_touching(wd, root);
+              write_edits_and_events(wd, root) && write_touching(wd, root) && write_joints(wd, root);
     body **live = ok ? pp_malloc(((size_t)wd->live_count + 1) * sizeof *live) : NULL;
     cJSON *arr = live ? cJSON_CreateArray() : NULL;
     if (!live || !add(root, "bodies", arr)) {
@@ -676,7 +758,7 @@ static pp_status restore_event_contact(const json_ctx *c, const cJSON *obj, cons
 
 static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
 {
-    static const char *const keys[] = {"type", "body", "other", "point", "normal", "approach_speed", NULL};
+    static const char *const keys[] = {"type", "body", "other", "point", "normal", "approach_speed", "joint", NULL};
     const cJSON *arr;
     pp_status st = read_section(c, root, "", "events", true, &arr);
     int32_t i = 0;
@@ -687,7 +769,8 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
         pp_event ev = {0};
         if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
             !(st = read_body_handle(c, it, where, "body", false, wd, &ev.body.id)) &&
-            !(st = read_body_handle(c, it, where, "other", false, wd, &ev.other.id))) {
+            !(st = read_body_handle(c, it, where, "other", false, wd, &ev.other.id)) &&
+            !(st = read_body_handle(c, it, where, "joint", true, wd, &ev.joint.id))) {
             ev.type = (pp_event_type)type;
             if (!type)
                 st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
@@ -743,6 +826,81 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     return PP_OK;
 }
 
+/* One joint as write_joint saved it, into its slot of the restored table; attach_order counts the file's order. */
+static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *where, world *wd, uint64_t order)
+{
+    static const char *const extra[] = {"type", "handle", "body_a", "body_b", "state", "dirty", NULL};
+    uint64_t id = 0;
+    uint32_t dirty = 0;
+    double v[JOINT_STATE_DOUBLES];
+    pp_joint_def d;
+    pp_status st;
+    if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
+        (st = read_body_handle(c, obj, where, "handle", false, wd, &id)) ||
+        (st = read_body_handle(c, obj, where, "body_a", true, wd, &d.body_a.id)) ||
+        (st = read_body_handle(c, obj, where, "body_b", true, wd, &d.body_b.id)) ||
+        (st = read_doubles(c, obj, where, "state", v, JOINT_STATE_DOUBLES - 1)) ||
+        (st = read_bool(c, obj, where, "dirty", &dirty)))
+        return st;
+    const joint_table *t = &wd->joints;
+    const uint32_t slot = handle_slot(id);
+    if (slot >= (uint32_t)t->capacity || t->generations[slot] != handle_gen(id) || t->items[slot])
+        return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free joint slot of that generation");
+    if ((st = joint_check_def(wd, c->fn, &d)) ||
+        (st = joint_check_anchors(c->fn, d.body_a.id ? body_of(wd, d.body_a) : NULL, dv(v[0], v[1]),
+                                  d.body_b.id ? body_of(wd, d.body_b) : NULL, dv(v[2], v[3]))))
+        return json_fail_from_last(c, st, where, NULL);
+    joint *jt = pp_calloc(1, sizeof *jt);
+    if (!jt)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a joint", c->fn);
+    *jt = (joint){
+        .index = slot, .handle = {id}, .def = d, .local_a = dv(v[0], v[1]), .local_b = dv(v[2], v[3]),
+        .pinned_a = v[28] != 0, .pinned_b = v[29] != 0, .axis_local = dv(v[4], v[5]), .ref = v[6], .length = v[7],
+        .slider_offset = v[8], .dirty = dirty != 0, .attach_order = order, .frame_a = dv(v[9], v[10]),
+        .frame_b = dv(v[11], v[12]), .frame_axis = dv(v[13], v[14]), .frame_angle = v[15],
+        .at_a = {.px = v[16], .py = v[17], .rotation_angle = v[18]}, .at_b = {.px = v[19], .py = v[20], .rotation_angle = v[21]},
+    };
+    if ((st = joint_restore(wd, jt, v + 22)))
+        pp_free(jt);
+    return st;
+}
+
+/* The joint table and the joints; absent in snapshots of worlds that never had one. */
+static pp_status restore_joints(const json_ctx *c, const cJSON *root, world *wd)
+{
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "joints", true, &arr);
+    if (st || !cJSON_GetObjectItemCaseSensitive(root, "joint_generations"))
+        return st;
+    uint32_t *gens = NULL, *free_slots = NULL;
+    int32_t n = 0, n_free = 0;
+    uint8_t *seen = NULL;
+    if (!(st = read_int_array(c, root, "joint_generations", 1, HANDLE_GEN_MAX, &gens, &n)) &&
+        !(st = read_int_array(c, root, "joint_free_slots", 0, n - 1, &free_slots, &n_free))) {
+        if (!(seen = pp_calloc((size_t)n + 1, 1)))
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d joint slots", c->fn, (int)n);
+        for (int32_t i = 0; !st && i < n_free; i++)
+            if (seen[free_slots[i]]++)
+                st = json_fail(c, PP_ERR_FORMAT, "joint_free_slots", "", "[%d]: slot %u is listed twice", (int)i,
+                               (unsigned)free_slots[i]);
+    }
+    if (!st)
+        st = joint_table_restore(wd, gens, n, free_slots, n_free);
+    int32_t i = 0;
+    char where[32];
+    for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "joints[%d]", (int)i);
+        st = restore_joint(c, it, where, wd, (uint64_t)i);
+    }
+    for (int32_t k = 0; st == PP_OK && k < n_free; k++)
+        if (wd->joints.items[free_slots[k]])
+            st = json_fail(c, PP_ERR_FORMAT, "joint_free_slots", "", "[%d]: slot %u holds a joint", (int)k,
+                           (unsigned)free_slots[k]);
+    wd->joints.next_attach = (uint64_t)i;
+    pp_free(seen), pp_free(gens), pp_free(free_slots);
+    return st;
+}
+
 /* The world's own state: settings, camera, clock, solver steps, slots, bodies, edits, events. */
 static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
 {
@@ -759,7 +917,8 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
         (st = read_required_int(c, root, "", "solver_steps", 0, JSON_MAX_EXACT_INT, &steps)) ||
         (st = read_required_int(c, root, "", "next_serial", 0, JSON_MAX_EXACT_INT, &serial)) ||
         (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = restore_free_list(c, root, wd)) ||
-        (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)) || (st = restore_touching(c, root, wd)))
+        (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)) || (st = restore_touching(c, root, wd)) ||
+        (st = restore_joints(c, root, wd)))
         return st;
     solver_set_steps(wd->solver, (uint64_t)steps);
     wd->next_serial = (uint64_t)serial;
@@ -769,7 +928,8 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
 static pp_status build_snapshot(const json_ctx *c, const cJSON *root, pp_world *out)
 {
     static const char *const top_keys[] = {"format", "version", "world", "camera", "time", "solver_steps", "next_serial",
-                                           "generations", "free_slots", "edits", "events", "touching", "bodies", NULL};
+                                           "generations", "free_slots", "edits", "events", "touching", "bodies",
+                                           "joint_generations", "joint_free_slots", "joints", NULL};
     if (!cJSON_IsObject(root))
         return json_fail(c, PP_ERR_FORMAT, "(root)", NULL, "expected an object");
     const char *format = NULL;

@@ -275,6 +275,156 @@ void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
     dJointSetFeedback(j, &s->feedback[k]);
 }
 
+/* ---- joints ---- */
+
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, solver_joint *out)
+{
+    dJointFeedback *fb = pp_calloc(1, sizeof *fb);
+    if (!fb)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for the joint");
+    dJointID j;
+    switch (type) {
+    case PP_JOINT_REVOLUTE: j = dJointCreateHinge(s->world, 0); break;
+    case PP_JOINT_PRISMATIC: j = dJointCreateSlider(s->world, 0); break;
+    case PP_JOINT_DISTANCE: j = dJointCreateDBall(s->world, 0); break;
+    case PP_JOINT_WELD: j = dJointCreateFixed(s->world, 0); break;
+    default: j = dJointCreateBall(s->world, 0); break;
+    }
+    dJointSetFeedback(j, fb);
+    *out = (solver_joint){j, fb, true};
+    return PP_OK;
+}
+
+void solver_joint_destroy(solver_joint *sj)
+{
+    if (sj->joint)
+        dJointDestroy((dJointID)sj->joint);
+    pp_free(sj->feedback);
+    *sj = (solver_joint){0};
+}
+
+/* +1 when ODE reads b relative to a, −1 when it reads a relative to the world (body_b). */
+static double joint_sign(const solver_joint *sj) { return sj->first_is_b ? 1.0 : -1.0; }
+
+void solver_joint_attach(pp_solver *s, pp_joint_type type, solver_joint *sj, const solver_joint_frame *f)
+{
+    dJointID j = sj->joint;
+    dBodyID a = f->a ? (dBodyID)f->a->body : 0, b = f->b ? (dBodyID)f->b->body : 0;
+    sj->first_is_b = b != 0;
+    dJointAttach(j, b ? b : a, b ? a : 0);
+    if (!a && !b) {
+        dJointDisable(j);
+        return;
+    }
+    dJointEnable(j);
+    const double k = s->inv_ppm;
+    /* ODE's first body's anchor, then the other's. */
+    const dvec2 p1 = b ? f->anchor_b : f->anchor_a, p2 = b ? f->anchor_a : f->anchor_b;
+    switch (type) {
+    case PP_JOINT_REVOLUTE:
+        dJointSetHingeAnchor(j, p1.x * k, p1.y * k, 0);
+        dJointSetHingeAxisOffset(j, 0, 0, 1, joint_sign(sj) * f->angle);
+        break;
+    case PP_JOINT_PRISMATIC:
+        dJointSetSliderAxis(j, f->axis.x, f->axis.y, 0);
+        break;
+    case PP_JOINT_DISTANCE: {
+        const double d = dJointGetDBallDistance(j);
+        dJointSetDBallAnchor1(j, p1.x * k, p1.y * k, 0);
+        dJointSetDBallAnchor2(j, p2.x * k, p2.y * k, 0);
+        dJointSetDBallDistance(j, d); /* setting anchors measures them; the held length stays */
+        break;
+    }
+    case PP_JOINT_WELD:
+        dJointSetFixed(j);
+        break;
+    default: /* the body's point; solver_joint_set_target moves the world's */
+        dJointSetBallAnchor(j, p1.x * k, p1.y * k, 0);
+        break;
+    }
+}
+
+static void set_stops(dJointID j, pp_joint_type type, double lo, double hi)
+{
+    void (*set)(dJointID, int, dReal) = type == PP_JOINT_REVOLUTE ? dJointSetHingeParam : dJointSetSliderParam;
+    /* ODE may refuse a low stop above the high one: open both first. */
+    set(j, dParamLoStop, -dInfinity);
+    set(j, dParamHiStop, dInfinity);
+    set(j, dParamHiStop, hi);
+    set(j, dParamLoStop, lo);
+}
+
+void solver_joint_set_limits(const pp_solver *s, pp_joint_type type, const solver_joint *sj, bool enabled,
+                             double lower, double upper)
+{
+    const double k = type == PP_JOINT_PRISMATIC ? s->inv_ppm : 1.0, sg = joint_sign(sj);
+    if (!enabled)
+        set_stops(sj->joint, type, -dInfinity, dInfinity);
+    else if (sg > 0)
+        set_stops(sj->joint, type, lower * k, upper * k);
+    else
+        set_stops(sj->joint, type, -upper * k, -lower * k);
+}
+
+void solver_joint_set_motor(const pp_solver *s, pp_joint_type type, const solver_joint *sj, bool enabled,
+                            double speed, double max_force)
+{
+    void (*set)(dJointID, int, dReal) = type == PP_JOINT_REVOLUTE ? dJointSetHingeParam : dJointSetSliderParam;
+    const double k = type == PP_JOINT_PRISMATIC ? s->inv_ppm : 1.0;
+    const double f = type == PP_JOINT_PRISMATIC ? s->inv_ppm : s->inv_ppm * s->inv_ppm;
+    set(sj->joint, dParamVel, enabled ? joint_sign(sj) * speed * k : 0);
+    set(sj->joint, dParamFMax, enabled ? max_force * f : 0);
+}
+
+void solver_joint_set_spring(const pp_solver *s, pp_joint_type type, const solver_joint *sj, double k, double c, double h)
+{
+    /* ODE's manual: a spring k and damper c over a step h are ERP = hk/(hk + c), CFM = 1/(hk + c). Both are
+     * force per length, the same number in metres as in pixels. */
+    void (*set)(dJointID, int, dReal) = type == PP_JOINT_DISTANCE ? dJointSetDBallParam
+                                        : type == PP_JOINT_WELD   ? dJointSetFixedParam
+                                                                  : dJointSetBallParam;
+    const bool rigid = !(k > 0) || !(h * k + c > 0);
+    set(sj->joint, dParamERP, rigid ? dWorldGetERP(s->world) : h * k / (h * k + c));
+    set(sj->joint, dParamCFM, rigid ? dWorldGetCFM(s->world) : 1.0 / (h * k + c));
+}
+
+void solver_joint_set_length(const pp_solver *s, const solver_joint *sj, bool held, double length)
+{
+    if (held) {
+        dJointSetDBallDistance(sj->joint, length * s->inv_ppm);
+        dJointEnable(sj->joint);
+    } else {
+        dJointDisable(sj->joint);
+    }
+}
+
+void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 t)
+{
+    dJointSetBallAnchor2(sj->joint, t.x * s->inv_ppm, t.y * s->inv_ppm, 0);
+}
+
+void solver_joint_feedback(const solver_joint *sj, double out[6])
+{
+    const dJointFeedback *fb = sj->feedback;
+    for (int k = 0; k < 3; k++)
+        out[k] = fb->f1[k], out[3 + k] = fb->t1[k];
+}
+
+void solver_joint_set_feedback(const solver_joint *sj, const double in[6])
+{
+    dJointFeedback *fb = sj->feedback;
+    for (int k = 0; k < 3; k++)
+        fb->f1[k] = in[k], fb->t1[k] = in[3 + k];
+}
+
+void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque)
+{
+    const dJointFeedback *fb = sj->feedback;
+    const double sg = joint_sign(sj); /* against the world, body_b (the world) takes the reverse */
+    *force = dv(sg * fb->f1[0] * s->ppm, sg * fb->f1[1] * s->ppm);
+    *torque = sg * fb->t1[2] * s->ppm * s->ppm;
+}
+
 /* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;
  * project the body back to a pure z rotation, as ODE's own plane-2D demo does. */
 void solver_body_flatten(solver_body *sb)

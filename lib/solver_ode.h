@@ -74,6 +74,47 @@ bool solver_body_is_awake(const solver_body *sb);
 void solver_body_flatten(solver_body *sb);
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
 
+/* A joint's ODE objects. ODE's first body is body_b, or body_a when body_b is the world: ODE never swaps
+ * them itself, so its hinge and slider read b relative to a, or the reverse (sign −1) against the world. */
+typedef struct solver_joint {
+    void *joint;               /* the ODE joint */
+    void *feedback;            /* its dJointFeedback: the last substep's force on ODE's first body */
+    bool first_is_b;
+} solver_joint;
+
+/* Where a joint attaches, at the bodies' current poses. */
+typedef struct solver_joint_frame {
+    const solver_body *a, *b;  /* NULL: the world (or a static body) */
+    dvec2 anchor_a, anchor_b;  /* world px */
+    dvec2 axis;                /* PRISMATIC: unit, world */
+    double angle;              /* REVOLUTE: the angle b has turned from a since creation, rad */
+} solver_joint_frame;
+
+/* An ODE joint of the type (hinge, slider, distance ball, fixed, ball), attached to nothing yet. */
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, solver_joint *out);
+void solver_joint_destroy(solver_joint *sj);
+/* Attach to the frame's bodies with its anchors and axis, as they are now; a joint between two bodies
+ * without ODE bodies is disabled. */
+void solver_joint_attach(pp_solver *s, pp_joint_type type, solver_joint *sj, const solver_joint_frame *f);
+/* REVOLUTE (rad), PRISMATIC (px, measured from where solver_joint_attach left the slider): the stops. */
+void solver_joint_set_limits(const pp_solver *s, pp_joint_type type, const solver_joint *sj, bool enabled,
+                             double lower, double upper);
+/* REVOLUTE (rad/s, mass·px²/s²), PRISMATIC (px/s, mass·px/s²): the motor. */
+void solver_joint_set_motor(const pp_solver *s, pp_joint_type type, const solver_joint *sj, bool enabled,
+                            double speed, double max_force);
+/* A spring of stiffness k (mass/s²) and damping c (mass/s) for a substep of h s; k = 0 is rigid. */
+void solver_joint_set_spring(const pp_solver *s, pp_joint_type type, const solver_joint *sj, double k, double c, double h);
+/* DISTANCE: the held length, px, or none (the rope is slack). */
+void solver_joint_set_length(const pp_solver *s, const solver_joint *sj, bool held, double length);
+/* MOUSE: the world point, px, the body's anchor is pulled to. */
+void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 target);
+/* ODE's own record of the last substep's force and torque on its first body (N, N·m: x, y, z each), for
+ * snapshots. */
+void solver_joint_feedback(const solver_joint *sj, double out[6]);
+void solver_joint_set_feedback(const solver_joint *sj, const double in[6]);
+/* The force (mass·px/s²) and torque (mass·px²/s²) the last substep applied to body_b. */
+void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque);
+
 /* Room for n contacts' impulses in the next step, zeroed; call before adding their joints. */
 pp_status solver_reserve_feedback(pp_solver *s, int32_t n);
 /* Add a contact joint for the next step; its impulse is read back as contact k. */

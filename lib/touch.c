@@ -89,7 +89,7 @@ static pp_event begin_event(const world *wd, pp_event_type type, const body *fro
     const dvec2 rel = dv_sub(body_point_velocity(wd, to, p), body_point_velocity(wd, from, p));
     const double closing = -dv_dot(rel, n);
     return (pp_event){type, 0, from->handle, to->handle, c->point, {(float)n.x, (float)n.y},
-                      (float)(closing > 0 ? closing : 0), 0};
+                      (float)(closing > 0 ? closing : 0), 0, {0}};
 }
 
 /* A new pair with a one-way platform: let the other body through unless it comes from the allowed side. */
@@ -228,9 +228,9 @@ pp_status touch_end(world *wd)
         const bool b_first = (t->flags & TOUCH_SENSOR_B) != 0; /* the sensor is the event's body */
         const pp_body first = {b_first ? t->b : t->a}, second = {b_first ? t->a : t->b};
         if (t->flags & TOUCH_SENSOR)
-            world_queue_event(wd, (pp_event){PP_EVENT_SENSOR_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
+            world_queue_event(wd, (pp_event){PP_EVENT_SENSOR_END, 0, first, second, {0, 0}, {0, 0}, 0, 0, {0}});
         else if (wd->def.contact_events && (t->flags & TOUCH_BEGUN))
-            world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0});
+            world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0, {0}});
     }
     /* The found pairs are the touching ones now; the untested ones (in the old list's order) go to rest. */
     if (found > 0)

@@ -6,6 +6,7 @@
 #include "forces.h"
 #include "handle.h"
 #include "island.h"
+#include "joint.h"
 #include "world.h"
 #include "status.h"
 
@@ -239,6 +240,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     if (world_generations[wd->slot] == 0)
         world_generations[wd->slot] = 1;
     pthread_mutex_unlock(&worlds_lock);
+    joint_free_all(wd); /* before the bodies: ODE's joints go before what they attach */
     for (int32_t i = 0; i < wd->body_capacity; i++)
         if (wd->bodies[i])
             body_free(wd, wd->bodies[i]);
@@ -389,7 +391,7 @@ static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
         if (st)
             return st;
         const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
-        if (carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
+        if (joint_keeps_apart(wd, wd->bodies[ia], wd->bodies[ib]) || carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
             continue;
         const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
         PP_ASSERT(*n < wd->pair_capacity);
@@ -801,12 +803,20 @@ pp_status world_save_touching(world *wd, bool resting)
     return PP_OK;
 }
 
-/* Before the solver runs: every body a contact joint may wake is saved. */
+/* Before the solver runs: every body a contact joint or a joint may wake is saved. */
 static void save_contact_bodies(world *wd)
 {
     for (int32_t k = 0; k < wd->contact_count; k++) {
         save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
         save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
+    }
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
+        if (a)
+            save_body(&wd->undo, a);
+        if (b)
+            save_body(&wd->undo, b);
     }
 }
 
@@ -865,6 +875,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         save_contact_bodies(wd);
         add_contact_joints(wd, h);
+        joint_prepare(wd, h);
         forces_apply(wd);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
@@ -906,6 +917,8 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         return st;
     }
     forces_step_done(wd);
+    if ((st = joint_step_done(wd)))
+        pp_log(1, "physpix: joints past their break force stay until a step has room for their events");
     int32_t awake = 0;
     for (int32_t k = 0; k < wd->awake_count; k++)
         awake += awake_mover(wd->bodies[wd->awake_slots[k]]);

@@ -49,6 +49,7 @@ typedef struct body {
     double torque;           /* … and its torque about the centre of mass, mass·px²/s² */
     double gravity_scale;    /* of the world's gravity; 1 by default */
     bool forced;             /* listed in wd->forced: a force, torque or gravity scale acts on it */
+    int32_t joint_count;     /* joints attached to it (joint.c) */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -89,6 +90,15 @@ typedef struct step_undo {
     bool resting_saved;
     int32_t event_count;      /* events queued before the step */
 } step_undo;
+
+/* The joints of a world (joint.c): a handle table as the bodies'. */
+typedef struct joint_table {
+    struct joint **items;    /* by slot; NULL where free */
+    uint32_t *generations;   /* by slot */
+    uint32_t *free_slots;
+    int32_t capacity, free_count, count;
+    uint64_t next_attach;    /* the next attach's order: ODE lists a body's joints newest attached first */
+} joint_table;
 
 /* How a body's island is solved this substep (island.c). */
 enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
@@ -160,6 +170,7 @@ typedef struct world {
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
     int32_t *forced;         /* slots of the bodies with a force, torque or gravity scale (forces.c) */
     int32_t forced_count, forced_capacity;
+    joint_table joints;
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */

@@ -5,7 +5,7 @@
 
 static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
 static_assert(sizeof(pp_contact) == 48, "pp_contact layout");
-static_assert(sizeof(pp_event) == 48, "pp_event layout");
+static_assert(sizeof(pp_event) == 56, "pp_event layout");
 static_assert(sizeof(pp_raycast_hit) == 32, "pp_raycast_hit layout");
 static_assert(std::is_trivially_copyable<pp_body_def>::value, "plain data");
 static_assert(sizeof(pp_variant) == 24, "pp_variant layout");

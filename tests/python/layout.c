@@ -30,6 +30,7 @@ int main(void)
     S(pp_vec2); F(pp_vec2, x); F(pp_vec2, y); end();
     S(pp_world); F(pp_world, id); end();
     S(pp_body); F(pp_body, id); end();
+    S(pp_joint); F(pp_joint, id); end();
 
     S(pp_world_def);
     F(pp_world_def, struct_size); F(pp_world_def, gravity); F(pp_world_def, substeps);
@@ -61,7 +62,7 @@ int main(void)
 
     S(pp_event);
     F(pp_event, type); F(pp_event, reserved); F(pp_event, body); F(pp_event, other); F(pp_event, point);
-    F(pp_event, normal); F(pp_event, approach_speed); F(pp_event, reserved2);
+    F(pp_event, normal); F(pp_event, approach_speed); F(pp_event, reserved2); F(pp_event, joint);
     end();
 
     S(pp_raycast_hit);
@@ -88,6 +89,16 @@ int main(void)
     F(pp_body_state, angular_velocity); F(pp_body_state, awake);
     end();
 
+    S(pp_joint_def);
+    F(pp_joint_def, struct_size); F(pp_joint_def, type); F(pp_joint_def, body_a); F(pp_joint_def, body_b);
+    F(pp_joint_def, anchor_a); F(pp_joint_def, anchor_b); F(pp_joint_def, axis); F(pp_joint_def, collide_connected);
+    F(pp_joint_def, enable_limit); F(pp_joint_def, lower); F(pp_joint_def, upper); F(pp_joint_def, enable_motor);
+    F(pp_joint_def, motor_speed); F(pp_joint_def, max_motor_force); F(pp_joint_def, min_length);
+    F(pp_joint_def, max_length); F(pp_joint_def, spring_hertz); F(pp_joint_def, spring_damping_ratio);
+    F(pp_joint_def, max_force); F(pp_joint_def, break_force); F(pp_joint_def, reserved);
+    F(pp_joint_def, user_data);
+    end();
+
     S(pp_collision_view);
     F(pp_collision_view, width); F(pp_collision_view, height); F(pp_collision_view, origin);
     F(pp_collision_view, step_x); F(pp_collision_view, step_y); F(pp_collision_view, normal);
@@ -105,6 +116,7 @@ int main(void)
     S(pp_body_type); end();
     S(pp_event_type); end();
     S(pp_edit_type); end();
+    S(pp_joint_type); end();
     printf("\n}\n");
     return 0;
 }

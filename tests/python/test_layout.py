@@ -46,13 +46,14 @@ def test_every_public_struct_is_mirrored(c_layout):
 
 def test_enums_are_32_bit(c_layout):
     for name in ("pp_status", "pp_backend", "pp_normal_method", "pp_contact_mode", "pp_body_type", "pp_event_type",
-                 "pp_edit_type"):
+                 "pp_edit_type", "pp_joint_type"):
         assert c_layout[name]["size"] == ctypes.sizeof(_native.c_enum), name
 
 
 def test_struct_size_from_the_default_functions():
     assert _native.lib.pp_world_def_default().struct_size == ctypes.sizeof(_native.pp_world_def)
     assert _native.lib.pp_body_def_default().struct_size == ctypes.sizeof(_native.pp_body_def)
+    assert _native.lib.pp_joint_def_default(1).struct_size == ctypes.sizeof(_native.pp_joint_def)
 
 
 def test_every_function_of_the_header_has_a_signature():

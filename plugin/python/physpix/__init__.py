@@ -8,12 +8,12 @@ the copy an installed package carries, a source checkout's build/ folder, or the
 from typing import Callable, Optional
 
 from . import _native
-from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, NormalMethod,
-                    Preset, Status)
+from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, JointType,
+                    NormalMethod, Preset, Status)
 from .errors import (AbiError, FormatError, IntegerRangeError, InvalidArgumentError, InvalidHandleError, LimitError,
                      OutOfMemoryError, PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
-from .world import Body, Camera, CollisionView, Contact, Event, RaycastHit, ScheduledEdit, StepStats, World
+from .world import Body, Camera, CollisionView, Contact, Event, Joint, RaycastHit, ScheduledEdit, StepStats, World
 
 #: Version of the loaded library, (major, minor, patch).
 library_version = (_native.version // 10000, _native.version // 100 % 100, _native.version % 100)
@@ -40,9 +40,9 @@ def set_log_hook(fn: "Optional[Callable[[int, str], None]]") -> None:
 
 
 __all__ = [
-    "World", "Body", "Contact", "Event", "RaycastHit", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
+    "World", "Body", "Joint", "Contact", "Event", "RaycastHit", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
     "load_png", "save_png", "image_info", "set_log_hook",
-    "Backend", "BodyType", "ContactMode", "EditType", "EventType", "NormalMethod", "Preset", "Status",
+    "Backend", "BodyType", "ContactMode", "EditType", "EventType", "JointType", "NormalMethod", "Preset", "Status",
     "CELL_A", "CELL_B", "CELL_CRITICAL",
     "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
     "FormatError", "UnsupportedError", "LimitError", "AbiError", "IntegerRangeError", "library_version",

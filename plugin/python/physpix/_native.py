@@ -27,6 +27,10 @@ class pp_body(ctypes.Structure):
     _fields_ = [("id", c_uint64)]
 
 
+class pp_joint(ctypes.Structure):
+    _fields_ = [("id", c_uint64)]
+
+
 class pp_world_def(ctypes.Structure):
     _fields_ = [
         ("struct_size", c_uint32),
@@ -111,6 +115,7 @@ class pp_event(ctypes.Structure):
         ("normal", pp_vec2),
         ("approach_speed", c_float),
         ("reserved2", c_uint32),
+        ("joint", pp_joint),
     ]
 
 
@@ -168,6 +173,33 @@ class pp_body_state(ctypes.Structure):
     ]
 
 
+class pp_joint_def(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", c_uint32),
+        ("type", c_enum),
+        ("body_a", pp_body),
+        ("body_b", pp_body),
+        ("anchor_a", pp_vec2),
+        ("anchor_b", pp_vec2),
+        ("axis", pp_vec2),
+        ("collide_connected", c_uint32),
+        ("enable_limit", c_uint32),
+        ("lower", c_float),
+        ("upper", c_float),
+        ("enable_motor", c_uint32),
+        ("motor_speed", c_float),
+        ("max_motor_force", c_float),
+        ("min_length", c_float),
+        ("max_length", c_float),
+        ("spring_hertz", c_float),
+        ("spring_damping_ratio", c_float),
+        ("max_force", c_float),
+        ("break_force", c_float),
+        ("reserved", c_uint32),
+        ("user_data", c_uint64),
+    ]
+
+
 class pp_collision_view(ctypes.Structure):
     _fields_ = [
         ("width", c_int32),
@@ -199,7 +231,8 @@ class pp_allocator(ctypes.Structure):
 # Every public struct, by its C name (the layout test walks this).
 STRUCTS = {cls.__name__: cls for cls in
            (pp_vec2, pp_world, pp_body, pp_world_def, pp_body_def, pp_contact, pp_event, pp_raycast_hit,
-            pp_step_stats, pp_camera, pp_timed_edit, pp_body_state, pp_collision_view, pp_allocator)}
+            pp_step_stats, pp_camera, pp_timed_edit, pp_body_state, pp_joint, pp_joint_def, pp_collision_view,
+            pp_allocator)}
 
 STATUS = "status"  # marks a function returning pp_status: its result goes through check()
 P = POINTER
@@ -257,6 +290,18 @@ SIGNATURES = {
     "pp_body_get_gravity_scale": (STATUS, [pp_world, pp_body, P(c_float)]),
     "pp_world_set_gravity": (STATUS, [pp_world, pp_vec2]),
     "pp_world_get_body_states": (STATUS, [pp_world, P(pp_body_state), c_int32, P(c_int32)]),
+    "pp_joint_def_default": (pp_joint_def, [c_enum]),
+    "pp_joint_create": (STATUS, [pp_world, P(pp_joint_def), P(pp_joint)]),
+    "pp_joint_destroy": (STATUS, [pp_world, pp_joint]),
+    "pp_world_get_joints": (STATUS, [pp_world, P(pp_joint), c_int32, P(c_int32)]),
+    "pp_joint_get_reaction": (STATUS, [pp_world, pp_joint, P(pp_vec2), P(c_float)]),
+    "pp_joint_get_value": (STATUS, [pp_world, pp_joint, P(c_float), P(c_float)]),
+    "pp_joint_set_motor": (STATUS, [pp_world, pp_joint, c_uint32, c_float, c_float]),
+    "pp_joint_set_limits": (STATUS, [pp_world, pp_joint, c_uint32, c_float, c_float]),
+    "pp_joint_set_target": (STATUS, [pp_world, pp_joint, pp_vec2]),
+    "pp_joint_get_type": (STATUS, [pp_world, pp_joint, P(c_enum)]),
+    "pp_joint_get_bodies": (STATUS, [pp_world, pp_joint, P(pp_body), P(pp_body)]),
+    "pp_joint_get_user_data": (STATUS, [pp_world, pp_joint, P(c_uint64)]),
     "pp_body_erase_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, P(c_int32)]),
     "pp_body_paint_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, c_uint8, P(c_int32)]),
     "pp_body_write_pixels": (STATUS, [pp_world, pp_body, c_int32, c_int32, c_int32, c_int32, u8p, u8p]),

@@ -56,6 +56,16 @@ class EventType(IntEnum):
     CONTACT_END = 4
     SENSOR_BEGIN = 5
     SENSOR_END = 6
+    JOINT_BROKEN = 7
+
+
+class JointType(IntEnum):
+    """pp_joint_type: what a joint holds."""
+    REVOLUTE = 1
+    PRISMATIC = 2
+    DISTANCE = 3
+    WELD = 4
+    MOUSE = 5
 
 
 class EditType(IntEnum):

@@ -18,7 +18,7 @@ from typing import (Any, Callable, Collection, Dict, Iterable, List, Mapping, Op
 import numpy as np
 
 from . import _native as N
-from .enums import Backend, BodyType, ContactMode, EditType, EventType, NormalMethod, Preset
+from .enums import Backend, BodyType, ContactMode, EditType, EventType, JointType, NormalMethod, Preset
 from .errors import IntegerRangeError, InvalidArgumentError, PhysPixError
 
 try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
@@ -221,13 +221,15 @@ class Event:
     """Something that happened to a body (SPLIT: other is the new body; DESTROYED: other is None; CONTACT_*:
     other is the body touched; SENSOR_*: body is the sensor, other the body overlapping it). CONTACT_BEGIN and
     SENSOR_BEGIN also give the first contact's world point (px), the unit normal from body to other, and the
-    speed at which they closed along it (px/s); other events give zeros."""
+    speed at which they closed along it (px/s); other events give zeros. JOINT_BROKEN: body is the joint's body_a
+    (None for the world), other its body_b."""
     type: EventType
     body: Body
     other: Optional[Body]
     point: Vec2
     normal: Vec2
     approach_speed: float
+    joint: Optional[Joint] = None  # JOINT_BROKEN: the joint, now stale (body and other are its bodies)
 
 
 @dataclass(frozen=True)
@@ -407,6 +409,27 @@ class World:
             if count.value <= len(out):
                 return out[:count.value]
 
+    def create_joint(self, type: Union[JointType, int, str], body_a: Optional[Body] = None,
+                     body_b: Optional[Body] = None, **fields: Any) -> Joint:
+        """A joint of a type ("revolute", "prismatic", "distance", "weld", "mouse") between two bodies (None: the
+        static world) with pp_joint_def fields as keywords: anchor_a=(x, y) world px, axis, enable_limit, lower,
+        upper, enable_motor, motor_speed, max_motor_force, min_length, max_length, spring_hertz,
+        spring_damping_ratio, max_force, break_force, collide_connected, user_data."""
+        jt = enum_value(JointType, type, "type")
+        d = lib.pp_joint_def_default(jt)
+        _fill_def(d, fields, "create_joint", skip=("struct_size", "type", "body_a", "body_b"))
+        for name, body in (("body_a", body_a), ("body_b", body_b)):
+            if body is not None and not isinstance(body, Body):
+                raise TypeError(f"create_joint(): {name} must be a Body or None, got {body!r}")
+            setattr(d, name, body._handle if body is not None else N.pp_body(0))
+        handle = N.pp_joint()
+        lib.pp_joint_create(self._handle, byref(d), byref(handle))
+        return Joint(self, handle.id)
+
+    def joints(self) -> List[Joint]:
+        """Every live joint."""
+        return [Joint(self, h.id) for h in _read_list(lib.pp_world_get_joints, N.pp_joint, self._handle)]
+
     @property
     def gravity(self) -> Vec2:
         """The world's gravity, (x, y) px/s²; settable (wakes every sleeping body)."""
@@ -442,7 +465,8 @@ class World:
             lib.pp_world_get_events(self._handle, buf, count.value, byref(count))
             written = min(count.value, len(buf))
             out += [Event(EventType(e.type), Body(self, e.body.id), self._body(e.other), (e.point.x, e.point.y),
-                          (e.normal.x, e.normal.y), e.approach_speed) for e in buf[:written]]
+                          (e.normal.x, e.normal.y), e.approach_speed, Joint(self, e.joint.id) if e.joint.id else None)
+                    for e in buf[:written]]
             count.value -= written
         return out
 
@@ -572,19 +596,20 @@ class World:
         return cells, normals, view
 
 
-class Body:
-    """A body of a World: a value handle; equal when world and body ids are."""
+class _InWorld:
+    """A value handle of something in a World (a body, a joint); equal when world and ids are."""
 
     __slots__ = ("_world", "_handle")
     _world: World
-    _handle: N.pp_body
+    _handle: Any
+    _ctype: Type[ctypes.Structure]  # the C handle struct, set by each kind
 
-    def __init__(self, world: World, body_id: int) -> None:
+    def __init__(self, world: World, handle_id: int) -> None:
         self._world = world
-        self._handle = N.pp_body(_c_int(body_id, c_uint64, "body_id"))
+        self._handle = self._ctype(_c_int(handle_id, c_uint64, f"{type(self).__name__.lower()}_id"))
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, Body) and self._key() == other._key()
+        return isinstance(other, type(self)) and self._key() == other._key()
 
     def __hash__(self) -> int:
         return hash(self._key())
@@ -593,20 +618,27 @@ class Body:
         return self._world._handle.id, self._handle.id
 
     def __repr__(self) -> str:
-        return f"<physpix.Body id={self._handle.id:#x}>"
+        return f"<physpix.{type(self).__name__} id={self._handle.id:#x}>"
 
     def _call(self, fn: Callable[..., Any], *args: Any) -> Any:
         return fn(self._world._handle, self._handle, *args)
 
     @property
     def world(self) -> World:
-        """The World the body lives in."""
+        """The World it lives in."""
         return self._world
 
     @property
     def id(self) -> int:
-        """The opaque pp_body handle value."""
+        """The opaque handle value (pp_body's, pp_joint's)."""
         return self._handle.id
+
+
+class Body(_InWorld):
+    """A body of a World: a value handle; equal when world and body ids are."""
+
+    __slots__ = ()
+    _ctype = N.pp_body
 
     def destroy(self) -> None:
         """Destroy the body; its handle becomes stale."""
@@ -838,3 +870,62 @@ class Body:
         out = np.empty((h, w, 4), dtype=np.uint8)
         self._call(lib.pp_body_read_rgba, _u8_ptr(out), out.nbytes)
         return out
+
+
+class Joint(_InWorld):
+    """A joint of a World: a value handle; equal when world and joint ids are."""
+
+    __slots__ = ()
+    _ctype = N.pp_joint
+
+    def destroy(self) -> None:
+        """Destroy the joint; its handle becomes stale."""
+        self._call(lib.pp_joint_destroy)
+
+    @property
+    def type(self) -> JointType:
+        """What the joint holds."""
+        t = N.c_enum()
+        self._call(lib.pp_joint_get_type, byref(t))
+        return JointType(t.value)
+
+    @property
+    def bodies(self) -> Tuple[Optional[Body], Optional[Body]]:
+        """(body_a, body_b); None for the static world. A split moves a joint to the piece holding its anchor."""
+        a, b = N.pp_body(), N.pp_body()
+        self._call(lib.pp_joint_get_bodies, byref(a), byref(b))
+        return self._world._body(a), self._world._body(b)
+
+    @property
+    def user_data(self) -> int:
+        """The host's value given at creation."""
+        v = c_uint64()
+        self._call(lib.pp_joint_get_user_data, byref(v))
+        return v.value
+
+    @property
+    def reaction(self) -> Tuple[Vec2, float]:
+        """((fx, fy) mass·px/s², torque mass·px²/s²): what the joint applied to body_b in the last substep."""
+        f, t = N.pp_vec2(), c_float()
+        self._call(lib.pp_joint_get_reaction, byref(f), byref(t))
+        return (f.x, f.y), t.value
+
+    @property
+    def value(self) -> Tuple[float, float]:
+        """(value, speed): REVOLUTE b's angle from a since creation (rad, rad/s); PRISMATIC its translation (px,
+        px/s); DISTANCE the anchors' distance (px, px/s); others (0, 0)."""
+        v, s = c_float(), c_float()
+        self._call(lib.pp_joint_get_value, byref(v), byref(s))
+        return v.value, s.value
+
+    def set_motor(self, enabled: bool, speed: float = 0.0, max_force: float = 0.0) -> None:
+        """REVOLUTE (rad/s, torque mass·px²/s²) or PRISMATIC (px/s, mass·px/s²): drive toward speed."""
+        self._call(lib.pp_joint_set_motor, 1 if enabled else 0, speed, max_force)
+
+    def set_limits(self, enabled: bool, lower: float = 0.0, upper: float = 0.0) -> None:
+        """REVOLUTE (rad, within −π..π), PRISMATIC (px) or DISTANCE (min and max length, px)."""
+        self._call(lib.pp_joint_set_limits, 1 if enabled else 0, lower, upper)
+
+    def set_target(self, target: Vec2Like) -> None:
+        """MOUSE: the world point (px) the body's anchor is pulled to."""
+        self._call(lib.pp_joint_set_target, vec2(target, "target"))

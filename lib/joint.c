@@ -1,0 +1,810 @@
+/* Joints: the handle table (as the bodies': slot, generation, the world's tag), creation from a def and
+ * its checks, values and reactions in pixels, and what steps, edits and splits do to joints. Anchors are
+ * kept as bitmap points of their bodies, so an edit that moves a centre of mass or a split that moves a
+ * piece re-attaches the ODE joint at the same material points. */
+#include "joint.h"
+#include "alloc.h"
+#include "awake.h"
+#include "cover.h"
+#include "handle.h"
+#include "status.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+PP_API pp_joint_def pp_joint_def_default(pp_joint_type type)
+{
+    pp_joint_def d;
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    d.type = type >= PP_JOINT_REVOLUTE && type <= PP_JOINT_MOUSE ? type : PP_JOINT_REVOLUTE;
+    d.axis = (pp_vec2){1, 0};
+    if (d.type == PP_JOINT_MOUSE) { /* Box2D's mouse joint: a soft pull */
+        d.spring_hertz = 5.0f;
+        d.spring_damping_ratio = 0.7f;
+    }
+    return d;
+}
+
+/* ---- the handle table ---- */
+
+joint *joint_find(const world *wd, pp_joint j)
+{
+    const joint_table *t = &wd->joints;
+    const uint32_t slot = handle_slot(j.id);
+    if (j.id == 0 || handle_tag(j.id) != wd->tag || slot >= (uint32_t)t->capacity || t->generations[slot] != handle_gen(j.id))
+        return NULL;
+    return t->items[slot];
+}
+
+static joint *joint_lookup(pp_world w, pp_joint j, const char *fn, world **wd)
+{
+    if (!(*wd = world_lookup(w, fn)))
+        return NULL;
+    joint *jt = joint_find(*wd, j);
+    if (jt)
+        return jt;
+    const uint64_t owner = j.id && handle_tag(j.id) != (*wd)->tag ? world_id_of_tag(handle_tag(j.id)) : 0;
+    if (owner)
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: joint %#llx belongs to world %#llx, not %#llx", fn,
+                (unsigned long long)j.id, (unsigned long long)owner, (unsigned long long)(*wd)->handle.id);
+    else
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: joint handle %#llx is null, destroyed, stale or of another world", fn,
+                (unsigned long long)j.id);
+    return NULL;
+}
+
+static body *side_body(const world *wd, pp_body b) { return b.id ? body_of(wd, b) : NULL; }
+body *joint_body_a(const world *wd, const joint *jt) { return side_body(wd, jt->def.body_a); }
+body *joint_body_b(const world *wd, const joint *jt) { return side_body(wd, jt->def.body_b); }
+
+/* A slot for a new joint, growing the table; PP_ERR_OUT_OF_MEMORY or PP_ERR_LIMIT. */
+static pp_status alloc_slot(world *wd, uint32_t *slot)
+{
+    joint_table *t = &wd->joints;
+    if (t->free_count == 0) {
+        if (t->capacity >= PP_MAX_BODIES)
+            return pp_fail(PP_ERR_LIMIT, "pp_joint_create: a world holds at most %d joints", PP_MAX_BODIES);
+        const int32_t cap = t->capacity ? (t->capacity * 2 < PP_MAX_BODIES ? t->capacity * 2 : PP_MAX_BODIES) : 16;
+        joint **items = pp_realloc(t->items, (size_t)cap * sizeof *items);
+        if (items)
+            t->items = items;
+        uint32_t *gens = items ? pp_realloc(t->generations, (size_t)cap * sizeof *gens) : NULL;
+        if (gens)
+            t->generations = gens;
+        uint32_t *free_slots = gens ? pp_realloc(t->free_slots, (size_t)cap * sizeof *free_slots) : NULL;
+        if (!free_slots)
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for %d joints", (int)cap);
+        t->free_slots = free_slots;
+        for (int32_t i = cap - 1; i >= t->capacity; i--) { /* lowest slot on top */
+            t->items[i] = NULL;
+            t->generations[i] = 1;
+            t->free_slots[t->free_count++] = (uint32_t)i;
+        }
+        t->capacity = cap;
+    }
+    *slot = t->free_slots[--t->free_count];
+    return PP_OK;
+}
+
+static void joint_free(world *wd, joint *jt)
+{
+    joint_table *t = &wd->joints;
+    body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    if (a)
+        a->joint_count--;
+    if (b)
+        b->joint_count--;
+    solver_joint_destroy(&jt->sj);
+    t->items[jt->index] = NULL;
+    t->generations[jt->index] = handle_next_gen(t->generations[jt->index]);
+    t->free_slots[t->free_count++] = jt->index;
+    t->count--;
+    pp_free(jt);
+}
+
+/* ---- geometry ---- */
+
+static dvec2 local_to_world(const body *bd, dvec2 p)
+{
+    return bd ? dv_add(bd->pos, dv_rot(dv_sub(p, bd->pivot), bd->cos_a, bd->sin_a)) : p;
+}
+static dvec2 world_to_local(const body *bd, dvec2 p) { return bd ? body_world_to_local(bd, p) : p; }
+static double angle_of(const body *bd) { return bd ? bd->angle : 0.0; }
+
+static dvec2 velocity_at(const world *wd, const body *bd, dvec2 p)
+{
+    return bd ? body_point_velocity(wd, bd, p) : dv(0, 0);
+}
+
+static double spin_of(const world *wd, const body *bd)
+{
+    if (!bd || !bd->sb.body)
+        return 0;
+    solver_body_state s;
+    solver_body_get_state(wd->solver, &bd->sb, &s);
+    return s.angular_velocity;
+}
+
+static double wrap_angle(double a) { return remainder(a, 2 * PP_PI); }
+
+/* The joint's value and its rate, as pp_joint_get_value reports them. */
+static void joint_value(const world *wd, const joint *jt, double *value, double *speed)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const dvec2 pa = local_to_world(a, jt->local_a), pb = local_to_world(b, jt->local_b);
+    const dvec2 dvel = dv_sub(velocity_at(wd, b, pb), velocity_at(wd, a, pa)), d = dv_sub(pb, pa);
+    *value = *speed = 0;
+    if (jt->def.type == PP_JOINT_REVOLUTE) {
+        *value = wrap_angle(angle_of(b) - angle_of(a) - jt->ref);
+        *speed = spin_of(wd, b) - spin_of(wd, a);
+    } else if (jt->def.type == PP_JOINT_PRISMATIC) {
+        const dvec2 axis = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local;
+        *value = dv_dot(d, axis) - jt->ref;
+        *speed = dv_dot(dvel, axis);
+    } else if (jt->def.type == PP_JOINT_DISTANCE) {
+        *value = dv_norm(d);
+        *speed = *value > 0 ? dv_dot(dvel, d) / *value : 0;
+    }
+}
+
+/* The bodies' mass as the joint's spring sees it: the reduced mass, a body that is not pushed counting as infinite. */
+static double joint_mass(const world *wd, const joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const double ia = a && a->type == PP_BODY_DYNAMIC ? 1.0 / a->mass.mass : 0;
+    const double ib = b && b->type == PP_BODY_DYNAMIC ? 1.0 / b->mass.mass : 0;
+    return ia + ib > 0 ? 1.0 / (ia + ib) : 0;
+}
+
+/* Attach the ODE joint with its recorded frame, then its limits, motor and length. */
+static void attach_recorded(world *wd, joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const pp_joint_def *d = &jt->def;
+    const solver_joint_frame f = {a && a->sb.body ? &a->sb : NULL, b && b->sb.body ? &b->sb : NULL, jt->frame_a,
+                                  jt->frame_b, jt->frame_axis, jt->frame_angle};
+    solver_joint_attach(wd->solver, d->type, &jt->sj, &f);
+    if (d->type == PP_JOINT_REVOLUTE || d->type == PP_JOINT_PRISMATIC) {
+        solver_joint_set_limits(wd->solver, d->type, &jt->sj, d->enable_limit, d->lower - jt->slider_offset,
+                                d->upper - jt->slider_offset);
+        solver_joint_set_motor(wd->solver, d->type, &jt->sj, d->enable_motor, d->motor_speed, d->max_motor_force);
+    }
+    if (d->type == PP_JOINT_DISTANCE)
+        solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
+}
+
+/* Attach the ODE joint to its bodies as they are now, recording how for snapshots. */
+static void joint_attach(world *wd, joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    double value, speed;
+    joint_value(wd, jt, &value, &speed);
+    jt->frame_a = local_to_world(a, jt->local_a), jt->frame_b = local_to_world(b, jt->local_b);
+    jt->frame_axis = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local;
+    jt->frame_angle = value;
+    jt->at_a = jt->at_b = (solver_exact_state){0};
+    if (a && a->sb.body)
+        solver_body_save(&a->sb, &jt->at_a);
+    if (b && b->sb.body)
+        solver_body_save(&b->sb, &jt->at_b);
+    jt->attach_order = wd->joints.next_attach++;
+    jt->dirty = false;
+    if (jt->def.type == PP_JOINT_PRISMATIC)
+        jt->slider_offset = value;
+    attach_recorded(wd, jt);
+}
+
+/* ---- creation ---- */
+
+static bool finite_f(double x) { return fabs(x) <= FLT_MAX; }
+
+/* PP_ERR_INVALID_ARGUMENT naming the first field of a def out of its range. */
+static pp_status check_def_values(const char *fn, const pp_joint_def *d)
+{
+    const struct { const char *name; double v; } nonneg[] = {
+        {"max_motor_force", d->max_motor_force}, {"min_length", d->min_length}, {"max_length", d->max_length},
+        {"spring_hertz", d->spring_hertz},       {"spring_damping_ratio", d->spring_damping_ratio},
+        {"max_force", d->max_force},             {"break_force", d->break_force},
+    };
+    const double pts[] = {d->anchor_a.x, d->anchor_a.y, d->anchor_b.x, d->anchor_b.y};
+    for (int i = 0; i < 4; i++)
+        if (!finite_f(pts[i]))
+            return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: anchor_a and anchor_b must be finite, got (%g, %g) and (%g, %g)",
+                           fn, pts[0], pts[1], pts[2], pts[3]);
+    for (size_t i = 0; i < sizeof nonneg / sizeof *nonneg; i++)
+        if (!(nonneg[i].v >= 0) || !finite_f(nonneg[i].v))
+            return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s must be finite and ≥ 0, got %g", fn, nonneg[i].name,
+                           nonneg[i].v);
+    if (!finite_f(d->motor_speed))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: motor_speed must be finite, got %g", fn, d->motor_speed);
+    if (d->type == PP_JOINT_PRISMATIC && !(finite_f(d->axis.x) && finite_f(d->axis.y) && hypot(d->axis.x, d->axis.y) > 0))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: axis must be finite and not zero, got (%g, %g)", fn, d->axis.x,
+                       d->axis.y);
+    if (d->max_length < d->min_length)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: min_length %g is more than max_length %g", fn, d->min_length,
+                       d->max_length);
+    return PP_OK;
+}
+
+/* PP_ERR_INVALID_ARGUMENT unless lower..upper is a range a joint of this type can hold. */
+static pp_status check_limits(const char *fn, pp_joint_type type, double lower, double upper)
+{
+    if (!finite_f(lower) || !finite_f(upper) || !(lower <= upper))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower %g and upper %g must be finite, lower ≤ upper", fn, lower,
+                       upper);
+    if (type == PP_JOINT_REVOLUTE && !(lower >= -PP_PI && upper <= PP_PI))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a revolute joint's limits must lie within −π..π, got %g..%g", fn,
+                       lower, upper);
+    if (type == PP_JOINT_DISTANCE && !(lower >= 0))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a distance joint's lengths must be ≥ 0, got %g..%g", fn, lower,
+                       upper);
+    return PP_OK;
+}
+
+/* A def's bodies: live in this world, not the same, at least one with an ODE body. */
+static pp_status check_bodies(world *wd, const char *fn, const pp_joint_def *d, body **a, body **b)
+{
+    *a = *b = NULL;
+    if (d->body_a.id && !(*a = body_lookup(wd, d->body_a, fn)))
+        return PP_ERR_INVALID_HANDLE;
+    if (d->body_b.id && !(*b = body_lookup(wd, d->body_b, fn)))
+        return PP_ERR_INVALID_HANDLE;
+    if (d->body_a.id == d->body_b.id)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: body_a and body_b are the same %s", fn,
+                       d->body_a.id ? "body" : "static world (both zero)");
+    if (d->type == PP_JOINT_MOUSE && (*a || !*b || !(*b)->sb.body))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a mouse joint pulls a dynamic or kinematic body_b; body_a must be zero", fn);
+    if (!(*a && (*a)->sb.body) && !(*b && (*b)->sb.body))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: neither body moves (both static or the world)", fn);
+    return PP_OK;
+}
+
+/* An anchor a body can hold: within its bitmap grown by JOINT_REACH px or its own size on each side, so that
+ * the solver's lever arms stay near the body's (ODE's exact solver aborts on astronomical ones). */
+#define JOINT_REACH 4096.0
+
+static bool anchor_in_reach(const body *bd, dvec2 p)
+{
+    const double w = bd->raster.width, h = bd->raster.height, m = fmax(JOINT_REACH, w + h);
+    return p.x >= -m && p.x <= w + m && p.y >= -m && p.y <= h + m;
+}
+
+pp_status joint_check_anchors(const char *fn, const body *a, dvec2 local_a, const body *b, dvec2 local_b)
+{
+    if ((a && !anchor_in_reach(a, local_a)) || (b && !anchor_in_reach(b, local_b)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: an anchor lies farther than %g px or the body's size from its "
+                       "bitmap (bitmap (%g, %g) of body_a, (%g, %g) of body_b)", fn, JOINT_REACH, local_a.x, local_a.y,
+                       local_b.x, local_b.y);
+    return PP_OK;
+}
+
+/* Whether a bitmap point has a solid pixel within 1 px (the pixel's square, not its centre). */
+static bool anchor_held(const body *bd, dvec2 p, int32_t *hx, int32_t *hy)
+{
+    const pp_raster *r = &bd->raster;
+    double best = 2;
+    if (!anchor_in_reach(bd, p))
+        return false;
+    for (int32_t y = (int32_t)floor(p.y) - 1; y <= (int32_t)floor(p.y) + 1; y++)
+        for (int32_t x = (int32_t)floor(p.x) - 1; x <= (int32_t)floor(p.x) + 1; x++) {
+            if (x < 0 || y < 0 || x >= r->width || y >= r->height || !raster_solid(r, x, y))
+                continue;
+            const double dx = fmax(0, fmax(x - p.x, p.x - (x + 1))), dy = fmax(0, fmax(y - p.y, p.y - (y + 1)));
+            const double dist = hypot(dx, dy);
+            if (dist <= 1 && dist < best)
+                best = dist, *hx = x, *hy = y;
+        }
+    return best <= 1;
+}
+
+static bool anchor_pinned(const body *bd, dvec2 p)
+{
+    int32_t x, y;
+    return bd && anchor_held(bd, p, &x, &y);
+}
+
+pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d)
+{
+    if (!(d->type >= PP_JOINT_REVOLUTE && d->type <= PP_JOINT_MOUSE))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is not a pp_joint_type", fn, (int)d->type);
+    body *a, *b;
+    pp_status st = check_bodies(wd, fn, d, &a, &b);
+    if (st || (st = check_def_values(fn, d)))
+        return st;
+    return check_limits(fn, d->type, d->lower, d->upper);
+}
+
+PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *out)
+{
+    static const char *fn = "pp_joint_create";
+    world *wd = world_lookup(w, fn);
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!def || !out)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s is NULL", fn, def ? "out" : "def");
+    if (def->struct_size != sizeof *def)
+        return pp_fail(PP_ERR_ABI, "%s: def.struct_size is %u, this library's pp_joint_def is %u bytes (use "
+                       "pp_joint_def_default)", fn, (unsigned)def->struct_size, (unsigned)sizeof *def);
+    pp_status st = joint_check_def(wd, fn, def);
+    if (st)
+        return st;
+    body *a = side_body(wd, def->body_a), *b = side_body(wd, def->body_b);
+    const bool one_anchor = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_WELD || def->type == PP_JOINT_MOUSE;
+    const dvec2 wa = dv(def->anchor_a.x, def->anchor_a.y), wb = one_anchor ? wa : dv(def->anchor_b.x, def->anchor_b.y);
+    if (def->type == PP_JOINT_DISTANCE && def->max_length == 0 && !(dv_norm(dv_sub(wb, wa)) >= 1e-3))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a rigid distance joint's anchors coincide (use a revolute joint)", fn);
+    const dvec2 local_a = def->type == PP_JOINT_MOUSE ? wa : world_to_local(a, wa), local_b = world_to_local(b, wb);
+    if ((st = joint_check_anchors(fn, a, local_a, b, local_b)))
+        return st;
+    joint *jt = pp_calloc(1, sizeof *jt);
+    if (!jt)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the joint", fn);
+    uint32_t slot = 0;
+    if ((st = alloc_slot(wd, &slot))) {
+        pp_free(jt);
+        return st;
+    }
+    if ((st = solver_joint_create(wd->solver, def->type, &jt->sj))) {
+        wd->joints.free_slots[wd->joints.free_count++] = slot;
+        pp_free(jt);
+        return st;
+    }
+    joint_table *t = &wd->joints;
+    jt->index = slot;
+    jt->handle = (pp_joint){handle_make(wd->tag, slot, t->generations[slot])};
+    jt->def = *def;
+    jt->local_a = local_a, jt->local_b = local_b;
+    jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);
+    const dvec2 axis = dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y));
+    jt->axis_local = a ? dv_unrot(axis, a->cos_a, a->sin_a) : axis;
+    t->items[slot] = jt;
+    t->count++;
+    if (a)
+        a->joint_count++;
+    if (b)
+        b->joint_count++;
+    double value, speed;
+    jt->ref = 0;
+    joint_value(wd, jt, &value, &speed);
+    jt->ref = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_PRISMATIC ? value : 0;
+    jt->length = def->type == PP_JOINT_DISTANCE ? value : 0;
+    joint_attach(wd, jt);
+    if (def->type == PP_JOINT_MOUSE)
+        solver_joint_set_target(wd->solver, &jt->sj, wa);
+    if (a && a->sb.body)
+        awake_wake(wd, a);
+    if (b && b->sb.body)
+        awake_wake(wd, b);
+    *out = jt->handle;
+    return PP_OK;
+}
+
+static void wake_joint(world *wd, const joint *jt)
+{
+    body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    if (a && a->sb.body)
+        awake_wake(wd, a);
+    if (b && b->sb.body)
+        awake_wake(wd, b);
+}
+
+PP_API pp_status pp_joint_destroy(pp_world w, pp_joint j)
+{
+    world *wd;
+    joint *jt = joint_lookup(w, j, "pp_joint_destroy", &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    wake_joint(wd, jt);
+    joint_free(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity, int32_t *count)
+{
+    world *wd = world_lookup(w, "pp_world_get_joints");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    pp_status st = pp_check_out_buffer("pp_world_get_joints", out, capacity, count);
+    if (st)
+        return st;
+    int32_t n = 0;
+    for (int32_t i = 0; i < wd->joints.capacity; i++)
+        if (wd->joints.items[i]) {
+            if (n < capacity)
+                out[n] = wd->joints.items[i]->handle;
+            n++;
+        }
+    *count = n;
+    return PP_OK;
+}
+
+/* A getter's joint with its out-pointer checked (`what` says which, e.g. "out is"); NULL and the status in *st
+ * on failure. */
+static joint *joint_for_out(pp_world w, pp_joint j, const char *fn, const void *out, const char *what, world **wd,
+                            pp_status *st)
+{
+    joint *jt = joint_lookup(w, j, fn, wd);
+    *st = jt ? PP_OK : PP_ERR_INVALID_HANDLE;
+    if (jt && !out) {
+        *st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s NULL", fn, what);
+        return NULL;
+    }
+    return jt;
+}
+
+PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, float *torque)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_reaction", force ? (void *)force : (void *)torque,
+                              "force and torque are both", &wd, &st);
+    if (!jt)
+        return st;
+    dvec2 f;
+    double t;
+    solver_joint_reaction(wd->solver, &jt->sj, &f, &t);
+    if (force)
+        *force = (pp_vec2){(float)f.x, (float)f.y};
+    if (torque)
+        *torque = (float)t;
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float *speed)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_value", value ? value : speed, "value and speed are both", &wd, &st);
+    if (!jt)
+        return st;
+    double v, s;
+    joint_value(wd, jt, &v, &s);
+    if (value)
+        *value = (float)v;
+    if (speed)
+        *speed = (float)s;
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, float speed, float max_force)
+{
+    static const char *fn = "pp_joint_set_motor";
+    world *wd;
+    joint *jt = joint_lookup(w, j, fn, &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    if (jt->def.type != PP_JOINT_REVOLUTE && jt->def.type != PP_JOINT_PRISMATIC)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute and prismatic joints have motors", fn);
+    if (!finite_f(speed) || !finite_f(max_force) || !(max_force >= 0))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: speed must be finite and max_force finite and ≥ 0, got %g and %g",
+                       fn, speed, max_force);
+    jt->def.enable_motor = enabled != 0;
+    jt->def.motor_speed = speed, jt->def.max_motor_force = max_force;
+    solver_joint_set_motor(wd->solver, jt->def.type, &jt->sj, enabled, speed, max_force);
+    wake_joint(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, float lower, float upper)
+{
+    static const char *fn = "pp_joint_set_limits";
+    world *wd;
+    joint *jt = joint_lookup(w, j, fn, &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    pp_joint_def *d = &jt->def;
+    if (d->type != PP_JOINT_REVOLUTE && d->type != PP_JOINT_PRISMATIC && d->type != PP_JOINT_DISTANCE)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute, prismatic and distance joints have limits", fn);
+    pp_status st = check_limits(fn, d->type, lower, upper);
+    if (st)
+        return st;
+    if (d->type == PP_JOINT_DISTANCE) { /* off: rigid at the creation length again */
+        d->min_length = enabled ? lower : 0, d->max_length = enabled ? upper : 0;
+    } else {
+        d->enable_limit = enabled != 0, d->lower = lower, d->upper = upper;
+        solver_joint_set_limits(wd->solver, d->type, &jt->sj, enabled, lower - jt->slider_offset,
+                                upper - jt->slider_offset);
+    }
+    wake_joint(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target)
+{
+    static const char *fn = "pp_joint_set_target";
+    world *wd;
+    joint *jt = joint_lookup(w, j, fn, &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    if (jt->def.type != PP_JOINT_MOUSE)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only mouse joints have a target", fn);
+    if (!finite_f(target.x) || !finite_f(target.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: target must be finite, got (%g, %g)", fn, target.x, target.y);
+    jt->local_a = dv(target.x, target.y);
+    wake_joint(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_type", out, "out is", &wd, &st);
+    if (jt)
+        *out = jt->def.type;
+    return st;
+}
+
+PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp_body *body_b)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_bodies", body_a && body_b ? body_a : NULL, "body_a or body_b is",
+                              &wd, &st);
+    if (jt)
+        *body_a = jt->def.body_a, *body_b = jt->def.body_b;
+    return st;
+}
+
+PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_user_data", out, "out is", &wd, &st);
+    if (jt)
+        *out = jt->def.user_data;
+    return st;
+}
+
+/* ---- the step, edits, removal ---- */
+
+static bool joint_has(const joint *jt, const body *bd)
+{
+    return jt->def.body_a.id == bd->handle.id || jt->def.body_b.id == bd->handle.id;
+}
+
+void joint_body_removed(world *wd, body *bd)
+{
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+        joint *jt = wd->joints.items[i];
+        if (jt && joint_has(jt, bd)) {
+            wake_joint(wd, jt);
+            joint_free(wd, jt);
+        }
+    }
+}
+
+void joint_body_changed(world *wd, const body *bd)
+{
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+        joint *jt = wd->joints.items[i];
+        if (jt && joint_has(jt, bd))
+            jt->dirty = true;
+    }
+}
+
+bool joint_keeps_apart(const world *wd, const body *a, const body *b)
+{
+    if (a->joint_count == 0 || b->joint_count == 0)
+        return false;
+    for (int32_t i = 0; i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        if (jt && !jt->def.collide_connected && joint_has(jt, a) && joint_has(jt, b))
+            return true;
+    }
+    return false;
+}
+
+static void joint_break(world *wd, joint *jt)
+{
+    world_queue_event(wd, (pp_event){.type = PP_EVENT_JOINT_BROKEN, .body = jt->def.body_a, .other = jt->def.body_b,
+                                     .joint = jt->handle}); /* room reserved */
+    wake_joint(wd, jt);
+    joint_free(wd, jt);
+}
+
+/* One side of a joint on an edited body: false if its anchor lost its pixels; else moved onto the piece of the
+ * split holding it (a massless piece, which is not made, breaks it). */
+static bool anchor_follows(world *wd, const body *bd, const fracture_plan *p, pp_body *side, dvec2 *local, bool pinned)
+{
+    int32_t x, y, k;
+    dvec2 origin;
+    if (!pinned)
+        return true;
+    if (!anchor_held(bd, *local, &x, &y))
+        return false;
+    if (!p || !fracture_island_at(p, x, y, &k, &origin) || k == p->keep)
+        return true;
+    if (!p->children[k].id)
+        return false;
+    body *piece = body_of(wd, p->children[k]);
+    *side = piece->handle;
+    *local = dv_sub(*local, origin);
+    return true;
+}
+
+void joint_edit_done(world *wd, body *bd, const fracture_plan *p)
+{
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+        joint *jt = wd->joints.items[i];
+        if (!jt || !joint_has(jt, bd))
+            continue;
+        pp_joint_def *d = &jt->def;
+        const pp_body a0 = d->body_a, b0 = d->body_b;
+        const bool on_a = a0.id == bd->handle.id;
+        const bool held = on_a ? anchor_follows(wd, bd, p, &d->body_a, &jt->local_a, jt->pinned_a)
+                               : anchor_follows(wd, bd, p, &d->body_b, &jt->local_b, jt->pinned_b);
+        if (!held) {
+            joint_break(wd, jt);
+            continue;
+        }
+        if (d->body_a.id != a0.id || d->body_b.id != b0.id) { /* onto a new piece (never the other side's body) */
+            bd->joint_count--;
+            body_of(wd, on_a ? d->body_a : d->body_b)->joint_count++;
+        }
+        jt->dirty = true;
+    }
+}
+
+/* A rope is held at max_length when stretched to it, at min_length when pushed to it, slack between. */
+static void rope_prepare(world *wd, joint *jt)
+{
+    double d, speed;
+    joint_value(wd, jt, &d, &speed);
+    const pp_joint_def *def = &jt->def;
+    if (d >= def->max_length)
+        solver_joint_set_length(wd->solver, &jt->sj, true, def->max_length);
+    else if (def->min_length > 0 && d <= def->min_length)
+        solver_joint_set_length(wd->solver, &jt->sj, true, def->min_length);
+    else
+        solver_joint_set_length(wd->solver, &jt->sj, false, 0);
+}
+
+/* The mouse's target, brought within max_force / k of the anchor so that the spring pulls no harder. */
+static void mouse_prepare(world *wd, joint *jt, double k)
+{
+    const body *b = joint_body_b(wd, jt);
+    const dvec2 pb = local_to_world(b, jt->local_b), e = dv_sub(jt->local_a, pb);
+    const double len = dv_norm(e), cap = jt->def.max_force;
+    dvec2 t = jt->local_a;
+    if (cap > 0 && k > 0 && len * k > cap)
+        t = dv_add(pb, dv_scale(e, cap / (k * len)));
+    solver_joint_set_target(wd->solver, &jt->sj, t);
+}
+
+void joint_prepare(world *wd, double h)
+{
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+        joint *jt = wd->joints.items[i];
+        if (!jt)
+            continue;
+        const pp_joint_def *d = &jt->def;
+        if (jt->dirty)
+            joint_attach(wd, jt);
+        const double m = joint_mass(wd, jt), omega = 2 * PP_PI * d->spring_hertz;
+        const double k = m * omega * omega, c = 2 * m * d->spring_damping_ratio * omega;
+        if (d->type == PP_JOINT_DISTANCE || d->type == PP_JOINT_WELD || d->type == PP_JOINT_MOUSE)
+            solver_joint_set_spring(wd->solver, d->type, &jt->sj, k, c, h);
+        if (d->type == PP_JOINT_DISTANCE && d->spring_hertz == 0 && d->max_length > 0)
+            rope_prepare(wd, jt);
+        else if (d->type == PP_JOINT_MOUSE)
+            mouse_prepare(wd, jt, k);
+    }
+}
+
+static bool over_break_force(const world *wd, const joint *jt)
+{
+    if (!(jt->def.break_force > 0))
+        return false;
+    dvec2 f;
+    double t;
+    solver_joint_reaction(wd->solver, &jt->sj, &f, &t);
+    return dv_norm(f) > jt->def.break_force;
+}
+
+pp_status joint_step_done(world *wd)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++)
+        n += wd->joints.items[i] && over_break_force(wd, wd->joints.items[i]);
+    if (n == 0)
+        return PP_OK;
+    pp_status st = world_reserve_events(wd, n);
+    if (st)
+        return st;
+    for (int32_t i = 0; i < wd->joints.capacity; i++)
+        if (wd->joints.items[i] && over_break_force(wd, wd->joints.items[i]))
+            joint_break(wd, wd->joints.items[i]);
+    return PP_OK;
+}
+
+/* Put a body's ODE body where `at` has it (pose only), saving where it was into *now. */
+static void pose_body_at(const body *bd, const solver_exact_state *at, solver_exact_state *now)
+{
+    if (!bd || !bd->sb.body)
+        return;
+    solver_body_save(&bd->sb, now);
+    solver_exact_state s = *now;
+    s.px = at->px, s.py = at->py, s.rotation_angle = at->rotation_angle;
+    solver_body_restore((solver_body *)&bd->sb, &s);
+}
+
+/* Whether a saved attach is one the API could have made: anchors in reach of the poses they were attached at,
+ * unit axes. */
+static bool attach_plausible(const world *wd, const joint *jt)
+{
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const double ppm = wd->def.pixels_per_meter;
+    const body *side[2] = {a, b};
+    const solver_exact_state *at[2] = {&jt->at_a, &jt->at_b};
+    const dvec2 anchor[2] = {jt->frame_a, jt->frame_b};
+    for (int k = 0; k < 2; k++)
+        if (side[k] && side[k]->sb.body &&
+            !(dv_norm(dv_sub(anchor[k], dv(at[k]->px * ppm, at[k]->py * ppm))) <=
+              2 * (JOINT_REACH + side[k]->raster.width + side[k]->raster.height)))
+            return false;
+    return jt->def.type != PP_JOINT_PRISMATIC ||
+           (fabs(dv_norm(jt->frame_axis) - 1) < 1e-6 && fabs(dv_norm(jt->axis_local) - 1) < 1e-6);
+}
+
+pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
+{
+    joint_table *t = &wd->joints;
+    body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    if (!attach_plausible(wd, jt))
+        return pp_fail(PP_ERR_FORMAT, "pp_world_load_snapshot: joint %#llx was attached far from its bodies or along "
+                       "no axis", (unsigned long long)jt->handle.id);
+    pp_status st = solver_joint_create(wd->solver, jt->def.type, &jt->sj);
+    if (st)
+        return st;
+    solver_exact_state now_a, now_b;
+    pose_body_at(a, &jt->at_a, &now_a);
+    pose_body_at(b, &jt->at_b, &now_b);
+    attach_recorded(wd, jt);
+    if (a && a->sb.body)
+        solver_body_restore(&a->sb, &now_a);
+    if (b && b->sb.body)
+        solver_body_restore(&b->sb, &now_b);
+    solver_joint_set_feedback(&jt->sj, feedback);
+    t->items[jt->index] = jt;
+    t->count++;
+    if (a)
+        a->joint_count++;
+    if (b)
+        b->joint_count++;
+    return PP_OK;
+}
+
+pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t capacity, const uint32_t *free_slots,
+                              int32_t free_count)
+{
+    joint_table *t = &wd->joints;
+    PP_ASSERT(t->capacity == 0 && free_count <= capacity);
+    t->items = pp_calloc((size_t)capacity + 1, sizeof *t->items);
+    t->generations = pp_malloc(((size_t)capacity + 1) * sizeof *t->generations);
+    t->free_slots = pp_malloc(((size_t)capacity + 1) * sizeof *t->free_slots);
+    if (!t->items || !t->generations || !t->free_slots)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_load_snapshot: no memory for %d joint slots", (int)capacity);
+    if (capacity > 0) {
+        memcpy(t->generations, generations, (size_t)capacity * sizeof *generations);
+        memcpy(t->free_slots, free_slots, (size_t)free_count * sizeof *free_slots);
+    }
+    t->capacity = capacity, t->free_count = free_count;
+    return PP_OK;
+}
+
+void joint_free_all(world *wd)
+{
+    joint_table *t = &wd->joints;
+    for (int32_t i = 0; i < t->capacity; i++)
+        if (t->items[i]) {
+            solver_joint_destroy(&t->items[i]->sj);
+            pp_free(t->items[i]);
+        }
+    pp_free(t->items);
+    pp_free(t->generations);
+    pp_free(t->free_slots);
+    *t = (joint_table){0};
+}

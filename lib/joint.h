@@ -1,0 +1,68 @@
+/* Joints (joint.c): the handle table, the joints' bitmap anchors, and what a step, an edit and a body's
+ * removal do to them. The ODE side is solver_ode.c's (solver_joint_*). */
+#ifndef PP_JOINT_H
+#define PP_JOINT_H
+
+#include "edit.h"
+#include "world.h"
+
+typedef struct joint {
+    uint32_t index;           /* slot in the world's joint table */
+    pp_joint handle;
+    pp_joint_def def;         /* as created, with the limits, motor and bodies as they are now */
+    dvec2 local_a, local_b;   /* anchors: bitmap px of their body, world px for the world (MOUSE: a's is the target) */
+    bool pinned_a, pinned_b;  /* the anchor had a solid pixel within 1 px at creation: an edit that takes them breaks it */
+    dvec2 axis_local;         /* PRISMATIC: unit axis in a's bitmap axes (world axes for the world) */
+    double ref;               /* REVOLUTE: b's angle from a at creation, rad; PRISMATIC: translation then, px */
+    double length;            /* DISTANCE: the length it holds rigid or springs about, px */
+    double slider_offset;     /* PRISMATIC: the translation when ODE's slider was last attached, px */
+    bool dirty;               /* a body's ODE frame changed: attach again before the next solver step */
+    uint64_t attach_order;    /* when it was last attached (joint_table.next_attach) */
+    dvec2 frame_a, frame_b, frame_axis; /* the world anchors and axis it was last attached with, px */
+    double frame_angle;       /* and its angle then, rad */
+    solver_exact_state at_a, at_b; /* its ODE bodies' states then: a snapshot attaches it again from them */
+    solver_joint sj;
+} joint;
+
+/* A live joint of this world, or NULL (no failure recorded). */
+joint *joint_find(const world *wd, pp_joint j);
+/* The joint's bodies; NULL for the world. */
+body *joint_body_a(const world *wd, const joint *jt);
+body *joint_body_b(const world *wd, const joint *jt);
+
+/* PP_ERR_INVALID_ARGUMENT (or INVALID_HANDLE for a body) unless a def's type, bodies and values make a joint. */
+pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d);
+
+/* PP_ERR_INVALID_ARGUMENT unless each anchor (bitmap px; a NULL body's is a world point) lies within its body's
+ * bitmap grown by 4096 px or its size on each side. */
+pp_status joint_check_anchors(const char *fn, const body *a, dvec2 local_a, const body *b, dvec2 local_b);
+
+/* A body being removed takes its joints with it, without events (pp_body_destroy: the host asked). */
+void joint_body_removed(world *wd, body *bd);
+/* A body's ODE body was moved to a new centre of mass, remade or given a new mass: its joints attach
+ * again before the next solver step. */
+void joint_body_changed(world *wd, const body *bd);
+/* Whether a joint without collide_connected joins the two bodies. */
+bool joint_keeps_apart(const world *wd, const body *a, const body *b);
+/* After an edit of bd's pixels, before its split `p` (NULL: none) is committed: a joint whose pinned anchor
+ * has no solid pixel within 1 px breaks (room for bd->joint_count events is reserved), one whose anchor
+ * lies on a piece moves to that piece. */
+void joint_edit_done(world *wd, body *bd, const fracture_plan *p);
+/* Before each solver step of h s: attach joints again where needed, springs for h, ropes taut or slack,
+ * mouse targets. */
+void joint_prepare(world *wd, double h);
+/* After a whole step: joints whose reaction passed break_force break, with events. */
+pp_status joint_step_done(world *wd);
+/* A snapshot's joint into its slot (free, of its generation): its ODE joint attached again as the saved one
+ * last was, from at_a, at_b and the frame, so that the world continues bit for bit. jt is the caller's until
+ * this succeeds; feedback is the last substep's force and torque on ODE's first body (solver_joint_feedback). */
+pp_status joint_restore(world *wd, joint *jt, const double feedback[6]);
+/* The joint table as a snapshot saved it: capacity slots with their generations, no joint yet, and the free
+ * list (checked by the caller). */
+pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t capacity, const uint32_t *free_slots,
+                              int32_t free_count);
+
+/* Free the joints of a world being destroyed. */
+void joint_free_all(world *wd);
+
+#endif
