@@ -1,5 +1,5 @@
 /* The PhysPix demo: loads the plugin through its manifest, runs demo/scene.json (caves, crates, a weighted
- * hammer, timed explosions) only through the plugin's generic call, and renders it in software: frames,
+ * hammer, a rope bridge of jointed planks, timed explosions) only through the plugin's generic call, and renders it in software: frames,
  * a contact sheet and a debug view of one collision (the poster's Figure 1c), as PNG in build/demo/.
  * It exits 0 only if the physics it shows holds: a split, a crate fallen into a crater, nothing NaN. */
 #include "debug_view.h"
@@ -51,7 +51,7 @@ typedef struct demo {
     int explosion_count;
     watch watches[MAX_WATCH];
     int watch_count;
-    int64_t splits, destroyed, bodies_start;
+    int64_t splits, destroyed, joints_broken, bodies_start;
     double step_ms, render_s;
     int steps, nan;
     render_image frame, sheet;
@@ -248,9 +248,10 @@ static void read_events(demo *d)
     const int64_t n = CALL0(d->world, "get_event_count").as.integer;
     for (int64_t i = 0; i < n; i++) {
         pp_variant type = CALL(d->world, "get_event_type", V_INT(i));
-        if (strcmp(type.as.string.data, "split") != 0) {
-            d->destroyed++;
-        } else if (d->splits++, d->watch_count < MAX_WATCH) {
+        const char *what = type.as.string.data;
+        d->destroyed += strcmp(what, "destroyed") == 0;
+        d->joints_broken += strcmp(what, "joint_broken") == 0;
+        if (strcmp(what, "split") == 0 && (d->splits++, d->watch_count < MAX_WATCH)) {
             const uint64_t piece = CALL(d->world, "get_event_other", V_INT(i)).as.object;
             d->watches[d->watch_count++] = (watch){piece, CALL0(piece, "get_user_data").as.integer, -1,
                                                    CALL0(piece, "get_position").as.vec2.y};
@@ -551,9 +552,9 @@ static int report(demo *d, double wall_s)
     const double fall = report_craters(d), piece = report_pieces(d);
     const double last = d->explosion_count ? d->explosions[d->explosion_count - 1].time : 0;
     const int finite = all_finite(d), reached = d->opt.seconds >= last + 0.5;
-    printf("  bodies: %lld at the start, %lld at the end; %lld splits, %lld bodies destroyed\n",
+    printf("  bodies: %lld at the start, %lld at the end; %lld splits, %lld bodies destroyed, %lld joints broken\n",
            (long long)d->bodies_start, (long long)CALL0(d->world, "get_body_count").as.integer, (long long)d->splits,
-           (long long)d->destroyed);
+           (long long)d->destroyed, (long long)d->joints_broken);
     printf("  steps: %d of 1/60 s, %.3f ms a step on average; rendering and PNG %.2f s; run %.2f s\n", d->steps,
            d->steps ? d->step_ms / d->steps : 0.0, d->render_s, wall_s);
     int ok = finite;

@@ -1,7 +1,8 @@
 /* The reference plugin host: loads PhysPix through its manifest (not by linking it), lists the
  * classes and methods the plugin declares, and drives a destruction scene only through the generic
  * call: a crate falls onto a terrain and rests, the terrain under it is blown away and it falls
- * again, and a bar cut through its middle splits in two. Exits 0 only if the physics holds. */
+ * again, a bar cut through its middle splits in two, and a lamp hung by a hinge from a cave's roof
+ * drops when the roof pixel under the hinge is erased. Exits 0 only if the physics holds. */
 #include "plugin_host.h"
 
 #include <math.h>
@@ -70,27 +71,29 @@ static void step_for(uint64_t world, double seconds)
         CALL(world, "step", V_FLOAT(DT));
 }
 
-static int64_t count_splits(uint64_t world)
+/* Reads (and forgets) the pending events; returns how many are of the given type. */
+static int64_t count_events(uint64_t world, const char *type_name)
 {
-    int64_t splits = 0;
+    int64_t found = 0;
     const int64_t n = CALL(world, "get_event_count").as.integer;
     for (int64_t i = 0; i < n; i++) {
         pp_variant type = CALL(world, "get_event_type", V_INT(i));
-        splits += strcmp(type.as.string.data, "split") == 0;
+        found += strcmp(type.as.string.data, type_name) == 0;
         plugin.api.variant_clear(&type);
     }
-    return splits;
+    return found;
 }
 
 static void run_scene(void)
 {
-    enum { TW = 640, TH = 160, SURFACE = 60, CRATE = 24, BAR_W = 120, BAR_H = 8 };
-    static uint8_t terrain[TW * TH], crate_rgba[CRATE * CRATE * 4], bar[BAR_W * BAR_H];
+    enum { TW = 640, TH = 160, SURFACE = 60, CRATE = 24, BAR_W = 120, BAR_H = 8, LAMP = 8 };
+    static uint8_t terrain[TW * TH], crate_rgba[CRATE * CRATE * 4], bar[BAR_W * BAR_H], lamp_mask[LAMP * LAMP];
     for (int y = 0; y < TH; y++) /* ground below row 60 with a closed cave under x 400..520 */
         for (int x = 0; x < TW; x++)
             terrain[y * TW + x] = y >= SURFACE && !(x >= 400 && x < 520 && y >= 90 && y < 130);
     memset(crate_rgba, 0xff, sizeof crate_rgba); /* opaque: every pixel solid */
     memset(bar, 1, sizeof bar);
+    memset(lamp_mask, 1, sizeof lamp_mask);
     const double ground_top = 400.0 - TH / 2.0 + SURFACE; /* terrain pivot at its centre, (320, 400) */
 
     pp_variant made;
@@ -108,6 +111,12 @@ static void run_scene(void)
                                 V_INT(CRATE), V_VEC2(200, 300), V_STR("dynamic")).as.object;
     const uint64_t barb = CALL(world, "add_body", V_BYTES(bar, sizeof bar), V_INT(BAR_W), V_INT(BAR_H),
                                V_VEC2(460, ground_top - BAR_H / 2.0 - 1), V_STR("dynamic")).as.object;
+    /* The lamp hangs 10 px below the centre of the cave roof's last row (terrain row 89). */
+    const pp_vec2 roof = {440, 400.0 - TH / 2.0 + 89.5};
+    const uint64_t lamp = CALL(world, "add_body", V_BYTES(lamp_mask, sizeof lamp_mask), V_INT(LAMP), V_INT(LAMP),
+                               V_VEC2(roof.x, roof.y + 10), V_STR("dynamic")).as.object;
+    CALL(world, "add_joint", V_STR("revolute"), V_OBJ(ground), V_OBJ(lamp), V_VEC2(roof.x, roof.y), V_VEC2(0, 0),
+         V_VEC2(1, 0));
 
     printf("scene: terrain %dx%d (top at y %.0f), crate %d px, bar %dx%d\n", TW, TH, ground_top, CRATE, BAR_W, BAR_H);
     expect(CALL(crate, "get_mass").as.real == CRATE * CRATE, "crate mass = its pixel count (density 1)",
@@ -129,13 +138,21 @@ static void run_scene(void)
     const pp_vec2 fell = CALL(crate, "get_position").as.vec2;
     expect(erased > 0 && fell.y - rest.y > 10.0, "crater under the crate: it falls, px in 0.5 s", fell.y - rest.y);
 
-    count_splits(world); /* forget what came before the cut */
+    count_events(world, ""); /* forget what came before the cut */
     const int64_t before = CALL(world, "get_body_count").as.integer;
     const pp_vec2 mid = CALL(barb, "get_position").as.vec2;
     CALL(barb, "erase_circle", V_VEC2(mid.x, mid.y), V_FLOAT(5));
-    const int64_t splits = count_splits(world), after = CALL(world, "get_body_count").as.integer;
+    const int64_t splits = count_events(world, "split"), after = CALL(world, "get_body_count").as.integer;
     expect(splits == 1 && after == before + 1, "bar cut through its middle: split events", (double)splits);
     step_for(world, 0.5);
+
+    const double hung = CALL(lamp, "get_position").as.vec2.y;
+    expect(fabs(hung - roof.y - 10) < 0.5, "lamp on a hinge under the cave roof: drop in 2.5 s, px", hung - roof.y - 10);
+    CALL(ground, "erase_circle", V_VEC2(roof.x, roof.y), V_FLOAT(3));
+    const int64_t broken = count_events(world, "joint_broken");
+    step_for(world, 0.5);
+    const double dropped = CALL(lamp, "get_position").as.vec2.y - hung;
+    expect(broken == 1 && dropped > 10, "the hinge's roof pixel erased: joint_broken, lamp falls, px", dropped);
     printf("  step cost %.3f ms (last step)\n", CALL(world, "get_step_ms").as.real);
 
     pp_variant done;

@@ -1,5 +1,5 @@
-/* The demo's sprites, drawn by code so they can be remade: a terrain with caves and a ravine, a bridge
- * with a stone abutment, crates of three sizes, and a hammer with its weight mask (heavy head, light
+/* The demo's sprites, drawn by code so they can be remade: a terrain with caves and a ravine, a plank
+ * of the rope bridge over it, crates of three sizes, and a hammer with its weight mask (heavy head, light
  * handle). Usage: make_sprites DIR; writes DIR/<name>.png through pp_image_save. Fixed seed: same bytes. */
 #include "physpix.h"
 
@@ -125,25 +125,20 @@ static void make_terrain(const char *dir)
     free(im.px);
 }
 
-/* ---- bridge: a stone abutment (40 × 70) and a plank deck (200 × 12) ---- */
+/* ---- plank: one board of the rope bridge (28 × 10), its joints 1 px in from each end; pale, so that it shows
+ * against the ravine's walls in the contact sheet's quarter-size frames ---- */
 
-static void make_bridge(const char *dir)
+static void make_plank(const char *dir)
 {
-    enum { W = 240, H = 70, ABUT = 40, DECK_H = 12 };
-    const rgb stone = {150, 146, 138}, mortar = {96, 92, 88}, plank = {166, 116, 62}, gap = {92, 60, 32};
+    enum { W = 28, H = 10 };
+    const rgb plank = {226, 186, 118}, gap = {120, 80, 40};
     image im = image_new(W, H);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            const int tex = blotch(x, y, 4, 3) * 6;
-            if (x < ABUT) { /* bricks 10 px high, rows offset by half a brick */
-                const int bx = (x + (y / 10 % 2) * 10) % 20;
-                put(&im, x, y, y % 10 == 0 || bx == 0 ? mortar : stone, tex, 255);
-            } else if (y < DECK_H) {
-                const int edge = y == 0 || y == DECK_H - 1 || (x - ABUT) % 16 == 0;
-                put(&im, x, y, edge ? gap : plank, edge ? 0 : tex - (y == 1 ? 0 : 6), 255);
-            }
+            const int edge = y == 0 || y == H - 1 || x == 0 || x == W - 1;
+            put(&im, x, y, edge ? gap : plank, edge ? 0 : blotch(x, y, 4, 3) * 6 - (y == 1 ? 0 : 6), 255);
         }
-    save(&im, dir, "bridge.png");
+    save(&im, dir, "plank.png");
     free(im.px);
 }
 
@@ -193,7 +188,7 @@ int main(int argc, char **argv)
     const char *dir = argc > 1 ? argv[1] : "demo";
     printf("make_sprites: writing the demo's sprites to %s/\n", dir);
     make_terrain(dir);
-    make_bridge(dir);
+    make_plank(dir);
     make_crate(dir, 24, "crate_small.png");
     make_crate(dir, 32, "crate.png");
     make_crate(dir, 40, "crate_big.png");

@@ -21,7 +21,9 @@ extern "C" {
  * (get_contact_count, then get_contact_point(i) …), and raycast answers whether it hit, then get_ray_body,
  * get_ray_point, get_ray_normal and get_ray_fraction describe the hit; query_point, query_aabb and query_circle
  * answer a count and get_query_body(i) the bodies. set_body_options(is_sensor, one_way, one_way_direction)
- * applies to the bodies that later add_body* calls make. Units are those of physpix.h: px, s, rad. */
+ * applies to the bodies that later add_body* calls make. Joints are INTs (the pp_joint id): add_joint takes a
+ * PhysPixBody, or the PhysPixWorld itself for the static world, for each body, set_joint_options applies to later
+ * joints, and the PhysPixWorld's *_joint_* methods take the int. Units are those of physpix.h: px, s, rad. */
 
 /// The entry symbol's default name, as written in plugin/physpix.plugin.
 #define PP_PLUGIN_ENTRY_SYMBOL "pp_plugin_entry"

@@ -3,6 +3,7 @@
  * arrive checked against the table by plugin.c; what is left here is ranges, sizes and names. */
 #include "plugin.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -30,15 +31,28 @@ static int int_in(const pp_variant *a, int64_t lo, int64_t hi, const char *what,
     return 1;
 }
 
+/* A STRING argument that must be one of n names; its index, or -1 with ret set to ERROR naming the choices. */
+static int name_index(const pp_variant *a, const char *const *names, int n, const char *what, pp_variant *ret)
+{
+    char known[160] = "";
+    for (int i = 0; i < n; i++) {
+        if (strcmp(a->as.string.data, names[i]) == 0)
+            return i;
+        snprintf(known + strlen(known), sizeof known - strlen(known), "%s\"%s\"", i ? (i + 1 < n ? ", " : " or ") : "",
+                 names[i]);
+    }
+    ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s must be %s, got \"%s\"", what, known, a->as.string.data);
+    return -1;
+}
+
 static int body_type_named(const pp_variant *a, const char *method, pp_body_type *out, pp_variant *ret)
 {
-    static const char *names[] = {"dynamic", "static", "kinematic"}; /* in pp_body_type order */
-    for (int i = 0; i < 3; i++)
-        if (strcmp(a->as.string.data, names[i]) == 0)
-            return *out = (pp_body_type)i, 1;
-    ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: type must be \"dynamic\", \"static\" or \"kinematic\", got \"%s\"",
-              method, a->as.string.data);
-    return 0;
+    static const char *const names[] = {"dynamic", "static", "kinematic"}; /* in pp_body_type order */
+    char what[96];
+    snprintf(what, sizeof what, "%s: type", method);
+    const int i = name_index(a, names, 3, what, ret);
+    *out = (pp_body_type)i;
+    return i >= 0;
 }
 
 /* Grow an array to hold n elements; 0 and ret set to ERROR on out of memory. */
@@ -250,8 +264,8 @@ static const pp_event *event_at(plugin_object *self, const pp_variant *a, const 
 
 static void world_get_event_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
-    static const char *names[] = {"unknown",       "split",       "destroyed",   "contact_begin",
-                                  "contact_end",   "sensor_begin", "sensor_end"}; /* in pp_event_type order */
+    static const char *names[] = {"unknown",     "split",        "destroyed",  "contact_begin",
+                                  "contact_end", "sensor_begin", "sensor_end", "joint_broken"}; /* pp_event_type order */
     const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_type", ret);
     if (e)
         ret_string(ret, (uint32_t)e->type < sizeof names / sizeof names[0] ? names[e->type] : "unknown");
@@ -290,6 +304,121 @@ static void world_get_event_other(plugin_object *self, const pp_variant *a, pp_v
     const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_other", ret);
     if (e)
         ret_body(self, e->other, ret);
+}
+
+static void world_get_event_joint(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const pp_event *e = event_at(self, &a[0], "PhysPixWorld.get_event_joint", ret);
+    if (e)
+        ret_int(ret, (int64_t)e->joint.id);
+}
+
+/* ---- joints: ints (the pp_joint id), which the library checks ---- */
+
+static pp_joint joint_of(const pp_variant *a)
+{
+    return (pp_joint){(uint64_t)a->as.integer};
+}
+
+/* A joint's body argument: a PhysPixBody, or this PhysPixWorld for the static world (a zero body). */
+static int joint_body(plugin_object *self, const pp_variant *a, const char *what, pp_body *out, pp_variant *ret)
+{
+    const plugin_object *o = object_get(a->as.object); /* live: plugin.c checked it */
+    *out = o->kind == OBJECT_BODY ? o->body : (pp_body){0};
+    if (o->kind == OBJECT_BODY || o == self)
+        return 1;
+    ret_error(ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.add_joint: %s must be a PhysPixBody or this world (the static "
+              "world), got another PhysPixWorld", what);
+    return 0;
+}
+
+static void world_add_joint(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    static const char *const names[] = {"revolute", "prismatic", "distance", "weld", "mouse"}; /* from REVOLUTE = 1 */
+    const char *m = "PhysPixWorld.add_joint";
+    const world_cache *c = self->cache;
+    const int type = name_index(&a[0], names, 5, "PhysPixWorld.add_joint: type", ret);
+    if (type < 0)
+        return;
+    pp_joint_def d = pp_joint_def_default((pp_joint_type)(type + 1));
+    if (c->has_joint_options) {
+        d.collide_connected = c->joint_options.collide_connected;
+        d.spring_hertz = c->joint_options.spring_hertz;
+        d.spring_damping_ratio = c->joint_options.spring_damping_ratio;
+        d.max_force = c->joint_options.max_force;
+        d.break_force = c->joint_options.break_force;
+    }
+    d.anchor_a = a[3].as.vec2;
+    d.anchor_b = a[4].as.vec2;
+    d.axis = a[5].as.vec2;
+    pp_joint j;
+    if (joint_body(self, &a[1], "body_a", &d.body_a, ret) && joint_body(self, &a[2], "body_b", &d.body_b, ret) &&
+        ret_ok(ret, pp_joint_create(self->world, &d, &j), m))
+        ret_int(ret, (int64_t)j.id);
+}
+
+/* What add_joint gives the joints it makes from now on; checked when one is made. */
+static void world_set_joint_options(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_joint_def *o = &self->cache->joint_options;
+    o->collide_connected = a[0].as.boolean != 0;
+    o->spring_hertz = (float)a[1].as.real;
+    o->spring_damping_ratio = (float)a[2].as.real;
+    o->max_force = (float)a[3].as.real;
+    o->break_force = (float)a[4].as.real;
+    self->cache->has_joint_options = 1;
+}
+
+static void world_destroy_joint(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_joint_destroy(self->world, joint_of(&a[0])), "PhysPixWorld.destroy_joint");
+}
+
+static void world_get_joint_force(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 f;
+    if (ret_ok(ret, pp_joint_get_reaction(self->world, joint_of(&a[0]), &f, NULL), "PhysPixWorld.get_joint_force"))
+        ret_vec2(ret, f);
+}
+
+static void world_get_joint_torque(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float t;
+    if (ret_ok(ret, pp_joint_get_reaction(self->world, joint_of(&a[0]), NULL, &t), "PhysPixWorld.get_joint_torque"))
+        ret_float(ret, t);
+}
+
+static void world_get_joint_value(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float v;
+    if (ret_ok(ret, pp_joint_get_value(self->world, joint_of(&a[0]), &v, NULL), "PhysPixWorld.get_joint_value"))
+        ret_float(ret, v);
+}
+
+static void world_get_joint_speed(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    float s;
+    if (ret_ok(ret, pp_joint_get_value(self->world, joint_of(&a[0]), NULL, &s), "PhysPixWorld.get_joint_speed"))
+        ret_float(ret, s);
+}
+
+static void world_set_joint_motor(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_joint_set_motor(self->world, joint_of(&a[0]), a[1].as.boolean, (float)a[2].as.real,
+                                   (float)a[3].as.real),
+           "PhysPixWorld.set_joint_motor");
+}
+
+static void world_set_joint_limits(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_joint_set_limits(self->world, joint_of(&a[0]), a[1].as.boolean, (float)a[2].as.real,
+                                    (float)a[3].as.real),
+           "PhysPixWorld.set_joint_limits");
+}
+
+static void world_set_joint_target(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_joint_set_target(self->world, joint_of(&a[0]), a[1].as.vec2), "PhysPixWorld.set_joint_target");
 }
 
 /* The two body arguments' handles; the library refuses a body of another world (PP_ERR_INVALID_HANDLE). */
@@ -668,7 +797,8 @@ static const method_def world_methods[] = {
     METHOD(world_get_event_count, "get_event_count", INT, "read (and forget) the pending events; returns how many",
            .arg_count = 0),
     METHOD(world_get_event_type, "get_event_type", STRING,
-           "\"split\", \"destroyed\", \"contact_begin\", \"contact_end\", \"sensor_begin\" or \"sensor_end\"",
+           "\"split\", \"destroyed\", \"contact_begin\", \"contact_end\", \"sensor_begin\", \"sensor_end\" or "
+           "\"joint_broken\"",
            ARGS(ARG("index", INT))),
     METHOD(world_get_event_body, "get_event_body", OBJECT,
            "the body an event happened to (split: the parent; sensor_*: the sensor)", ARGS(ARG("index", INT)),
@@ -684,6 +814,36 @@ static const method_def world_methods[] = {
     METHOD(world_get_event_approach_speed, "get_event_approach_speed", FLOAT,
            "contact_begin, sensor_begin: speed at which the pair closed along the normal, px/s; else zero",
            ARGS(ARG("index", INT))),
+    METHOD(world_get_event_joint, "get_event_joint", INT, "joint_broken: the joint (now stale); else 0",
+           ARGS(ARG("index", INT))),
+    METHOD(world_add_joint, "add_joint", INT,
+           "join two bodies (a PhysPixBody, or this world for the static world): type \"revolute\", \"prismatic\", "
+           "\"distance\", \"weld\" or \"mouse\", anchors in world px now, a prismatic's axis; returns the joint (int)",
+           ARGS(ARG("type", STRING), ARG("body_a", OBJECT), ARG("body_b", OBJECT), ARG("anchor_a", VEC2),
+                ARG("anchor_b", VEC2), ARG("axis", VEC2))),
+    METHOD(world_set_joint_options, "set_joint_options", NIL,
+           "give later add_joint joints these (until called, each type's defaults): spring Hz (0 rigid) and damping "
+           "ratio, a mouse joint's max_force and break_force (mass*px/s^2, 0 none)",
+           ARGS(ARG("collide_connected", BOOL), ARG("spring_hertz", FLOAT), ARG("spring_damping_ratio", FLOAT),
+                ARG("max_force", FLOAT), ARG("break_force", FLOAT))),
+    METHOD(world_destroy_joint, "destroy_joint", NIL, "destroy a joint; its int goes stale", ARGS(ARG("joint", INT))),
+    METHOD(world_get_joint_force, "get_joint_force", VEC2, "force the joint put on body_b in the last substep, mass*px/s^2",
+           ARGS(ARG("joint", INT))),
+    METHOD(world_get_joint_torque, "get_joint_torque", FLOAT,
+           "torque the joint put on body_b in the last substep, mass*px^2/s^2", ARGS(ARG("joint", INT))),
+    METHOD(world_get_joint_value, "get_joint_value", FLOAT,
+           "revolute: angle since creation, rad; prismatic: translation, px; distance: length, px; else 0",
+           ARGS(ARG("joint", INT))),
+    METHOD(world_get_joint_speed, "get_joint_speed", FLOAT, "the rate of get_joint_value, rad/s or px/s",
+           ARGS(ARG("joint", INT))),
+    METHOD(world_set_joint_motor, "set_joint_motor", NIL,
+           "revolute, prismatic: switch the motor; speed rad/s or px/s, max_force >= 0 (a torque for revolute)",
+           ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("speed", FLOAT), ARG("max_force", FLOAT))),
+    METHOD(world_set_joint_limits, "set_joint_limits", NIL,
+           "revolute (rad, -pi..pi), prismatic (px), distance (min and max length, px): switch and set the limits",
+           ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("lower", FLOAT), ARG("upper", FLOAT))),
+    METHOD(world_set_joint_target, "set_joint_target", NIL, "mouse: move the target, world px",
+           ARGS(ARG("joint", INT), ARG("target", VEC2))),
     METHOD(world_raycast, "raycast", BOOL,
            "cast a segment between world points (px) against bodies whose category meets mask (0..2^32-1; "
            "sensors skipped); whether it met a solid pixel, which get_ray_* describe",

@@ -20,7 +20,7 @@ static int level_reached = -1; /* highest initialised level, -1 before CORE */
 static plugin_object *objects;
 static int32_t object_capacity, free_head = -1;
 static pp_plugin_class public_classes[CLASS_COUNT];
-static pp_plugin_method public_methods[CLASS_COUNT][64];
+static pp_plugin_method public_methods[CLASS_COUNT][96];
 
 static void logf_host(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void logf_host(int level, const char *fmt, ...)

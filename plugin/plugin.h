@@ -27,6 +27,8 @@ typedef struct world_cache {
     int32_t found_count, found_capacity;
     uint32_t is_sensor, one_way; /* set_body_options: what add_body* give the bodies they make */
     pp_vec2 one_way_direction;
+    pp_joint_def joint_options; /* set_joint_options: what add_joint gives its joints, once has_joint_options */
+    uint32_t has_joint_options;
 } world_cache;
 
 /* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */

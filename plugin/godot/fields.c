@@ -1,12 +1,12 @@
-/* Dictionaries of def fields for PhysPixWorld: a world's settings (create, get_settings) and a body's options
- * (add_body_mask, add_body_image). Keys are the C field names; an unknown key or a value of the wrong type is
+/* Dictionaries of def fields for PhysPixWorld: a world's settings (create, get_settings), a body's options
+ * (add_body_mask, add_body_image) and a joint's def (create_joint). Keys are the C field names; an unknown key or a value of the wrong type is
  * refused, so a typo is never silently a default. Enums are the scene files' lower-case names. */
 #include <stdio.h>
 #include <string.h>
 
 #include "adapter.h"
 
-typedef enum field_kind { F_BOOL, F_FLOAT, F_INT, F_BITS, F_VEC2, F_ENUM } field_kind;
+typedef enum field_kind { F_BOOL, F_FLOAT, F_INT, F_BITS, F_VEC2, F_ENUM, F_ID } field_kind;
 
 /* One field: its key, what its value must be, and where it goes in the def. */
 typedef struct field {
@@ -20,6 +20,7 @@ static const char *const BACKENDS[] = {"auto", "cpu", "gpu", NULL};
 static const char *const NORMALS[] = {"area_gradient", "kernel", NULL};
 static const char *const CONTACTS[] = {"manifold", "centroid", NULL};
 static const char *const PRESETS[] = {"", "fast", "balanced", "accurate", NULL};
+static const char *const JOINT_TYPES[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", NULL};
 
 #define W(name, kind) {#name, kind, offsetof(pp_world_def, name), NULL}
 static const field WORLD_FIELDS[] = {
@@ -72,6 +73,31 @@ static const field BODY_FIELDS[] = {
 };
 #undef B
 
+/* "type" was read first. Bodies and user_data are ints: a body's id, 0 the static world. */
+#define J(name, kind) {#name, kind, offsetof(pp_joint_def, name), NULL}
+static const field JOINT_FIELDS[] = {
+    J(body_a, F_ID),
+    J(body_b, F_ID),
+    J(anchor_a, F_VEC2),
+    J(anchor_b, F_VEC2),
+    J(axis, F_VEC2),
+    J(collide_connected, F_BOOL),
+    J(enable_limit, F_BOOL),
+    J(lower, F_FLOAT),
+    J(upper, F_FLOAT),
+    J(enable_motor, F_BOOL),
+    J(motor_speed, F_FLOAT),
+    J(max_motor_force, F_FLOAT),
+    J(min_length, F_FLOAT),
+    J(max_length, F_FLOAT),
+    J(spring_hertz, F_FLOAT),
+    J(spring_damping_ratio, F_FLOAT),
+    J(max_force, F_FLOAT),
+    J(break_force, F_FLOAT),
+    J(user_data, F_ID),
+};
+#undef J
+
 static const char *kind_name(field_kind k)
 {
     switch (k) {
@@ -79,6 +105,7 @@ static const char *kind_name(field_kind k)
     case F_FLOAT: return "float";
     case F_INT: return "int";
     case F_BITS: return "int (bits, 0..0xffffffff)";
+    case F_ID: return "int";
     case F_VEC2: return "Vector2";
     default: return "String";
     }
@@ -112,6 +139,10 @@ static bool set_field(call *c, const char *what, const field *f, const godot_var
             *(uint32_t *)at = (uint32_t)i;
         break;
     }
+    case F_ID:
+        if ((good = t == GDN_INT))
+            *(uint64_t *)at = (uint64_t)gdn->godot_variant_as_int(value);
+        break;
     case F_VEC2:
         if ((good = t == GDN_VECTOR2)) {
             pp_vec2 *v = (pp_vec2 *)at;
@@ -180,30 +211,49 @@ static bool read_fields(call *c, const godot_variant *var, const char *what, con
     return good;
 }
 
-/* "preset" was read first; here it is only skipped. */
-static int world_special(call *c, const char *key, const godot_variant *value, void *def, void *extra)
+/* The key read before the others (extra names it); here it is only skipped. */
+static int skip_leading(call *c, const char *key, const godot_variant *value, void *def, void *extra)
 {
-    return strcmp(key, "preset") == 0;
+    return strcmp(key, extra) == 0;
 }
 
-bool fields_world_def(call *c, const godot_variant *var, pp_world_def *out)
+/* The enum that picks a def's defaults ("preset", a joint's "type"), read before the other keys into *out;
+ * 0 if absent, 1 if read, -1 if refused. */
+static int read_leading(call *c, const godot_variant *var, const char *what, const field *f, int32_t *out)
 {
-    *out = pp_world_def_default();
     godot_dictionary dict = gdn->godot_variant_as_dictionary(var);
-    godot_variant key = gdn_string("preset");
-    bool good = true;
+    godot_variant key = gdn_string(f->name);
+    int found = 0;
     if (gdn->godot_dictionary_has(&dict, &key)) {
         godot_variant value = gdn->godot_dictionary_get(&dict, &key);
-        int32_t preset = 0;
-        const field f = {"preset", F_ENUM, 0, PRESETS};
-        if ((good = set_field(c, "settings", &f, &value, &preset)))
-            *out = pp_world_def_preset((pp_preset)preset);
+        found = set_field(c, what, f, &value, out) ? 1 : -1;
         gdn->godot_variant_destroy(&value);
     }
     gdn->godot_variant_destroy(&key);
     gdn->godot_dictionary_destroy(&dict);
-    return good && read_fields(c, var, "settings", WORLD_FIELDS, sizeof WORLD_FIELDS / sizeof WORLD_FIELDS[0], out,
-                               world_special, NULL);
+    return found;
+}
+
+bool fields_world_def(call *c, const godot_variant *var, pp_world_def *out)
+{
+    const field f = {"preset", F_ENUM, 0, PRESETS};
+    int32_t preset = 0;
+    const int found = read_leading(c, var, "settings", &f, &preset);
+    *out = found == 1 ? pp_world_def_preset((pp_preset)preset) : pp_world_def_default();
+    return found >= 0 && read_fields(c, var, "settings", WORLD_FIELDS, sizeof WORLD_FIELDS / sizeof WORLD_FIELDS[0],
+                                     out, skip_leading, (void *)f.name);
+}
+
+bool fields_joint_def(call *c, const godot_variant *var, pp_joint_def *out)
+{
+    const field f = {"type", F_ENUM, 0, JOINT_TYPES};
+    int32_t type = 0;
+    const int found = read_leading(c, var, "joint", &f, &type);
+    if (found == 0)
+        return fail(c, "joint has no \"type\" (\"revolute\", \"prismatic\", \"distance\", \"weld\" or \"mouse\")");
+    *out = pp_joint_def_default((pp_joint_type)type);
+    return found > 0 && read_fields(c, var, "joint", JOINT_FIELDS, sizeof JOINT_FIELDS / sizeof JOINT_FIELDS[0], out,
+                                    skip_leading, (void *)f.name);
 }
 
 godot_variant fields_world_dict(const pp_world_def *def)

@@ -1,7 +1,7 @@
 /* PhysPixWorld: a NativeScript class (base Reference) that gives GDScript one pp_world.
  * Owns the method table, the checking of every argument against it, the calls into PhysPix,
- * and the library's three entry points. Bodies are ints: the pp_body id's 64 bits. An id names its
- * world, so an int from before load_scene or load_snapshot replaced the object's world is refused by
+ * and the library's three entry points. Bodies and joints are ints: the pp_body or pp_joint id's 64 bits. An id
+ * names its world, so an int from before load_scene or load_snapshot replaced the object's world is refused by
  * PhysPix itself (PP_ERR_INVALID_HANDLE). */
 #include <stdarg.h>
 #include <stdio.h>
@@ -17,6 +17,7 @@ static const char *const EVENT_TYPE_NAMES[] = {
     [PP_EVENT_CONTACT_END] = "contact_end",
     [PP_EVENT_SENSOR_BEGIN] = "sensor_begin",
     [PP_EVENT_SENSOR_END] = "sensor_end",
+    [PP_EVENT_JOINT_BROKEN] = "joint_broken",
 };
 
 static const char *const BODY_TYPE_NAMES[] = {
@@ -124,6 +125,11 @@ static bool read_arg(call *c, int i, char letter)
         a->i = gdn->godot_variant_as_int(a->var);
         a->body.id = (uint64_t)a->i;
         return true;
+    case 'j':
+        if (t != GDN_INT)
+            return wrong_type(c, i, "a joint (int)");
+        a->joint.id = (uint64_t)gdn->godot_variant_as_int(a->var);
+        return true;
     case 'm':
         if (t != GDN_INT)
             return wrong_type(c, i, "int (mask bits)");
@@ -134,6 +140,8 @@ static bool read_arg(call *c, int i, char letter)
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (body options)");
     case 'd':
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (world settings)");
+    case 'J':
+        return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (joint def)");
     case 'B':
         if (t != GDN_BOOL)
             return wrong_type(c, i, "bool");
@@ -392,6 +400,64 @@ static godot_variant get_pivot(call *c)
     return ok(c, pp_body_get_pivot(c->self->world, c->a[0].body, &p)) ? gdn_vector2(p.x, p.y) : gdn_nil();
 }
 
+/* ---- joints ------------------------------------------------------------------------------ */
+
+static godot_variant create_joint(call *c)
+{
+    pp_joint_def def;
+    pp_joint j;
+    return fields_joint_def(c, c->a[0].var, &def) && ok(c, pp_joint_create(c->self->world, &def, &j))
+               ? gdn_int((int64_t)j.id)
+               : gdn_nil();
+}
+
+static godot_variant destroy_joint(call *c)
+{
+    return done(c, pp_joint_destroy(c->self->world, c->a[0].joint));
+}
+
+/* {force: Vector2 (mass·px/s²), torque (mass·px²/s²)} on body_b in the last substep. */
+static godot_variant get_joint_reaction(call *c)
+{
+    pp_vec2 f;
+    float torque;
+    if (!ok(c, pp_joint_get_reaction(c->self->world, c->a[0].joint, &f, &torque)))
+        return gdn_nil();
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "force", gdn_vector2(f.x, f.y));
+    gdn_dict_put(&d, "torque", gdn_real(torque));
+    return gdn_dict_variant(&d);
+}
+
+/* {value, speed}: a hinge's angle (rad, rad/s), a slider's translation or a distance (px, px/s). */
+static godot_variant get_joint_value(call *c)
+{
+    float value, speed;
+    if (!ok(c, pp_joint_get_value(c->self->world, c->a[0].joint, &value, &speed)))
+        return gdn_nil();
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "value", gdn_real(value));
+    gdn_dict_put(&d, "speed", gdn_real(speed));
+    return gdn_dict_variant(&d);
+}
+
+static godot_variant set_joint_motor(call *c)
+{
+    return done(c, pp_joint_set_motor(c->self->world, c->a[0].joint, c->a[1].i != 0, c->a[2].f, c->a[3].f));
+}
+
+static godot_variant set_joint_limits(call *c)
+{
+    return done(c, pp_joint_set_limits(c->self->world, c->a[0].joint, c->a[1].i != 0, c->a[2].f, c->a[3].f));
+}
+
+static godot_variant set_joint_target(call *c)
+{
+    return done(c, pp_joint_set_target(c->self->world, c->a[0].joint, c->a[1].v));
+}
+
 /* ---- edits ----------------------------------------------------------------------------- */
 
 static godot_variant erase_circle(call *c)
@@ -442,6 +508,11 @@ static pp_status list_events(pp_world w, void *out, int32_t cap, int32_t *n)
 static pp_status list_states(pp_world w, void *out, int32_t cap, int32_t *n)
 {
     return pp_world_get_body_states(w, out, cap, n);
+}
+
+static pp_status list_joints(pp_world w, void *out, int32_t cap, int32_t *n)
+{
+    return pp_world_get_joints(w, out, cap, n);
 }
 
 /* The whole list in a malloc'd array (a count first, then the items); *n is -1 on failure. */
@@ -520,6 +591,7 @@ static godot_variant event_item(const void *item)
     gdn_dict_put(&d, "point", gdn_vector2(e->point.x, e->point.y));
     gdn_dict_put(&d, "normal", gdn_vector2(e->normal.x, e->normal.y));
     gdn_dict_put(&d, "approach_speed", gdn_real(e->approach_speed));
+    gdn_dict_put(&d, "joint", gdn_int((int64_t)e->joint.id));
     return gdn_dict_variant(&d);
 }
 
@@ -546,6 +618,16 @@ static godot_variant get_bodies(call *c)
 static godot_variant get_contacts(call *c)
 {
     return list_array(c, list_contacts, sizeof(pp_contact), contact_item, NULL);
+}
+
+static godot_variant joint_item(const void *item)
+{
+    return gdn_int((int64_t)((const pp_joint *)item)->id);
+}
+
+static godot_variant get_joints(call *c)
+{
+    return list_array(c, list_joints, sizeof(pp_joint), joint_item, NULL);
 }
 
 static godot_variant get_events(call *c)
@@ -778,6 +860,16 @@ static const method_def METHODS[] = {
            "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"),
     METHOD("world_erase_circle", "vf", world_erase_circle, "world_erase_circle(center: Vector2, radius: float) -> int"),
     METHOD("get_bodies", "", get_bodies, "get_bodies() -> Array"),
+    METHOD("create_joint", "J", create_joint, "create_joint(def: Dictionary) -> int"),
+    METHOD("destroy_joint", "j", destroy_joint, "destroy_joint(joint: int)"),
+    METHOD("get_joints", "", get_joints, "get_joints() -> Array"),
+    METHOD("get_joint_reaction", "j", get_joint_reaction, "get_joint_reaction(joint: int) -> Dictionary"),
+    METHOD("get_joint_value", "j", get_joint_value, "get_joint_value(joint: int) -> Dictionary"),
+    METHOD("set_joint_motor", "jBff", set_joint_motor,
+           "set_joint_motor(joint: int, enabled: bool, speed: float, max_force: float)"),
+    METHOD("set_joint_limits", "jBff", set_joint_limits,
+           "set_joint_limits(joint: int, enabled: bool, lower: float, upper: float)"),
+    METHOD("set_joint_target", "jv", set_joint_target, "set_joint_target(joint: int, target: Vector2)"),
     METHOD("get_contacts", "", get_contacts, "get_contacts() -> Array"),
     METHOD("get_events", "", get_events, "get_events() -> Array"),
     METHOD("raycast", "vv|m", raycast,

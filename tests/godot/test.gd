@@ -5,7 +5,8 @@ extends "res://checks.gd"
 # and a snapshot loaded into a second object continues exactly as the original; rays and queries
 # find what is there, a sensor reports a ball falling freely through it, a landing reports its
 # speed and the resting contacts' impulses carry the weight, and a one-way platform is passed
-# from below and landed on from above; world settings, poses, pixels, states and properties (issue 25).
+# from below and landed on from above; world settings, poses, pixels, states and properties (issue 25);
+# joints: a hinge pendulum's period, a reaction, a motor, breaking and misuse (issue 24).
 # Exits 0 and prints "RESULT: PASS" only if every check holds (run.sh wants both).
 
 const PhysPixWorld = preload("res://addons/physpix/physpix_world.gdns")
@@ -185,6 +186,87 @@ func test_one_way():
 		and o.get_last_error().find("expected bool") >= 0, "an option of the wrong type refused: %s" % o.get_last_error())
 	check(o.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "static", {"one_way": true, "one_way_direction": Vector2()})
 		== null and o.get_last_error().find("one_way_direction") >= 0, "a zero direction refused: %s" % o.get_last_error())
+
+# Issue 24: a hinge pendulum's period against the physical pendulum's, a hanging box's reaction, a motor, a joint
+# broken by force with its event, and misuse refused with the reason.
+func test_joints():
+	var j = PhysPixWorld.new()
+	j.create({"backend": "cpu"})
+	var d = 25.0
+	var rod = j.add_body_mask(solid_mask(10, 60), 10, 60, Vector2(200, 200))
+	var hinge = j.create_joint({"type": "revolute", "body_b": rod, "anchor_a": Vector2(200, 200 - d)})
+	check(is_int(hinge) and j.get_joints() == [hinge], "create_joint(revolute) to the world: %s %s" % [hinge, j.get_last_error()])
+	j.set_velocity(rod, Vector2(-0.2 * d, 0), 0.2)
+	var prev = j.get_joint_value(hinge)["value"]
+	var ups = []  # times of upward zero crossings of the angle, s
+	for k in range(1, 601):
+		j.step(DT)
+		var v = j.get_joint_value(hinge)["value"]
+		if prev < 0 and v >= 0:
+			ups.append((k - 1 + prev / (prev - v)) * DT)
+		prev = v
+	var m = j.get_mass(rod)
+	var inertia = m * (10 * 10 + 60 * 60) / 12.0 + m * d * d  # about the hinge
+	var analytic = 2 * PI * sqrt(inertia / (m * 980.0 * d))
+	var period = (ups[-1] - ups[0]) / (ups.size() - 1) if ups.size() >= 3 else 0.0
+	print("hinge pendulum: period %.4f s over %d swings, analytic 2π√(I/(m·g·d)) = %.4f s (%+.2f %%)"
+		% [period, ups.size() - 1, analytic, 100 * (period / analytic - 1)])
+	check(near(period, analytic, 0.03 * analytic), "the hinge pendulum's period %.4f s within 3 %% of %.4f s" % [period, analytic])
+
+	var box = j.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(400, 100))
+	var hang = j.create_joint({"type": "revolute", "body_b": box, "anchor_a": Vector2(400, 92)})
+	steps(j, 60)
+	var r = j.get_joint_reaction(hang)
+	var weight = j.get_mass(box) * 980.0
+	check(near(-r["force"].y, weight, 0.02 * weight) and abs(r["force"].x) < 0.01 * weight,
+		"a hanging box's reaction %s ≈ its weight %.0f" % [r, weight])
+	var wheel = j.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(600, 100))
+	var motor = j.create_joint({"type": "revolute", "body_b": wheel, "anchor_a": Vector2(600, 100), "enable_motor": true,
+		"motor_speed": 3.0, "max_motor_force": 1e9})
+	steps(j, 30)
+	check(near(j.get_joint_value(motor)["speed"], 3.0, 0.01), "the motor turns at 3 rad/s: %s" % [j.get_joint_value(motor)])
+	j.set_joint_motor(motor, false, 0.0, 0.0)
+	j.set_joint_limits(motor, true, -0.5, 0.5)
+	check(j.get_last_error() == "", "set_joint_motor and set_joint_limits accepted")
+
+	# Broken by force: the event names the joint, and its int goes stale.
+	var weak = j.create_joint({"type": "revolute", "body_b": box, "anchor_a": Vector2(400, 108), "break_force": 0.5 * weight,
+		"user_data": 7})
+	j.destroy_joint(hang)
+	j.step(DT)
+	var broken = []
+	for e in j.get_events():
+		if e["type"] == "joint_broken":
+			broken.append(e)
+	check(broken.size() == 1 and broken[0]["joint"] == weak and broken[0]["body"] == 0 and broken[0]["other"] == box,
+		"the weak joint broke: event joint_broken {joint, body 0, other box}: %s" % [broken])
+	check(j.get_joint_value(weak) == null and j.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"a broken joint's int is stale: %s" % j.get_last_error())
+
+	# Misuse: refused with the reason, never a crash.
+	check(j.create_joint({"type": "hinge", "body_b": box}) == null and j.get_last_error().find("\"revolute\"") >= 0,
+		"an unknown type refused with the names: %s" % j.get_last_error())
+	check(j.create_joint({"body_b": box}) == null and j.get_last_error().find("no \"type\"") >= 0,
+		"a def without a type refused: %s" % j.get_last_error())
+	check(j.create_joint({"type": "weld", "body_b": box, "anchour_a": Vector2()}) == null
+		and j.get_last_error().find("anchour_a") >= 0, "an unknown key refused: %s" % j.get_last_error())
+	check(j.create_joint({"type": "weld", "body_b": 1.5}) == null and j.get_last_error().find("expected int") >= 0,
+		"a float body refused: %s" % j.get_last_error())
+	check(j.create_joint({"type": "weld", "body_a": box, "body_b": box}) == null
+		and j.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0, "a joint of a body to itself refused: %s" % j.get_last_error())
+	check(j.create_joint({"type": "revolute", "body_b": 123456789}) == null
+		and j.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0, "a stale body refused: %s" % j.get_last_error())
+	check(j.set_joint_target(motor, Vector2()) == null and j.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"set_joint_target on a hinge refused: %s" % j.get_last_error())
+	check(j.set_joint_motor(motor, true, 1.0, -1.0) == null and j.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"a negative motor force refused: %s" % j.get_last_error())
+	check(j.get_joint_reaction("motor") == null and j.get_last_error().find("expected a joint (int)") >= 0,
+		"a String for a joint refused: %s" % j.get_last_error())
+	j.destroy_joint(motor)
+	check(j.destroy_joint(motor) == null and j.get_last_error().find("PP_ERR_INVALID_HANDLE") >= 0,
+		"destroying it twice: %s" % j.get_last_error())
+	check(j.get_joints() == [hinge], "one joint left: %s" % [j.get_joints()])
+	return true
 
 
 # Issue 25: world settings at creation, poses, pixels in and out, states in one call, runtime properties.
@@ -531,6 +613,7 @@ func _init():
 	test_contact_events_switch()
 	test_one_way()
 	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
+	check(test_joints() == true, "test_joints ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.

@@ -2,7 +2,8 @@ extends "res://checks.gd"
 # The addon's nodes in a scene built here: a PhysPixWorld2D with a static terrain, a crate, a bar, a pebble and
 # a sensor as PhysPixBody2D nodes. The crate falls through the sensor and rests (its node follows its body),
 # an erase carves the terrain's texture and the crate falls into the hole, a cut bar adds a sibling node drawn
-# with the piece's pixels, the pebble erased whole is destroyed, and the signals carry the nodes.
+# with the piece's pixels, the pebble erased whole is destroyed, a lamp hung from the terrain by a hinge drops
+# when the erase takes the hinge's pixel (joint_broken), and the signals carry the nodes.
 # Runs over physics frames (_iteration); prints "RESULT: PASS" and quits 0 only if every check holds,
 # and quits 1 if the frames run out first.
 
@@ -16,6 +17,7 @@ var crate
 var bar
 var pebble
 var sensor
+var lamp
 var events = []  # [signal name, args...]
 var rest_y = 0.0
 var moved_world  # a second world, its node moved to (1000, 500): bodies and calls in its frame
@@ -72,6 +74,7 @@ func _initialize():
 	world.connect("body_destroyed", self, "_on_destroyed")
 	world.connect("contact_begin", self, "_on_contact_begin")
 	world.connect("sensor_begin", self, "_on_sensor_begin")
+	world.connect("joint_broken", self, "_on_joint_broken")
 	root.add_child(world)
 	terrain = body("Terrain", texture(200, 60, Color(0.5, 0.3, 0.1)), Vector2(100, 170), {"body_type": "static"})
 	crate = body("Crate", texture(16, 16, Color(0.8, 0.6, 0.2)), Vector2(100, 40), {"density": 2.0})
@@ -79,6 +82,10 @@ func _initialize():
 	pebble = body("Pebble", texture(4, 4, Color(1, 1, 1)), Vector2(180, 136))
 	sensor = body("Sensor", texture(40, 4, Color(0, 1, 0, 0.5)), Vector2(100, 90),
 		{"body_type": "static", "is_sensor": true, "alpha_threshold": 100})
+	lamp = body("Lamp", texture(6, 6, Color(1, 1, 0)), Vector2(150, 210))  # under the terrain (bottom at 200)
+	var hinge = world.world.create_joint({"type": "revolute", "body_a": terrain.body, "body_b": lamp.body,
+		"anchor_a": Vector2(150, 199)})
+	check(hinge != null, "the lamp hangs from a terrain pixel: %s" % world.world.get_last_error())
 	moved_world = World2D.new()
 	moved_world.position = Vector2(1000, 500)
 	root.add_child(moved_world)
@@ -113,6 +120,10 @@ func _on_contact_begin(a, b, point, normal, speed):
 
 func _on_sensor_begin(s, b):
 	events.append(["sensor_begin", s, b])
+
+
+func _on_joint_broken(a, b):
+	events.append(["joint_broken", a, b])
 
 
 func _iteration(delta):
@@ -168,6 +179,10 @@ func _iteration(delta):
 			"world.erase_circle carved the terrain's texture under the pebble")
 		check(seen("body_destroyed").size() == 1 and seen("body_destroyed")[0][1] == pebble,
 			"the pebble erased whole: body_destroyed(pebble) %s" % [seen("body_destroyed")])
+		check(near(lamp.position.y, 210, 0.5) and seen("joint_broken").empty(), "the lamp hangs still: y %.2f" % lamp.position.y)
+		world.erase_circle(Vector2(150, 199), 4)
+		check(seen("joint_broken") == [["joint_broken", terrain, lamp]],
+			"erasing the hinge's pixel: joint_broken(terrain, lamp) %s" % [seen("joint_broken")])
 	if frame == 91:
 		check(not is_instance_valid(pebble), "the destroyed pebble's node is freed")
 		var filled = world.paint_circle(Vector2(pebble_at.x, 142), 3)  # inside the terrain's bitmap (top at 140)
@@ -178,6 +193,7 @@ func _iteration(delta):
 		check(world.world.get_bodies().size() == n - 1, "freeing a node destroys its body")
 	if frame == 150:
 		check(crate.position.y > rest_y + 10, "the crate fell into the hole: y %.2f > %.2f + 10" % [crate.position.y, rest_y])
+		check(lamp.position.y > 250, "the lamp fell: y %.2f" % lamp.position.y)
 		finish()
 	if frame > 200:
 		print("RESULT: FAIL (ran out of frames)")

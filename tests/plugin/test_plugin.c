@@ -238,7 +238,7 @@ static uint64_t make_scene(uint64_t *box, uint64_t *ground)
 /* Right arguments for each method, by name; every declared method must have an entry. */
 typedef struct recipe {
     const char *method;
-    pp_variant args[5];
+    pp_variant args[6];
 } recipe;
 
 static int find_recipe(const recipe *r, int n, const char *method)
@@ -292,6 +292,17 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     snprintf(snap, sizeof snap, "/tmp/pp_plugin_snapshot_%d", (int)getpid());
     uint64_t scratch_box, scratch_ground;
     const uint64_t scratch = make_scene(&scratch_box, &scratch_ground);
+    /* A hinge for the joint getters and setters, a mouse joint for set_joint_target, a weld for destroy_joint. */
+    int64_t joints[3];
+    const char *const kinds[3] = {"revolute", "mouse", "weld"};
+    for (int i = 0; i < 3; i++) {
+        pp_variant j = call(world, "add_joint",
+                            (pp_variant[]){V_STR(kinds[i]), V_OBJ(world), V_OBJ(box), V_VEC2(50, 91),
+                                           V_VEC2(0, 0), V_VEC2(1, 0)},
+                            6);
+        cr_assert_eq(j.type, PP_VARIANT_INT, "add_joint(%s): %s", kinds[i], j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
+        joints[i] = j.as.integer;
+    }
     const recipe world_recipes[] = {
         {"step", {V_FLOAT(1.0 / 60)}},
         {"add_body", {V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(20, 20), V_STR("static")}},
@@ -314,6 +325,17 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_event_point", {V_INT(0)}},
         {"get_event_normal", {V_INT(0)}},
         {"get_event_approach_speed", {V_INT(0)}},
+        {"get_event_joint", {V_INT(0)}},
+        {"add_joint", {V_STR("revolute"), V_OBJ(world), V_OBJ(box), V_VEC2(50, 91), V_VEC2(0, 0), V_VEC2(1, 0)}},
+        {"set_joint_options", {V_BOOL(0), V_FLOAT(0), V_FLOAT(0), V_FLOAT(0), V_FLOAT(0)}},
+        {"destroy_joint", {V_INT(joints[2])}},
+        {"get_joint_force", {V_INT(joints[0])}},
+        {"get_joint_torque", {V_INT(joints[0])}},
+        {"get_joint_value", {V_INT(joints[0])}},
+        {"get_joint_speed", {V_INT(joints[0])}},
+        {"set_joint_motor", {V_INT(joints[0]), V_BOOL(1), V_FLOAT(1), V_FLOAT(1e6)}},
+        {"set_joint_limits", {V_INT(joints[0]), V_BOOL(1), V_FLOAT(-0.5), V_FLOAT(0.5)}},
+        {"set_joint_target", {V_INT(joints[1]), V_VEC2(50, 91)}},
         {"raycast", {V_VEC2(100, 0), V_VEC2(100, 200), V_INT(0xffffffff)}},
         {"get_ray_body", {{0}}},
         {"get_ray_point", {{0}}},
@@ -394,7 +416,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
             for (int32_t i = 0; i < m->arg_count; i++) {
-                pp_variant args[5];
+                pp_variant args[6];
                 memcpy(args, right, sizeof args);
                 args[i] = wrong_for(m->args[i].type, targets[t].other);
                 char says[256];
@@ -405,8 +427,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
                 calls++;
             }
             /* One argument too many. */
-            pp_variant extra[6];
-            memcpy(extra, right, sizeof(pp_variant) * 5);
+            pp_variant extra[7];
+            memcpy(extra, right, sizeof(pp_variant) * 6);
             extra[m->arg_count] = V_INT(1);
             pp_variant ret = call(object, m->name, extra, m->arg_count + 1);
             expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "takes");
@@ -573,6 +595,93 @@ Test(methods, misuse_of_objects_and_levels_gets_a_status_and_a_message)
     cr_assert_eq(plugin.api.initialize(PP_PLUGIN_LEVEL_SCENE), PP_OK);
     ret = call(box, "get_mass", NULL, 0);
     expect_error(&ret, PP_ERR_INVALID_HANDLE, "stale");
+}
+
+/* Issue 24: a hinge in the plugin host. A 10×60 rod hung 25 px above its centre from a static beam swings with
+ * the period of a physical pendulum, 2π√((I + m·d²)/(m·g·d)); erasing the beam's pixel under the hinge breaks it
+ * (joint_broken with the joint and both bodies) and the rod falls; misuse is refused with the reason. */
+Test(methods, a_hinge_swings_with_the_physical_pendulum_period_and_breaks_when_its_pixel_is_erased)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t world = ok_object(made);
+    static uint8_t beam_mask[100 * 10], rod_mask[10 * 60];
+    memset(beam_mask, 1, sizeof beam_mask);
+    memset(rod_mask, 1, sizeof rod_mask);
+    const uint64_t beam = ok_object(call(world, "add_body",
+                                         (pp_variant[]){V_BYTES(beam_mask, sizeof beam_mask), V_INT(100), V_INT(10),
+                                                        V_VEC2(200, 100), V_STR("static")},
+                                         5));
+    const uint64_t rod = ok_object(call(world, "add_body",
+                                        (pp_variant[]){V_BYTES(rod_mask, sizeof rod_mask), V_INT(10), V_INT(60),
+                                                       V_VEC2(200, 129), V_STR("dynamic")},
+                                        5));
+    const double d = 25;
+    pp_variant j = call(world, "add_joint",
+                        (pp_variant[]){V_STR("revolute"), V_OBJ(beam), V_OBJ(rod), V_VEC2(200, 129 - d), V_VEC2(0, 0),
+                                       V_VEC2(1, 0)},
+                        6);
+    cr_assert_eq(j.type, PP_VARIANT_INT, "%s", j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
+    const pp_variant hinge = V_INT(j.as.integer);
+    call(rod, "set_velocity", (pp_variant[]){V_VEC2(-0.2 * d, 0), V_FLOAT(0.2)}, 2);
+
+    /* The mean time between upward zero crossings of the hinge angle. */
+    double prev = call(world, "get_joint_value", &hinge, 1).as.real, first = -1, last = -1;
+    int swings = -1;
+    for (int k = 1; k <= 600; k++) {
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+        const double v = call(world, "get_joint_value", &hinge, 1).as.real;
+        if (prev < 0 && v >= 0) {
+            last = (k - 1 + prev / (prev - v)) / 60;
+            first = first < 0 ? last : first;
+            swings++;
+        }
+        prev = v;
+    }
+    const double m = call(rod, "get_mass", NULL, 0).as.real, inertia = call(rod, "get_inertia", NULL, 0).as.real;
+    const double period = (last - first) / swings, analytic = 2 * M_PI * sqrt((inertia + m * d * d) / (m * 980 * d));
+    cr_log_info("plugin hinge pendulum: period %.4f s over %d swings, analytic %.4f s", period, swings, analytic);
+    cr_assert(swings >= 3 && fabs(period / analytic - 1) < 0.02, "period %.4f s over %d swings, analytic %.4f s", period,
+              swings, analytic);
+    const pp_vec2 f = call(world, "get_joint_force", &hinge, 1).as.vec2;
+    cr_assert(fabs(f.y) > 0.9 * m * 980 && fabs(f.y) < 1.1 * m * 980, "the hinge carries the rod: %g vs m·g %g", f.y,
+              m * 980);
+
+    pp_variant ret = call(world, "set_joint_target", (pp_variant[]){hinge, V_VEC2(0, 0)}, 2);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.set_joint_target: pp_joint_set_target: only mouse");
+    ret = call(world, "add_joint",
+               (pp_variant[]){V_STR("hinge"), V_OBJ(world), V_OBJ(rod), V_VEC2(0, 0), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT,
+                 "type must be \"revolute\", \"prismatic\", \"distance\", \"weld\" or \"mouse\", got \"hinge\"");
+    pp_variant other_made;
+    plugin.api.object_create("PhysPixWorld", &other_made);
+    const uint64_t other = ok_object(other_made);
+    ret = call(world, "add_joint",
+               (pp_variant[]){V_STR("weld"), V_OBJ(other), V_OBJ(rod), V_VEC2(0, 0), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "body_a must be a PhysPixBody or this world");
+    plugin.api.object_destroy(other, &ret);
+
+    /* The erase takes the beam's pixels around the anchor: the hinge breaks and its int goes stale. */
+    call(beam, "erase_circle", (pp_variant[]){V_VEC2(200, 129 - d), V_FLOAT(3)}, 2);
+    const int64_t n = call(world, "get_event_count", NULL, 0).as.integer;
+    int broken = 0;
+    for (int64_t i = 0; i < n; i++) {
+        pp_variant type = call(world, "get_event_type", (pp_variant[]){V_INT(i)}, 1);
+        if (strcmp(type.as.string.data, "joint_broken") == 0) {
+            broken++;
+            cr_assert_eq(call(world, "get_event_joint", (pp_variant[]){V_INT(i)}, 1).as.integer, hinge.as.integer);
+            cr_assert_eq(call(world, "get_event_body", (pp_variant[]){V_INT(i)}, 1).as.object, beam);
+            cr_assert_eq(call(world, "get_event_other", (pp_variant[]){V_INT(i)}, 1).as.object, rod);
+        }
+        plugin.api.variant_clear(&type);
+    }
+    cr_assert_eq(broken, 1, "one joint_broken among %lld events", (long long)n);
+    ret = call(world, "get_joint_value", &hinge, 1);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "PhysPixWorld.get_joint_value");
+    const double y0 = call(rod, "get_position", NULL, 0).as.vec2.y;
+    for (int k = 0; k < 30; k++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    cr_assert(call(rod, "get_position", NULL, 0).as.vec2.y > y0 + 50, "the rod fell from %g", y0);
 }
 
 /* The body of a loaded scene whose user_data is `tag`. */

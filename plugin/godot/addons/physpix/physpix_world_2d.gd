@@ -10,7 +10,7 @@ signal contact_begin(a, b, point, normal, speed)  # needs contact_events; speed:
 signal contact_end(a, b)
 signal sensor_begin(sensor, body)
 signal sensor_end(sensor, body)
-signal joint_broken(a, b)  # declared for joints, which the library does not have yet
+signal joint_broken(a, b)  # a joint between a and b (null: the static world) broke by force or by an erase
 
 # Loaded when first needed, not preloaded: the editor's first scan of a project may parse this script while
 # the body script is still loading, and a preload then fails ("possible cyclic reference").
@@ -149,6 +149,8 @@ func _drain_events():
 				emit_signal("sensor_begin", a, b)
 			"sensor_end":
 				emit_signal("sensor_end", a, b)
+			"joint_broken":
+				emit_signal("joint_broken", a, b)
 
 
 # A sibling of the parent's node for the piece body, with the parent's settings and the piece's own pixels.
