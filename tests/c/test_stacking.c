@@ -106,18 +106,25 @@ Test(stacking, the_1_10_100_1000_chain_stands_by_either_lever, .timeout = 60)
     }
 }
 
-Test(stacking, friction_anchors_hold_a_quickstep_pyramid, .timeout = 120)
+/* A 7-row pyramid at the preset with the exact solver off, so QuickStep holds the island: its drift over
+ * `seconds` after the settle, px. */
+static double quickstep_pyramid_drift(pp_preset preset, double seconds)
 {
-    /* Seven rows of 16 px boxes, 2 px apart, with the exact solver off so QuickStep holds the island. */
-    pp_world_def d = pp_world_def_preset(PP_PRESET_FAST);
+    pp_world_def d = pp_world_def_preset(preset);
     d.exact_island_rows = 0;
     pp_world w = stack_world(d);
     pp_body b[28];
     const int n = add_pyramid(w, b, 7);
-    const double drift = drift_after_settle(w, b, n, 20.0);
+    const double drift = drift_after_settle(w, b, n, seconds);
+    pp_world_destroy(w);
+    return drift;
+}
+
+Test(stacking, friction_anchors_hold_a_quickstep_pyramid, .timeout = 120)
+{
+    const double drift = quickstep_pyramid_drift(PP_PRESET_FAST, 20.0);
     cr_log_info("7-row pyramid, FAST with QuickStep alone: drift %.2f px", drift);
     cr_assert_lt(drift, 4.0, "the pyramid crept %.2f px", drift);
-    pp_world_destroy(w);
 }
 
 Test(stacking, a_quickstep_pile_settles_to_the_slop_depth_at_once, .timeout = 120)
@@ -125,15 +132,9 @@ Test(stacking, a_quickstep_pile_settles_to_the_slop_depth_at_once, .timeout = 12
     /* QuickStep left contacts shallower than contact_slop where they were and the pile crept down through
      * that band for seconds, the more so the more iterations: ACCURATE's 10-row pyramid sank 0.65 px in the
      * minute after its first second. Closing the band at the contact_erp rate settles it within that second. */
-    pp_world_def d = pp_world_def_preset(PP_PRESET_ACCURATE);
-    d.exact_island_rows = 0;
-    pp_world w = stack_world(d);
-    pp_body b[28];
-    const int n = add_pyramid(w, b, 7);
-    const double drift = drift_after_settle(w, b, n, 10.0);
+    const double drift = quickstep_pyramid_drift(PP_PRESET_ACCURATE, 10.0);
     cr_log_info("7-row pyramid, ACCURATE on QuickStep: drift %.3f px over 10 s after a 1 s settle", drift);
     cr_assert_lt(drift, 0.1, "the pile crept %.3f px after settling", drift);
-    pp_world_destroy(w);
 }
 
 Test(stacking, exact_island_rows_out_of_range_is_refused)
