@@ -352,6 +352,16 @@ static godot_variant set_awake(call *c)
     return done(c, pp_body_set_awake(c->self->world, c->a[0].body, c->a[1].i != 0));
 }
 
+static godot_variant set_type(call *c)
+{
+    return done(c, pp_body_set_type(c->self->world, c->a[0].body, c->a[1].type));
+}
+
+static godot_variant set_fixed_rotation(call *c)
+{
+    return done(c, pp_body_set_fixed_rotation(c->self->world, c->a[0].body, c->a[1].i != 0));
+}
+
 static godot_variant apply_force(call *c)
 {
     return done(c, pp_body_apply_force(c->self->world, c->a[0].body, c->a[1].v, c->a[2].v));
@@ -845,6 +855,8 @@ static const method_def METHODS[] = {
     METHOD("set_damping", "bff", set_damping, "set_damping(body: int, linear: float, angular: float)"),
     METHOD("set_filter", "bmm", set_filter, "set_filter(body: int, category_bits: int, mask_bits: int)"),
     METHOD("set_awake", "bB", set_awake, "set_awake(body: int, awake: bool)"),
+    METHOD("set_type", "bt", set_type, "set_type(body: int, type: String) (\"dynamic\", \"static\" or \"kinematic\")"),
+    METHOD("set_fixed_rotation", "bB", set_fixed_rotation, "set_fixed_rotation(body: int, fixed: bool)"),
     METHOD("apply_force", "bvv", apply_force, "apply_force(body: int, force: Vector2, point: Vector2)"),
     SET_FLOAT("apply_torque", "apply_torque(body: int, torque: float)", pp_body_apply_torque),
     SET_FLOAT("apply_angular_impulse", "apply_angular_impulse(body: int, impulse: float)",

@@ -358,6 +358,21 @@ func test_native_gains():
 	check(g.set_restitution(light, 2.0) == null and g.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
 		"restitution 2 refused: %s" % g.get_last_error())
 	check(g.set_filter(light, -1, 0) == null and g.get_last_error().find("0..0xffffffff") >= 0, "filter -1 refused")
+	# Type and fixed rotation: a kinematic body ignores gravity and keeps its velocity; fixed rotation holds its angle.
+	g.set_gravity(Vector2(0, 980))
+	g.set_type(light, "kinematic")
+	g.set_velocity(light, Vector2(30, 0), 2.0)
+	g.set_fixed_rotation(light, true)
+	var turned = g.get_angle(light)
+	g.step(DT)
+	check(g.get_type(light) == "kinematic" and g.get_linear_velocity(light) == Vector2(30, 0) and g.get_angle(light) == turned,
+		"set_type kinematic, set_fixed_rotation: %s %s %s" % [g.get_type(light), g.get_linear_velocity(light), g.get_angle(light)])
+	g.set_type(light, "dynamic")
+	g.step(DT)
+	check(near(g.get_linear_velocity(light).y, 980.0 * DT, 0.05), "dynamic again, gravity takes it (its damping 0.1/s on top): %s" % g.get_linear_velocity(light))
+	check(g.set_type(light, "floating") == null and g.get_last_error().find("expected \"dynamic\"") >= 0,
+		"an unknown type refused: %s" % g.get_last_error())
+	g.set_gravity(Vector2())
 
 	# Textures: an ImageTexture of an RGB8 image is read whole; an unimported PNG is refused, not an 8×8 body.
 	var img = Image.new()
