@@ -1080,6 +1080,46 @@ static void body_get_user_data(plugin_object *self, const pp_variant *a, pp_vari
         ret_int(ret, (int64_t)u);
 }
 
+/* The runtime setters: one C call each, their errors named after the plugin method. */
+#define BODY_SET_FLOAT(name_, call_)                                                                  \
+    static void body_##name_(plugin_object *self, const pp_variant *a, pp_variant *ret)              \
+    {                                                                                                 \
+        ret_ok(ret, call_(self->world, self->body, (float)a[0].as.real), "PhysPixBody." #name_);      \
+    }
+BODY_SET_FLOAT(set_friction, pp_body_set_friction)
+BODY_SET_FLOAT(set_restitution, pp_body_set_restitution)
+BODY_SET_FLOAT(set_density, pp_body_set_density)
+BODY_SET_FLOAT(set_gravity_scale, pp_body_set_gravity_scale)
+BODY_SET_FLOAT(apply_torque, pp_body_apply_torque)
+
+static void body_set_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_body_type t;
+    if (body_type_named(&a[0], "PhysPixBody.set_type", &t, ret))
+        ret_ok(ret, pp_body_set_type(self->world, self->body, t), "PhysPixBody.set_type");
+}
+
+static void body_set_fixed_rotation(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_set_fixed_rotation(self->world, self->body, a[0].as.boolean != 0), "PhysPixBody.set_fixed_rotation");
+}
+
+static void body_set_awake(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_set_awake(self->world, self->body, a[0].as.boolean != 0), "PhysPixBody.set_awake");
+}
+
+static void body_set_damping(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_set_damping(self->world, self->body, (float)a[0].as.real, (float)a[1].as.real),
+           "PhysPixBody.set_damping");
+}
+
+static void body_apply_force(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_body_apply_force(self->world, self->body, a[0].as.vec2, a[1].as.vec2), "PhysPixBody.apply_force");
+}
+
 static const method_def body_methods[] = {
     METHOD(body_get_position, "get_position", VEC2, "world position of the pivot, px", .arg_count = 0),
     METHOD(body_get_angle, "get_angle", FLOAT, "rotation, radians", .arg_count = 0),
@@ -1115,6 +1155,25 @@ static const method_def body_methods[] = {
            .arg_count = 0),
     METHOD(body_get_user_data, "get_user_data", INT, "the host's value from the body's def (a scene's user_data)",
            .arg_count = 0),
+    METHOD(body_set_type, "set_type", NIL,
+           "\"dynamic\", \"static\" or \"kinematic\": the pose stays, a moving body keeps its velocity",
+           ARGS(ARG("type", STRING))),
+    METHOD(body_set_fixed_rotation, "set_fixed_rotation", NIL, "hold the rotation (true) or free it",
+           ARGS(ARG("fixed", BOOL))),
+    METHOD(body_set_friction, "set_friction", NIL, "Coulomb friction coefficient, >= 0", ARGS(ARG("friction", FLOAT))),
+    METHOD(body_set_restitution, "set_restitution", NIL, "restitution, 0..1", ARGS(ARG("restitution", FLOAT))),
+    METHOD(body_set_density, "set_density", NIL, "mass per solid pixel, > 0: mass and inertia follow",
+           ARGS(ARG("density", FLOAT))),
+    METHOD(body_set_gravity_scale, "set_gravity_scale", NIL, "scale of the world's gravity on the body (dynamic)",
+           ARGS(ARG("scale", FLOAT))),
+    METHOD(body_set_damping, "set_damping", NIL, "velocity decay, 1/s, linear and angular",
+           ARGS(ARG("linear", FLOAT), ARG("angular", FLOAT))),
+    METHOD(body_set_awake, "set_awake", NIL, "wake the body (true) or put it to sleep now (false)",
+           ARGS(ARG("awake", BOOL))),
+    METHOD(body_apply_force, "apply_force", NIL, "a force (mass*px/s^2) at a world point (px) through the next step",
+           ARGS(ARG("force", VEC2), ARG("point", VEC2))),
+    METHOD(body_apply_torque, "apply_torque", NIL, "a torque (mass*px^2/s^2) through the next step",
+           ARGS(ARG("torque", FLOAT))),
 };
 
 const class_def plugin_classes[CLASS_COUNT] = {

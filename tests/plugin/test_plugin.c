@@ -391,6 +391,16 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_type", {{0}}},
         {"get_rgba", {{0}}},
         {"get_user_data", {{0}}},
+        {"set_type", {V_STR("dynamic")}},
+        {"set_fixed_rotation", {V_BOOL(0)}},
+        {"set_friction", {V_FLOAT(0.6)}},
+        {"set_restitution", {V_FLOAT(0)}},
+        {"set_density", {V_FLOAT(1)}},
+        {"set_gravity_scale", {V_FLOAT(1)}},
+        {"set_damping", {V_FLOAT(0), V_FLOAT(0)}},
+        {"set_awake", {V_BOOL(1)}},
+        {"apply_force", {V_VEC2(1, 0), V_VEC2(50, 91)}},
+        {"apply_torque", {V_FLOAT(1)}},
     };
     const struct {
         const char *cls;
@@ -972,4 +982,34 @@ Test(methods, a_body_launched_from_below_passes_through_a_one_way_platform_and_l
                                                            V_STR("static")}, 5);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "one_way_direction");
     plugin.api.object_destroy(world, &ret);
+}
+
+Test(methods, runtime_setters_through_the_plugin_make_a_box_kinematic_float_and_stop_it_turning)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    /* In the air above the ground and left of the bar, clear of both for the whole test. */
+    cr_assert_eq(call(box, "set_transform", (pp_variant[]){V_VEC2(30, 15), V_FLOAT(0)}, 2).type, PP_VARIANT_NIL);
+    cr_assert_eq(call(box, "set_type", (pp_variant[]){V_STR("kinematic")}, 1).type, PP_VARIANT_NIL);
+    cr_assert_eq(call(box, "set_velocity", (pp_variant[]){V_VEC2(30, 0), V_FLOAT(1)}, 2).type, PP_VARIANT_NIL);
+    cr_assert_eq(call(box, "set_fixed_rotation", (pp_variant[]){V_BOOL(1)}, 1).type, PP_VARIANT_NIL);
+    const pp_vec2 p0 = call(box, "get_position", NULL, 0).as.vec2;
+    const double a0 = call(box, "get_angle", NULL, 0).as.real;
+    for (int i = 0; i < 60; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    const pp_vec2 p1 = call(box, "get_position", NULL, 0).as.vec2;
+    cr_assert_float_eq(p1.x - p0.x, 30, 1e-2, "a kinematic box moves 30 px in a second: %g", p1.x - p0.x);
+    cr_assert_float_eq(p1.y, p0.y, 1e-3, "and does not fall: %g then %g", p0.y, p1.y);
+    cr_assert_eq(call(box, "get_angle", NULL, 0).as.real, a0, "its rotation is held");
+    cr_assert_str_eq(call(box, "get_type", NULL, 0).as.string.data, "kinematic");
+    /* Dynamic again with gravity scale 0: it keeps its velocity and floats. */
+    cr_assert_eq(call(box, "set_type", (pp_variant[]){V_STR("dynamic")}, 1).type, PP_VARIANT_NIL);
+    cr_assert_eq(call(box, "set_gravity_scale", (pp_variant[]){V_FLOAT(0)}, 1).type, PP_VARIANT_NIL);
+    for (int i = 0; i < 30; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    cr_assert_float_eq(call(box, "get_position", NULL, 0).as.vec2.y, p1.y, 1e-3, "gravity scale 0 floats");
+    pp_variant bad = call(box, "set_type", (pp_variant[]){V_STR("floating")}, 1);
+    expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "PhysPixBody.set_type: type must be");
+    bad = call(box, "set_density", (pp_variant[]){V_FLOAT(-1)}, 1);
+    expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "PhysPixBody.set_density");
 }
