@@ -186,6 +186,27 @@ static void world_get_body_count(plugin_object *self, const pp_variant *a, pp_va
         ret_int(ret, c->body_count);
 }
 
+/* Floats a body takes in get_body_states' packing: x, y, angle, vx, vy, angular velocity, awake (0 or 1). */
+enum { STATE_FLOATS = 7 };
+
+static void world_get_body_states(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.get_body_states";
+    world_cache *c = self->cache;
+    int32_t n = 0;
+    if (!ret_ok(ret, pp_world_get_body_states(self->world, NULL, 0, &n), m) ||
+        !reserve((void **)&c->states, &c->state_capacity, n, sizeof *c->states, ret) ||
+        !ret_ok(ret, pp_world_get_body_states(self->world, c->states, n, &n), m))
+        return;
+    uint8_t *out = ret_bytes(ret, (int64_t)n * STATE_FLOATS * (int64_t)sizeof(float));
+    for (int32_t i = 0; out && i < n; i++) {
+        const pp_body_state *s = &c->states[i];
+        const float f[STATE_FLOATS] = {s->position.x,        s->position.y,        s->angle, s->linear_velocity.x,
+                                       s->linear_velocity.y, s->angular_velocity, (float)s->awake};
+        memcpy(out + (size_t)i * sizeof f, f, sizeof f);
+    }
+}
+
 static void world_get_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     if (index_in(&a[0], self->cache->body_count, "PhysPixWorld.get_body", "bodies", ret))
@@ -778,6 +799,10 @@ static const method_def world_methods[] = {
            "erase every body's pixels within radius (px) of a world point (px); returns pixels erased",
            ARGS(ARG("center", VEC2), ARG("radius", FLOAT))),
     METHOD(world_get_body_count, "get_body_count", INT, "read the live bodies; returns how many", .arg_count = 0),
+    METHOD(world_get_body_states, "get_body_states", BYTES,
+           "every live body's state in get_body_count's order, 7 little-endian float32 each: x, y (pivot, px), angle "
+           "(rad), vx, vy (px/s), angular velocity (rad/s), awake (0 or 1)",
+           .arg_count = 0),
     METHOD(world_get_body, "get_body", OBJECT, "the index-th body read by get_body_count",
            ARGS(ARG("index", INT)), RETURNS_BODY),
     METHOD(world_get_contact_count, "get_contact_count", INT, "contacts of the last step (or collide)",

@@ -138,6 +138,7 @@ static void world_cache_free(world_cache *c)
     free(c->contacts);
     free(c->events);
     free(c->bodies);
+    free(c->states);
     free(c->body_objects);
     free(c->edits);
     free(c->debug_normals);

@@ -15,6 +15,8 @@ typedef struct world_cache {
     int32_t event_count, event_capacity;
     pp_body *bodies; /* read by the last get_body_count */
     int32_t body_count, body_capacity;
+    pp_body_state *states; /* get_body_states' scratch */
+    int32_t state_capacity;
     uint64_t *body_objects; /* body slot → the object wrapping it, so a body keeps one object id */
     int32_t body_object_capacity;
     pp_timed_edit *edits; /* read by the last get_scheduled_edit_count */

@@ -369,6 +369,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_debug_step_y", {{0}}},
         {"get_debug_normal", {{0}}},
         {"get_debug_local_normals", {{0}}},
+        {"get_body_states", {{0}}},
     };
     const recipe body_recipes[] = {
         {"get_position", {{0}}},
@@ -1014,4 +1015,30 @@ Test(methods, runtime_setters_through_the_plugin_make_a_box_kinematic_float_and_
     expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "PhysPixBody.set_type: type must be");
     bad = call(box, "set_density", (pp_variant[]){V_FLOAT(-1)}, 1);
     expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "PhysPixBody.set_density");
+}
+
+Test(methods, body_states_come_in_one_call_in_get_body_counts_order)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    cr_assert_eq(call(box, "set_velocity", (pp_variant[]){V_VEC2(12, -3), V_FLOAT(0.5)}, 2).type, PP_VARIANT_NIL);
+    const int n = (int)call(world, "get_body_count", NULL, 0).as.integer;
+    pp_variant states = call(world, "get_body_states", NULL, 0);
+    cr_assert_eq(states.type, PP_VARIANT_BYTES);
+    cr_assert_eq(states.as.bytes.length, (int64_t)n * 7 * (int64_t)sizeof(float), "%d bodies, %lld bytes", n,
+                 (long long)states.as.bytes.length);
+    for (int i = 0; i < n; i++) {
+        float f[7];
+        memcpy(f, states.as.bytes.data + (size_t)i * sizeof f, sizeof f);
+        const uint64_t b = ok_object(call(world, "get_body", (pp_variant[]){V_INT(i)}, 1));
+        const pp_vec2 p = call(b, "get_position", NULL, 0).as.vec2, v = call(b, "get_velocity", NULL, 0).as.vec2;
+        cr_assert(f[0] == p.x && f[1] == p.y && f[2] == (float)call(b, "get_angle", NULL, 0).as.real,
+                  "body %d: pose (%g, %g, %g)", i, f[0], f[1], f[2]);
+        cr_assert(f[3] == v.x && f[4] == v.y && f[5] == (float)call(b, "get_angular_velocity", NULL, 0).as.real,
+                  "body %d: velocity (%g, %g, %g)", i, f[3], f[4], f[5]);
+        cr_assert_eq(f[6], call(b, "is_awake", NULL, 0).as.boolean ? 1.0f : 0.0f, "body %d: awake %g", i, f[6]);
+        if (b == box)
+            cr_assert(f[3] == 12.0f && f[4] == -3.0f && f[5] == 0.5f, "the box's set velocity");
+    }
+    plugin.api.variant_clear(&states);
 }
