@@ -36,7 +36,9 @@ pp_status json_fail_from_last(const json_ctx *c, pp_status st, const char *where
     char msg[512];
     const char *last = pp_last_error(), *colon = strstr(last, ": ");
     snprintf(msg, sizeof msg, "%s", colon ? colon + 2 : last);
-    return json_fail(c, st == PP_ERR_INVALID_ARGUMENT ? PP_ERR_FORMAT : st, where, key, "%s", msg);
+    /* A file's bad value or a body it names that is not there is a fault of the file. */
+    const bool files_fault = st == PP_ERR_INVALID_ARGUMENT || st == PP_ERR_INVALID_HANDLE;
+    return json_fail(c, files_fault ? PP_ERR_FORMAT : st, where, key, "%s", msg);
 }
 
 
