@@ -248,4 +248,15 @@ static inline void remove_tree(const char *dir) {
     rmdir(dir);
 }
 
+/* Save w to a snapshot in a fresh temporary folder, load it back and remove the folder: the loaded world. */
+static inline pp_world snapshot_round_trip(pp_world w) {
+    char dir[] = "/tmp/pp_snapshot_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
+    pp_world back = {0};
+    PP_OK_OR_FAIL(pp_world_load_snapshot(dir, &back));
+    remove_tree(dir);
+    return back;
+}
+
 #endif /* PHYSPIX_TEST_HELPERS_H */

@@ -45,12 +45,7 @@ static pp_world thrown_box(const pp_body_def *box, pp_body *out)
  * stay exactly where its original is. */
 static void expect_snapshot_continues(pp_world w, int steps)
 {
-    char dir[] = "/tmp/pp_props_XXXXXX";
-    cr_assert_not_null(mkdtemp(dir));
-    PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
-    pp_world back = {0};
-    PP_OK_OR_FAIL(pp_world_load_snapshot(dir, &back));
-    remove_tree(dir);
+    pp_world back = snapshot_round_trip(w);
     pp_body orig[8], loaded[8];
     int32_t n = 0, m = 0;
     PP_OK_OR_FAIL(pp_world_get_bodies(w, orig, 8, &n));
