@@ -46,7 +46,7 @@ LIB_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/glsl_sources.o
 SAN_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/san/%.o) $(BUILD)/san/glsl_sources.o
 TEST_SRC := $(wildcard tests/c/*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)
-PLUGIN_SRC := plugin/plugin.c plugin/classes.c
+PLUGIN_SRC := plugin/plugin.c plugin/classes.c plugin/settings.c
 
 SONAME   := libphyspix.so.$(SOMAJOR)
 SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
@@ -54,7 +54,7 @@ STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
 .PHONY: all lib print-version deps test test-c test-san test-compile test-plugin test-python test-godot test-demo test-package check-deep \
-        demo bench install clean fuzz test-fuzz
+        demo bench install clean fuzz test-fuzz api check-api
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -111,9 +111,10 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h lib/handle.h include/physpix_plugin.h $(SHARED)
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/world_def_fields.h lib/handle.h \
+  include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
-	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lpthread
+	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lcjson -lm -lpthread
 
 # The archive keeps global only what the shared library exports (the pp_* entry points), so a program that
 # links it statically may define its own read_int: the objects are merged into one, the rest made local.
@@ -147,6 +148,17 @@ test-compile: | $(BUILD)/tests
 	$(CXX) -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_cpp.cpp -o $(BUILD)/tests/header_cpp.o
 	@echo "public headers compile as C11 and C++17 with -Werror"
 
+# The API's one description, plugin/api/physpix_api.json: `make api` writes the bindings generated from it (the Python
+# ctypes mirror, the plugin's and the Godot adapter's method tables, the world def fields); check-api checks that they
+# are current, that the description matches include/physpix.h and that every call reaches each host or says why not,
+# then runs the checker's own tests (tests/api). Standard-library Python only; -B keeps bytecode out of the tree.
+api:
+	$(PYTHON) -B plugin/api/gen_api.py
+
+check-api:
+	$(PYTHON) -B plugin/api/gen_api.py --check
+	$(PYTHON) -B -m unittest discover -s tests/api -p 'test_*.py'
+
 # Leaks are checked after each test (tests/c/helpers.h); the runner's own exit check is off because
 # Criterion keeps 48 bytes to its exit. Any LeakSanitizer report fails the target.
 # $(call run_san,binary,log): run a sanitized Criterion binary; fail on its status or on any LeakSanitizer report.
@@ -177,6 +189,7 @@ test-c: $(BUILD)/tests/test_c
 test: deps
 	$(MAKE) all
 	$(MAKE) test-compile
+	$(MAKE) check-api
 	$(MAKE) test-c
 	$(MAKE) test-san
 	$(MAKE) test-fuzz

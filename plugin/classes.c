@@ -1,6 +1,7 @@
-/* The plugin's classes, PhysPixWorld and PhysPixBody: one table entry per method (name, doc with units,
- * typed arguments, result) beside its implementation, each a thin call into the C ABI. Arguments
- * arrive checked against the table by plugin.c; what is left here is ranges, sizes and names. */
+/* The plugin's classes, PhysPixWorld and PhysPixBody. Their method tables (name, doc with units, typed arguments,
+ * result) and the wrappers of the regular methods are generated into classes_gen.h from plugin/api/physpix_api.json;
+ * here are the methods written by hand. Arguments arrive checked against the table by plugin.c; what is left here
+ * is ranges, sizes and names. */
 #include "plugin.h"
 
 #include <stdio.h>
@@ -165,14 +166,6 @@ static void world_add_body_png(plugin_object *self, const pp_variant *a, pp_vari
     if (ret_ok(ret, pp_image_load(a[0].as.string.data, rgba, size, &d.width, &d.height), m))
         add_body(self, &d, &a[1], &a[2], m, ret);
     free(rgba);
-}
-
-static void world_erase_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    int32_t changed = 0;
-    if (ret_ok(ret, pp_world_erase_circle(self->world, a[0].as.vec2, (float)a[1].as.real, &changed),
-               "PhysPixWorld.erase_circle"))
-        ret_int(ret, changed);
 }
 
 static void world_get_body_count(plugin_object *self, const pp_variant *a, pp_variant *ret)
@@ -390,58 +383,6 @@ static void world_set_joint_options(plugin_object *self, const pp_variant *a, pp
     self->cache->has_joint_options = 1;
 }
 
-static void world_destroy_joint(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_joint_destroy(self->world, joint_of(&a[0])), "PhysPixWorld.destroy_joint");
-}
-
-static void world_get_joint_force(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    pp_vec2 f;
-    if (ret_ok(ret, pp_joint_get_reaction(self->world, joint_of(&a[0]), &f, NULL), "PhysPixWorld.get_joint_force"))
-        ret_vec2(ret, f);
-}
-
-static void world_get_joint_torque(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float t;
-    if (ret_ok(ret, pp_joint_get_reaction(self->world, joint_of(&a[0]), NULL, &t), "PhysPixWorld.get_joint_torque"))
-        ret_float(ret, t);
-}
-
-static void world_get_joint_value(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float v;
-    if (ret_ok(ret, pp_joint_get_value(self->world, joint_of(&a[0]), &v, NULL), "PhysPixWorld.get_joint_value"))
-        ret_float(ret, v);
-}
-
-static void world_get_joint_speed(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float s;
-    if (ret_ok(ret, pp_joint_get_value(self->world, joint_of(&a[0]), NULL, &s), "PhysPixWorld.get_joint_speed"))
-        ret_float(ret, s);
-}
-
-static void world_set_joint_motor(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_joint_set_motor(self->world, joint_of(&a[0]), a[1].as.boolean, (float)a[2].as.real,
-                                   (float)a[3].as.real),
-           "PhysPixWorld.set_joint_motor");
-}
-
-static void world_set_joint_limits(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_joint_set_limits(self->world, joint_of(&a[0]), a[1].as.boolean, (float)a[2].as.real,
-                                    (float)a[3].as.real),
-           "PhysPixWorld.set_joint_limits");
-}
-
-static void world_set_joint_target(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_joint_set_target(self->world, joint_of(&a[0]), a[1].as.vec2), "PhysPixWorld.set_joint_target");
-}
-
 /* The two body arguments' handles; the library refuses a body of another world (PP_ERR_INVALID_HANDLE). */
 static void pair_bodies(const pp_variant *a, pp_body *ba, pp_body *bb)
 {
@@ -573,11 +514,6 @@ static void world_get_query_body(plugin_object *self, const pp_variant *a, pp_va
         ret_body(self, self->cache->found[a[0].as.integer], ret);
 }
 
-static void world_set_contact_events(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_world_set_contact_events(self->world, a[0].as.boolean), "PhysPixWorld.set_contact_events");
-}
-
 /* The sensor and one-way settings of the bodies add_body* make from now on; checked when one is made. */
 static void world_set_body_options(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
@@ -594,7 +530,6 @@ static void world_get_step_ms(plugin_object *self, const pp_variant *a, pp_varia
         ret_float(ret, s.total_ms);
 }
 
-/* Replace this object's world by the scene's; its old bodies' objects become stale. */
 /* Put a newly loaded world in place of the object's; the old bodies' objects go stale. */
 static void world_replace(plugin_object *self, pp_world loaded)
 {
@@ -608,6 +543,27 @@ static void world_replace(plugin_object *self, pp_world loaded)
     c->ray = (pp_raycast_hit){0};
 }
 
+/* Replace this object's world by one made from settings (JSON: "preset", then pp_world_def fields by name). */
+static void world_create(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.create";
+    pp_world_def def;
+    pp_world made;
+    char why[256];
+    const pp_status st = settings_read(a[0].as.string.data, &def, why, sizeof why);
+    if (st != PP_OK)
+        ret_error(ret, st, "%s: %s", m, why);
+    else if (ret_ok(ret, pp_world_create(&def, &made), m))
+        world_replace(self, made); /* on failure the old world stays as it was */
+}
+
+static void world_get_settings(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_world_def def;
+    if (ret_ok(ret, pp_world_get_def(self->world, &def), "PhysPixWorld.get_settings"))
+        settings_ret(&def, ret);
+}
+
 static void world_load_scene(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_world loaded;
@@ -615,23 +571,11 @@ static void world_load_scene(plugin_object *self, const pp_variant *a, pp_varian
         world_replace(self, loaded); /* on failure the old world stays as it was */
 }
 
-static void world_save_snapshot(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_world_save_snapshot(self->world, a[0].as.string.data), "PhysPixWorld.save_snapshot");
-}
-
 static void world_load_snapshot(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_world loaded;
     if (ret_ok(ret, pp_world_load_snapshot(a[0].as.string.data, &loaded), "PhysPixWorld.load_snapshot"))
         world_replace(self, loaded);
-}
-
-static void world_get_time(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    double t;
-    if (ret_ok(ret, pp_world_get_time(self->world, &t), "PhysPixWorld.get_time"))
-        ret_float(ret, t);
 }
 
 static int camera_of(plugin_object *self, const char *m, pp_camera *cam, pp_variant *ret)
@@ -781,260 +725,8 @@ static void world_get_debug_local_normals(plugin_object *self, const pp_variant 
         memcpy(out, self->cache->debug_normals, (size_t)size);
 }
 
-static const method_def world_methods[] = {
-    METHOD(world_step, "step", NIL, "advance the world by dt seconds (0 < dt <= 1)", ARGS(ARG("dt", FLOAT))),
-    METHOD(world_add_body, "add_body", OBJECT,
-           "add a body from a collision mask (width*height bytes, non-zero solid) at a world position, px",
-           ARGS(ARG("mask", BYTES), ARG("width", INT), ARG("height", INT), ARG("position", VEC2),
-                ARG("type", STRING)),
-           RETURNS_BODY),
-    METHOD(world_add_body_rgba, "add_body_rgba", OBJECT,
-           "add a body from an RGBA8 sprite (alpha >= 128 solid) at a world position, px",
-           ARGS(ARG("rgba", BYTES), ARG("width", INT), ARG("height", INT), ARG("position", VEC2),
-                ARG("type", STRING)),
-           RETURNS_BODY),
-    METHOD(world_add_body_png, "add_body_png", OBJECT, "add a body from a PNG sprite file at a world position, px",
-           ARGS(ARG("path", STRING), ARG("position", VEC2), ARG("type", STRING)), RETURNS_BODY),
-    METHOD(world_erase_circle, "erase_circle", INT,
-           "erase every body's pixels within radius (px) of a world point (px); returns pixels erased",
-           ARGS(ARG("center", VEC2), ARG("radius", FLOAT))),
-    METHOD(world_get_body_count, "get_body_count", INT, "read the live bodies; returns how many", .arg_count = 0),
-    METHOD(world_get_body_states, "get_body_states", BYTES,
-           "every live body's state in get_body_count's order, 7 little-endian float32 each: x, y (pivot, px), angle "
-           "(rad), vx, vy (px/s), angular velocity (rad/s), awake (0 or 1)",
-           .arg_count = 0),
-    METHOD(world_get_body, "get_body", OBJECT, "the index-th body read by get_body_count",
-           ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_get_contact_count, "get_contact_count", INT, "contacts of the last step (or collide)",
-           .arg_count = 0),
-    METHOD(world_get_contact_point, "get_contact_point", VEC2, "world contact point, px", ARGS(ARG("index", INT))),
-    METHOD(world_get_contact_normal, "get_contact_normal", VEC2, "unit normal from body a to body b",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_contact_depth, "get_contact_depth", FLOAT, "penetration along the normal, px",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_contact_normal_impulse, "get_contact_normal_impulse", FLOAT,
-           "impulse the solver applied along the normal in the last substep, mass*px/s (0 after collide)",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_contact_body_a, "get_contact_body_a", OBJECT, "first body of a contact", ARGS(ARG("index", INT)),
-           RETURNS_BODY),
-    METHOD(world_get_contact_body_b, "get_contact_body_b", OBJECT, "second body of a contact",
-           ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_get_event_count, "get_event_count", INT, "read (and forget) the pending events; returns how many",
-           .arg_count = 0),
-    METHOD(world_get_event_type, "get_event_type", STRING,
-           "\"split\", \"destroyed\", \"contact_begin\", \"contact_end\", \"sensor_begin\", \"sensor_end\" or "
-           "\"joint_broken\"",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_event_body, "get_event_body", OBJECT,
-           "the body an event happened to (split: the parent; sensor_*: the sensor)", ARGS(ARG("index", INT)),
-           RETURNS_BODY),
-    METHOD(world_get_event_other, "get_event_other", OBJECT,
-           "split: the new body; destroyed: nil; contact_*, sensor_*: the other body of the pair",
-           ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_get_event_point, "get_event_point", VEC2,
-           "contact_begin, sensor_begin: world point of the first contact, px; else zero", ARGS(ARG("index", INT))),
-    METHOD(world_get_event_normal, "get_event_normal", VEC2,
-           "contact_begin, sensor_begin: unit normal from the event's body to its other; else zero",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_event_approach_speed, "get_event_approach_speed", FLOAT,
-           "contact_begin, sensor_begin: speed at which the pair closed along the normal, px/s; else zero",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_event_joint, "get_event_joint", INT, "joint_broken: the joint (now stale); else 0",
-           ARGS(ARG("index", INT))),
-    METHOD(world_add_joint, "add_joint", INT,
-           "join two bodies (a PhysPixBody, or this world for the static world): type \"revolute\", \"prismatic\", "
-           "\"distance\", \"weld\" or \"mouse\", anchors in world px now, a prismatic's axis; returns the joint (int)",
-           ARGS(ARG("type", STRING), ARG("body_a", OBJECT), ARG("body_b", OBJECT), ARG("anchor_a", VEC2),
-                ARG("anchor_b", VEC2), ARG("axis", VEC2))),
-    METHOD(world_set_joint_options, "set_joint_options", NIL,
-           "give later add_joint joints these (until called, each type's defaults): spring Hz (0 rigid) and damping "
-           "ratio, a mouse joint's max_force and break_force (mass*px/s^2, 0 none)",
-           ARGS(ARG("collide_connected", BOOL), ARG("spring_hertz", FLOAT), ARG("spring_damping_ratio", FLOAT),
-                ARG("max_force", FLOAT), ARG("break_force", FLOAT))),
-    METHOD(world_destroy_joint, "destroy_joint", NIL, "destroy a joint; its int goes stale", ARGS(ARG("joint", INT))),
-    METHOD(world_get_joint_force, "get_joint_force", VEC2, "force the joint put on body_b in the last substep, mass*px/s^2",
-           ARGS(ARG("joint", INT))),
-    METHOD(world_get_joint_torque, "get_joint_torque", FLOAT,
-           "torque the joint put on body_b in the last substep, mass*px^2/s^2", ARGS(ARG("joint", INT))),
-    METHOD(world_get_joint_value, "get_joint_value", FLOAT,
-           "revolute: angle since creation, rad; prismatic: translation, px; distance: length, px; else 0",
-           ARGS(ARG("joint", INT))),
-    METHOD(world_get_joint_speed, "get_joint_speed", FLOAT, "the rate of get_joint_value, rad/s or px/s",
-           ARGS(ARG("joint", INT))),
-    METHOD(world_set_joint_motor, "set_joint_motor", NIL,
-           "revolute, prismatic: switch the motor; speed rad/s or px/s, max_force >= 0 (a torque for revolute)",
-           ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("speed", FLOAT), ARG("max_force", FLOAT))),
-    METHOD(world_set_joint_limits, "set_joint_limits", NIL,
-           "revolute (rad, -pi..pi), prismatic (px), distance (min and max length, px): switch and set the limits",
-           ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("lower", FLOAT), ARG("upper", FLOAT))),
-    METHOD(world_set_joint_target, "set_joint_target", NIL, "mouse: move the target, world px",
-           ARGS(ARG("joint", INT), ARG("target", VEC2))),
-    METHOD(world_raycast, "raycast", BOOL,
-           "cast a segment between world points (px) against bodies whose category meets mask (0..2^32-1; "
-           "sensors skipped); whether it met a solid pixel, which get_ray_* describe",
-           ARGS(ARG("from", VEC2), ARG("to", VEC2), ARG("mask", INT))),
-    METHOD(world_get_ray_body, "get_ray_body", OBJECT, "the body the last raycast hit; nil if it missed",
-           .arg_count = 0, RETURNS_BODY),
-    METHOD(world_get_ray_point, "get_ray_point", VEC2,
-           "world point where the last ray entered the first solid pixel, px; zero if it missed", .arg_count = 0),
-    METHOD(world_get_ray_normal, "get_ray_normal", VEC2,
-           "unit surface normal at the last ray's hit, out of the body; zero if it missed", .arg_count = 0),
-    METHOD(world_get_ray_fraction, "get_ray_fraction", FLOAT,
-           "where along from -> to the last ray's hit lies, 0..1; zero if it missed", .arg_count = 0),
-    METHOD(world_query_point, "query_point", INT,
-           "find the bodies (category meeting mask, sensors skipped) with a solid pixel whose square contains a "
-           "world point (px); returns how many, read with get_query_body",
-           ARGS(ARG("point", VEC2), ARG("mask", INT))),
-    METHOD(world_query_aabb, "query_aabb", INT,
-           "as query_point, for solid pixel centres in the world box [lower, upper], px",
-           ARGS(ARG("lower", VEC2), ARG("upper", VEC2), ARG("mask", INT))),
-    METHOD(world_query_circle, "query_circle", INT,
-           "as query_point, for solid pixel centres within radius (px) of a world point (px)",
-           ARGS(ARG("center", VEC2), ARG("radius", FLOAT), ARG("mask", INT))),
-    METHOD(world_get_query_body, "get_query_body", OBJECT, "the index-th body the last query_* found, in slot order",
-           ARGS(ARG("index", INT)), RETURNS_BODY),
-    METHOD(world_set_contact_events, "set_contact_events", NIL,
-           "queue contact_begin and contact_end events (default false); pairs touching then begin at the next step",
-           ARGS(ARG("enabled", BOOL))),
-    METHOD(world_set_body_options, "set_body_options", NIL,
-           "make later add_body* bodies sensors and/or one-way platforms that bodies land on from one_way_direction "
-           "(bitmap axes, length > 0; default false, false, (0, -1): from above)",
-           ARGS(ARG("is_sensor", BOOL), ARG("one_way", BOOL), ARG("one_way_direction", VEC2))),
-    METHOD(world_collide, "collide", INT,
-           "run the narrowphase on two bodies at their current poses; returns how many contacts, which replace "
-           "the list get_contact_* read",
-           ARGS(BODY_ARG("a"), BODY_ARG("b"))),
-    METHOD(world_get_step_ms, "get_step_ms", FLOAT, "wall time of the last step, milliseconds", .arg_count = 0),
-    METHOD(world_load_scene, "load_scene", NIL,
-           "replace this object's world by a JSON scene file's (PNG paths relative to it); the old bodies' "
-           "objects become stale",
-           ARGS(ARG("path", STRING))),
-    METHOD(world_save_snapshot, "save_snapshot", NIL,
-           "write the whole world into a new folder (world.json and PNG planes), atomically", ARGS(ARG("folder", STRING))),
-    METHOD(world_load_snapshot, "load_snapshot", NIL,
-           "replace this object's world by a snapshot's, which steps on exactly as the saved one; the old bodies' "
-           "objects become stale",
-           ARGS(ARG("folder", STRING))),
-    METHOD(world_get_time, "get_time", FLOAT, "simulated time since the world was made, s", .arg_count = 0),
-    METHOD(world_get_camera_center, "get_camera_center", VEC2, "world point at the image centre, px",
-           .arg_count = 0),
-    METHOD(world_get_camera_zoom, "get_camera_zoom", FLOAT, "image px per world px", .arg_count = 0),
-    METHOD(world_get_camera_size, "get_camera_size", VEC2, "image width and height, image px", .arg_count = 0),
-    METHOD(world_schedule_erase, "schedule_erase", NIL,
-           "erase every body's pixels within radius (px) of a world point (px) at a world time (s)",
-           ARGS(ARG("time", FLOAT), ARG("center", VEC2), ARG("radius", FLOAT))),
-    METHOD(world_get_scheduled_edit_count, "get_scheduled_edit_count", INT,
-           "read the edits still pending, in the order they apply; returns how many", .arg_count = 0),
-    METHOD(world_get_scheduled_edit_time, "get_scheduled_edit_time", FLOAT, "when an edit applies, world time, s",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_scheduled_edit_type, "get_scheduled_edit_type", STRING, "\"erase\" or \"paint\"",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_scheduled_edit_center, "get_scheduled_edit_center", VEC2, "an edit's circle centre, world px",
-           ARGS(ARG("index", INT))),
-    METHOD(world_get_scheduled_edit_radius, "get_scheduled_edit_radius", FLOAT, "an edit's circle radius, px",
-           ARGS(ARG("index", INT))),
-    METHOD(world_debug_collision, "debug_collision", BYTES,
-           "a pair's sampled grid, width*height bytes of flags (1 first body, 2 second, 4 critical), rows "
-           "along the grid's y; the get_debug_* calls describe it",
-           ARGS(BODY_ARG("a"), BODY_ARG("b"))),
-    METHOD(world_get_debug_size, "get_debug_size", VEC2, "the last debug grid's width and height, cells",
-           .arg_count = 0),
-    METHOD(world_get_debug_origin, "get_debug_origin", VEC2, "world position of the centre of cell (0, 0), px",
-           .arg_count = 0),
-    METHOD(world_get_debug_step_x, "get_debug_step_x", VEC2, "world offset from a cell to the next along x, px",
-           .arg_count = 0),
-    METHOD(world_get_debug_step_y, "get_debug_step_y", VEC2, "world offset from a cell to the next along y, px",
-           .arg_count = 0),
-    METHOD(world_get_debug_normal, "get_debug_normal", VEC2, "the pair's global normal from a to b; zero apart",
-           .arg_count = 0),
-    METHOD(world_get_debug_local_normals, "get_debug_local_normals", BYTES,
-           "each cell's local kernel normal as two native floats (x, y), world axes; zero off the critical cells",
-           .arg_count = 0),
-};
 
 /* ---- PhysPixBody ---- */
-
-static void body_get_position(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    pp_vec2 p;
-    if (ret_ok(ret, pp_body_get_position(self->world, self->body, &p), "PhysPixBody.get_position"))
-        ret_vec2(ret, p);
-}
-
-static void body_get_angle(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float angle;
-    if (ret_ok(ret, pp_body_get_angle(self->world, self->body, &angle), "PhysPixBody.get_angle"))
-        ret_float(ret, angle);
-}
-
-static void body_set_transform(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_set_transform(self->world, self->body, a[0].as.vec2, (float)a[1].as.real),
-           "PhysPixBody.set_transform");
-}
-
-static void body_get_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    pp_vec2 v;
-    if (ret_ok(ret, pp_body_get_velocity(self->world, self->body, &v, NULL), "PhysPixBody.get_velocity"))
-        ret_vec2(ret, v);
-}
-
-static void body_get_angular_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float w;
-    if (ret_ok(ret, pp_body_get_velocity(self->world, self->body, NULL, &w), "PhysPixBody.get_angular_velocity"))
-        ret_float(ret, w);
-}
-
-static void body_set_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_set_velocity(self->world, self->body, a[0].as.vec2, (float)a[1].as.real),
-           "PhysPixBody.set_velocity");
-}
-
-static void body_apply_impulse(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_apply_impulse(self->world, self->body, a[0].as.vec2, a[1].as.vec2),
-           "PhysPixBody.apply_impulse");
-}
-
-static void body_get_mass(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float mass;
-    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, &mass, NULL, NULL), "PhysPixBody.get_mass"))
-        ret_float(ret, mass);
-}
-
-static void body_get_center_of_mass(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    pp_vec2 c;
-    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, NULL, &c, NULL), "PhysPixBody.get_center_of_mass"))
-        ret_vec2(ret, c);
-}
-
-static void body_get_inertia(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    float inertia;
-    if (ret_ok(ret, pp_body_get_mass(self->world, self->body, NULL, NULL, &inertia), "PhysPixBody.get_inertia"))
-        ret_float(ret, inertia);
-}
-
-static void body_is_awake(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    int32_t awake;
-    if (ret_ok(ret, pp_body_is_awake(self->world, self->body, &awake), "PhysPixBody.is_awake"))
-        ret_bool(ret, awake);
-}
-
-static void body_erase_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    int32_t changed;
-    if (ret_ok(ret, pp_body_erase_circle(self->world, self->body, a[0].as.vec2, (float)a[1].as.real, &changed),
-               "PhysPixBody.erase_circle"))
-        ret_int(ret, changed);
-}
 
 static void body_paint_circle(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
@@ -1071,13 +763,6 @@ static void body_get_world(plugin_object *self, const pp_variant *a, pp_variant 
     ret_object(ret, self->world_object);
 }
 
-static void body_get_pivot(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    pp_vec2 p;
-    if (ret_ok(ret, pp_body_get_pivot(self->world, self->body, &p), "PhysPixBody.get_pivot"))
-        ret_vec2(ret, p);
-}
-
 static void body_get_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     static const char *names[] = {"dynamic", "static", "kinematic"}; /* in pp_body_type order */
@@ -1098,25 +783,6 @@ static void body_get_rgba(plugin_object *self, const pp_variant *a, pp_variant *
         free(rgba); /* ret now holds the error, not the bytes */
 }
 
-static void body_get_user_data(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    uint64_t u;
-    if (ret_ok(ret, pp_body_get_user_data(self->world, self->body, &u), "PhysPixBody.get_user_data"))
-        ret_int(ret, (int64_t)u);
-}
-
-/* The runtime setters: one C call each, their errors named after the plugin method. */
-#define BODY_SET_FLOAT(name_, call_)                                                                  \
-    static void body_##name_(plugin_object *self, const pp_variant *a, pp_variant *ret)              \
-    {                                                                                                 \
-        ret_ok(ret, call_(self->world, self->body, (float)a[0].as.real), "PhysPixBody." #name_);      \
-    }
-BODY_SET_FLOAT(set_friction, pp_body_set_friction)
-BODY_SET_FLOAT(set_restitution, pp_body_set_restitution)
-BODY_SET_FLOAT(set_density, pp_body_set_density)
-BODY_SET_FLOAT(set_gravity_scale, pp_body_set_gravity_scale)
-BODY_SET_FLOAT(apply_torque, pp_body_apply_torque)
-
 static void body_set_type(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_body_type t;
@@ -1124,82 +790,17 @@ static void body_set_type(plugin_object *self, const pp_variant *a, pp_variant *
         ret_ok(ret, pp_body_set_type(self->world, self->body, t), "PhysPixBody.set_type");
 }
 
-static void body_set_fixed_rotation(plugin_object *self, const pp_variant *a, pp_variant *ret)
+
+static void body_set_filter(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
-    ret_ok(ret, pp_body_set_fixed_rotation(self->world, self->body, a[0].as.boolean != 0), "PhysPixBody.set_fixed_rotation");
+    const char *m = "PhysPixBody.set_filter";
+    uint32_t category, mask;
+    if (mask_bits(&a[0], m, &category, ret) && mask_bits(&a[1], m, &mask, ret))
+        ret_ok(ret, pp_body_set_filter(self->world, self->body, category, mask), m);
 }
 
-static void body_set_awake(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_set_awake(self->world, self->body, a[0].as.boolean != 0), "PhysPixBody.set_awake");
-}
-
-static void body_set_damping(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_set_damping(self->world, self->body, (float)a[0].as.real, (float)a[1].as.real),
-           "PhysPixBody.set_damping");
-}
-
-static void body_apply_force(plugin_object *self, const pp_variant *a, pp_variant *ret)
-{
-    ret_ok(ret, pp_body_apply_force(self->world, self->body, a[0].as.vec2, a[1].as.vec2), "PhysPixBody.apply_force");
-}
-
-static const method_def body_methods[] = {
-    METHOD(body_get_position, "get_position", VEC2, "world position of the pivot, px", .arg_count = 0),
-    METHOD(body_get_angle, "get_angle", FLOAT, "rotation, radians", .arg_count = 0),
-    METHOD(body_set_transform, "set_transform", NIL, "teleport: pivot to position (px), rotation to angle (radians)",
-           ARGS(ARG("position", VEC2), ARG("angle", FLOAT))),
-    METHOD(body_get_velocity, "get_velocity", VEC2, "velocity of the centre of mass, px/s", .arg_count = 0),
-    METHOD(body_get_angular_velocity, "get_angular_velocity", FLOAT, "angular velocity, rad/s", .arg_count = 0),
-    METHOD(body_set_velocity, "set_velocity", NIL, "set linear (px/s) and angular (rad/s) velocity",
-           ARGS(ARG("linear", VEC2), ARG("angular", FLOAT))),
-    METHOD(body_apply_impulse, "apply_impulse", NIL, "apply an impulse (mass*px/s) at a world point (px)",
-           ARGS(ARG("impulse", VEC2), ARG("point", VEC2))),
-    METHOD(body_get_mass, "get_mass", FLOAT, "mass, mass units (density x weighted solid pixels)", .arg_count = 0),
-    METHOD(body_get_center_of_mass, "get_center_of_mass", VEC2, "centre of mass in bitmap coordinates, px",
-           .arg_count = 0),
-    METHOD(body_get_inertia, "get_inertia", FLOAT, "moment of inertia about the centre of mass, mass*px^2",
-           .arg_count = 0),
-    METHOD(body_is_awake, "is_awake", BOOL, "whether the body is awake", .arg_count = 0),
-    METHOD(body_erase_circle, "erase_circle", INT,
-           "erase pixels within radius (px) of a world point (px); returns pixels erased",
-           ARGS(ARG("center", VEC2), ARG("radius", FLOAT))),
-    METHOD(body_paint_circle, "paint_circle", INT,
-           "make pixels within radius (px) of a world point (px) solid with weight 1..255; returns pixels changed",
-           ARGS(ARG("center", VEC2), ARG("radius", FLOAT), ARG("weight", INT))),
-    METHOD(body_read_mask, "read_mask", BYTES, "the collision mask, width*height bytes (1 solid), rows top to bottom",
-           .arg_count = 0),
-    METHOD(body_get_size, "get_size", VEC2, "bitmap width and height, px", .arg_count = 0),
-    METHOD(body_get_world, "get_world", OBJECT, "the PhysPixWorld the body lives in", .arg_count = 0,
-           .return_class = "PhysPixWorld"),
-    METHOD(body_get_pivot, "get_pivot", VEC2, "the pivot in bitmap coordinates, px", .arg_count = 0),
-    METHOD(body_get_type, "get_type", STRING, "\"dynamic\", \"static\" or \"kinematic\"", .arg_count = 0),
-    METHOD(body_get_rgba, "get_rgba", BYTES,
-           "the body's look, width*height*4 bytes RGBA8: its sprite where solid, transparent elsewhere",
-           .arg_count = 0),
-    METHOD(body_get_user_data, "get_user_data", INT, "the host's value from the body's def (a scene's user_data)",
-           .arg_count = 0),
-    METHOD(body_set_type, "set_type", NIL,
-           "\"dynamic\", \"static\" or \"kinematic\": the pose stays, a moving body keeps its velocity",
-           ARGS(ARG("type", STRING))),
-    METHOD(body_set_fixed_rotation, "set_fixed_rotation", NIL, "hold the rotation (true) or free it",
-           ARGS(ARG("fixed", BOOL))),
-    METHOD(body_set_friction, "set_friction", NIL, "Coulomb friction coefficient, >= 0", ARGS(ARG("friction", FLOAT))),
-    METHOD(body_set_restitution, "set_restitution", NIL, "restitution, 0..1", ARGS(ARG("restitution", FLOAT))),
-    METHOD(body_set_density, "set_density", NIL, "mass per solid pixel, > 0: mass and inertia follow",
-           ARGS(ARG("density", FLOAT))),
-    METHOD(body_set_gravity_scale, "set_gravity_scale", NIL, "scale of the world's gravity on the body (dynamic)",
-           ARGS(ARG("scale", FLOAT))),
-    METHOD(body_set_damping, "set_damping", NIL, "velocity decay, 1/s, linear and angular",
-           ARGS(ARG("linear", FLOAT), ARG("angular", FLOAT))),
-    METHOD(body_set_awake, "set_awake", NIL, "wake the body (true) or put it to sleep now (false)",
-           ARGS(ARG("awake", BOOL))),
-    METHOD(body_apply_force, "apply_force", NIL, "a force (mass*px/s^2) at a world point (px) through the next step",
-           ARGS(ARG("force", VEC2), ARG("point", VEC2))),
-    METHOD(body_apply_torque, "apply_torque", NIL, "a torque (mass*px^2/s^2) through the next step",
-           ARGS(ARG("torque", FLOAT))),
-};
+/* world_methods and body_methods, and the wrappers of the regular methods. */
+#include "classes_gen.h"
 
 const class_def plugin_classes[CLASS_COUNT] = {
     [CLASS_WORLD] = {{.name = "PhysPixWorld", .base = "RefCounted", .doc = "a PhysPix world: default settings, or a scene file's (load_scene)",

@@ -5,6 +5,8 @@
 
 #include "physpix_plugin.h"
 
+#include <stddef.h>
+
 typedef enum object_kind { OBJECT_FREE = 0, OBJECT_WORLD, OBJECT_BODY } object_kind;
 
 /* What a world object keeps between calls: the lists its indexed getters read. */
@@ -77,5 +79,11 @@ uint8_t *ret_bytes(pp_variant *ret, int64_t length); /* NULL (and ret an ERROR) 
 void ret_error(pp_variant *ret, pp_status status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* PP_OK: leaves ret alone and returns 1; otherwise ret becomes ERROR "<method>: <pp_last_error()>", returns 0. */
 int ret_ok(pp_variant *ret, pp_status status, const char *method);
+
+/* settings.c: a world's settings as JSON text (a scene file's "world" object: "preset", then pp_world_def fields).
+ * settings_read: PP_OK with *out set, or PP_ERR_INVALID_ARGUMENT and why ("settings.<key>: ..."). settings_ret:
+ * the def as such a JSON object, a STRING result (or an ERROR on out of memory). */
+pp_status settings_read(const char *json, pp_world_def *out, char *why, size_t why_size);
+void settings_ret(const pp_world_def *def, pp_variant *ret);
 
 #endif

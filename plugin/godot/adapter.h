@@ -41,7 +41,7 @@ typedef struct call {
 
 typedef godot_variant (*method_fn)(call *c);
 
-/* A GDScript-facing method. spec has one letter an argument, those after '|' optional:
+/* A GDScript-facing method (the table is methods_gen.h, generated from plugin/api/physpix_api.json). spec has one letter an argument, those after '|' optional:
  * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
  * "static" or "kinematic"), p path (String; res:// and user://
  * become filesystem paths through ProjectSettings.globalize_path, others are used as given),
@@ -53,9 +53,6 @@ typedef struct method_def {
     const char *spec;
     method_fn fn;
     const char *usage; /* quoted in error messages */
-    /* The C call of a body float setter or getter ("bf" and "b" methods that share one handler). */
-    pp_status (*set_float)(pp_world w, pp_body b, float value);
-    pp_status (*get_float)(pp_world w, pp_body b, float *out);
 } method_def;
 
 

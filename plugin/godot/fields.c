@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "adapter.h"
+#include "../api/world_def_fields.h"
 
 typedef enum field_kind { F_BOOL, F_FLOAT, F_INT, F_BITS, F_VEC2, F_ENUM, F_ID } field_kind;
 
@@ -16,37 +17,9 @@ typedef struct field {
     const char *const *names; /* F_ENUM: the enum's names by value */
 } field;
 
-static const char *const BACKENDS[] = {"auto", "cpu", "gpu", NULL};
-static const char *const NORMALS[] = {"area_gradient", "kernel", NULL};
-static const char *const CONTACTS[] = {"manifold", "centroid", NULL};
-static const char *const PRESETS[] = {"", "fast", "balanced", "accurate", NULL};
-static const char *const JOINT_TYPES[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", NULL};
-
-#define W(name, kind) {#name, kind, offsetof(pp_world_def, name), NULL}
-static const field WORLD_FIELDS[] = {
-    W(gravity, F_VEC2),
-    W(substeps, F_INT),
-    W(solver_iterations, F_INT),
-    W(exact_solver, F_BOOL),
-    {"backend", F_ENUM, offsetof(pp_world_def, backend), BACKENDS},
-    {"normal_method", F_ENUM, offsetof(pp_world_def, normal_method), NORMALS},
-    {"contact_mode", F_ENUM, offsetof(pp_world_def, contact_mode), CONTACTS},
-    W(raster_stride, F_INT),
-    W(pixels_per_meter, F_FLOAT),
-    W(contact_slop, F_FLOAT),
-    W(contact_erp, F_FLOAT),
-    W(contact_cfm, F_FLOAT),
-    W(bounce_threshold, F_FLOAT),
-    W(allow_sleep, F_BOOL),
-    W(sleep_linear_speed, F_FLOAT),
-    W(sleep_angular_speed, F_FLOAT),
-    W(sleep_time, F_FLOAT),
-    W(continuous, F_BOOL),
-    W(max_correction_speed, F_FLOAT),
-    W(worker_threads, F_INT),
-    W(contact_events, F_BOOL),
-    W(exact_island_rows, F_INT),
-};
+/* pp_world_def's fields, and the enums' names, come from plugin/api/physpix_api.json (gen_api.py). */
+#define W(name, KIND, names) {#name, F_##KIND, offsetof(pp_world_def, name), names},
+static const field WORLD_FIELDS[] = {PP_WORLD_DEF_FIELDS(W)};
 #undef W
 
 /* "pivot" also sets custom_pivot, and "weights" (a plane) is read by body_special. */
@@ -236,7 +209,7 @@ static int read_leading(call *c, const godot_variant *var, const char *what, con
 
 bool fields_world_def(call *c, const godot_variant *var, pp_world_def *out)
 {
-    const field f = {"preset", F_ENUM, 0, PRESETS};
+    const field f = {"preset", F_ENUM, 0, pp_preset_names};
     int32_t preset = 0;
     const int found = read_leading(c, var, "settings", &f, &preset);
     *out = found == 1 ? pp_world_def_preset((pp_preset)preset) : pp_world_def_default();
@@ -246,7 +219,7 @@ bool fields_world_def(call *c, const godot_variant *var, pp_world_def *out)
 
 bool fields_joint_def(call *c, const godot_variant *var, pp_joint_def *out)
 {
-    const field f = {"type", F_ENUM, 0, JOINT_TYPES};
+    const field f = {"type", F_ENUM, 0, pp_joint_type_names};
     int32_t type = 0;
     const int found = read_leading(c, var, "joint", &f, &type);
     if (found == 0)

@@ -256,31 +256,7 @@ static godot_variant add_body_mask(call *c)
     return r;
 }
 
-static godot_variant destroy_body(call *c)
-{
-    ok(c, pp_body_destroy(c->self->world, c->a[0].body));
-    return gdn_nil();
-}
-
 /* ---- stepping and reading state -------------------------------------------------------- */
-
-static godot_variant step(call *c)
-{
-    ok(c, pp_world_step(c->self->world, c->a[0].f));
-    return gdn_nil();
-}
-
-static godot_variant get_position(call *c)
-{
-    pp_vec2 p;
-    return ok(c, pp_body_get_position(c->self->world, c->a[0].body, &p)) ? gdn_vector2(p.x, p.y) : gdn_nil();
-}
-
-static godot_variant get_angle(call *c)
-{
-    float a;
-    return ok(c, pp_body_get_angle(c->self->world, c->a[0].body, &a)) ? gdn_real(a) : gdn_nil();
-}
 
 /* The pose as a Transform2D: it maps (bitmap point − pivot) to the world. */
 static godot_variant get_transform(call *c)
@@ -293,36 +269,6 @@ static godot_variant get_transform(call *c)
     return gdn_transform2d(a, p.x, p.y);
 }
 
-static godot_variant get_linear_velocity(call *c)
-{
-    pp_vec2 v;
-    return ok(c, pp_body_get_velocity(c->self->world, c->a[0].body, &v, NULL)) ? gdn_vector2(v.x, v.y) : gdn_nil();
-}
-
-static godot_variant get_angular_velocity(call *c)
-{
-    float w;
-    return ok(c, pp_body_get_velocity(c->self->world, c->a[0].body, NULL, &w)) ? gdn_real(w) : gdn_nil();
-}
-
-static godot_variant set_velocity(call *c)
-{
-    ok(c, pp_body_set_velocity(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f));
-    return gdn_nil();
-}
-
-static godot_variant apply_impulse(call *c)
-{
-    ok(c, pp_body_apply_impulse(c->self->world, c->a[0].body, c->a[1].v, c->a[2].v));
-    return gdn_nil();
-}
-
-static godot_variant get_mass(call *c)
-{
-    float m;
-    return ok(c, pp_body_get_mass(c->self->world, c->a[0].body, &m, NULL, NULL)) ? gdn_real(m) : gdn_nil();
-}
-
 /* ---- runtime properties and forces ------------------------------------------------------- */
 
 /* A call that returns nothing: nil either way, the error (if any) recorded. */
@@ -332,62 +278,9 @@ static godot_variant done(call *c, pp_status s)
     return gdn_nil();
 }
 
-static godot_variant set_transform(call *c)
-{
-    return done(c, pp_body_set_transform(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f));
-}
-
-static godot_variant set_damping(call *c)
-{
-    return done(c, pp_body_set_damping(c->self->world, c->a[0].body, c->a[1].f, c->a[2].f));
-}
-
 static godot_variant set_filter(call *c)
 {
     return done(c, pp_body_set_filter(c->self->world, c->a[0].body, (uint32_t)c->a[1].i, (uint32_t)c->a[2].i));
-}
-
-static godot_variant set_awake(call *c)
-{
-    return done(c, pp_body_set_awake(c->self->world, c->a[0].body, c->a[1].i != 0));
-}
-
-static godot_variant set_type(call *c)
-{
-    return done(c, pp_body_set_type(c->self->world, c->a[0].body, c->a[1].type));
-}
-
-static godot_variant set_fixed_rotation(call *c)
-{
-    return done(c, pp_body_set_fixed_rotation(c->self->world, c->a[0].body, c->a[1].i != 0));
-}
-
-static godot_variant apply_force(call *c)
-{
-    return done(c, pp_body_apply_force(c->self->world, c->a[0].body, c->a[1].v, c->a[2].v));
-}
-
-static godot_variant set_gravity(call *c)
-{
-    return done(c, pp_world_set_gravity(c->self->world, c->a[0].v));
-}
-
-/* The body float setters and getters share one shape each; the table names the C call. */
-static godot_variant set_body_float(call *c)
-{
-    return done(c, c->def->set_float(c->self->world, c->a[0].body, c->a[1].f));
-}
-
-static godot_variant get_body_float(call *c)
-{
-    float x;
-    return ok(c, c->def->get_float(c->self->world, c->a[0].body, &x)) ? gdn_real(x) : gdn_nil();
-}
-
-static godot_variant is_awake(call *c)
-{
-    int32_t awake;
-    return ok(c, pp_body_is_awake(c->self->world, c->a[0].body, &awake)) ? gdn_bool(awake != 0) : gdn_nil();
 }
 
 static godot_variant get_type(call *c)
@@ -404,12 +297,6 @@ static godot_variant get_size(call *c)
                                                                           : gdn_nil();
 }
 
-static godot_variant get_pivot(call *c)
-{
-    pp_vec2 p;
-    return ok(c, pp_body_get_pivot(c->self->world, c->a[0].body, &p)) ? gdn_vector2(p.x, p.y) : gdn_nil();
-}
-
 /* ---- joints ------------------------------------------------------------------------------ */
 
 static godot_variant create_joint(call *c)
@@ -419,11 +306,6 @@ static godot_variant create_joint(call *c)
     return fields_joint_def(c, c->a[0].var, &def) && ok(c, pp_joint_create(c->self->world, &def, &j))
                ? gdn_int((int64_t)j.id)
                : gdn_nil();
-}
-
-static godot_variant destroy_joint(call *c)
-{
-    return done(c, pp_joint_destroy(c->self->world, c->a[0].joint));
 }
 
 /* {force: Vector2 (mass·px/s²), torque (mass·px²/s²)} on body_b in the last substep. */
@@ -453,29 +335,7 @@ static godot_variant get_joint_value(call *c)
     return gdn_dict_variant(&d);
 }
 
-static godot_variant set_joint_motor(call *c)
-{
-    return done(c, pp_joint_set_motor(c->self->world, c->a[0].joint, c->a[1].i != 0, c->a[2].f, c->a[3].f));
-}
-
-static godot_variant set_joint_limits(call *c)
-{
-    return done(c, pp_joint_set_limits(c->self->world, c->a[0].joint, c->a[1].i != 0, c->a[2].f, c->a[3].f));
-}
-
-static godot_variant set_joint_target(call *c)
-{
-    return done(c, pp_joint_set_target(c->self->world, c->a[0].joint, c->a[1].v));
-}
-
 /* ---- edits ----------------------------------------------------------------------------- */
-
-static godot_variant erase_circle(call *c)
-{
-    int32_t n;
-    return ok(c, pp_body_erase_circle(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f, &n)) ? gdn_int(n)
-                                                                                                  : gdn_nil();
-}
 
 static godot_variant paint_circle(call *c)
 {
@@ -488,12 +348,6 @@ static godot_variant paint_circle(call *c)
     return ok(c, pp_body_paint_circle(c->self->world, c->a[0].body, c->a[1].v, c->a[2].f, (uint8_t)weight, &n))
                ? gdn_int(n)
                : gdn_nil();
-}
-
-static godot_variant world_erase_circle(call *c)
-{
-    int32_t n;
-    return ok(c, pp_world_erase_circle(c->self->world, c->a[0].v, c->a[1].f, &n)) ? gdn_int(n) : gdn_nil();
 }
 
 /* ---- lists: bodies, contacts, events --------------------------------------------------- */
@@ -784,18 +638,6 @@ static godot_variant load_snapshot(call *c)
     return ok(c, pp_world_load_snapshot(c->a[0].path, &loaded)) ? replace_world(c, loaded) : gdn_nil();
 }
 
-static godot_variant set_contact_events(call *c)
-{
-    ok(c, pp_world_set_contact_events(c->self->world, c->a[0].i != 0));
-    return gdn_nil();
-}
-
-static godot_variant get_time(call *c)
-{
-    double t;
-    return ok(c, pp_world_get_time(c->self->world, &t)) ? gdn_real(t) : gdn_nil();
-}
-
 static godot_variant get_camera(call *c)
 {
     pp_camera cam;
@@ -816,92 +658,8 @@ static godot_variant get_last_error(call *c)
 
 /* ---- the class ------------------------------------------------------------------------- */
 
-/* Designated, so that the float-call fields may be left out. */
-#define METHOD(n, s, f, u) {.name = (n), .spec = (s), .fn = (f), .usage = (u)}
-#define SET_FLOAT(n, u, c) {.name = (n), .spec = "bf", .fn = set_body_float, .usage = (u), .set_float = (c)}
-#define GET_FLOAT(n, u, c) {.name = (n), .spec = "b", .fn = get_body_float, .usage = (u), .get_float = (c)}
-
-static const method_def METHODS[] = {
-    METHOD("add_body_mask", "Miiv|to", add_body_mask,
-           "add_body_mask(mask: PoolByteArray, width: int, height: int, position: Vector2, type: String = \"dynamic\","
-           " options: Dictionary = {}) -> int"),
-    METHOD("add_body_image", "Iv|to", add_body_image,
-           "add_body_image(image: Image or Texture, position: Vector2, type: String = \"dynamic\", options: Dictionary"
-           " = {}) -> int"),
-    METHOD("destroy_body", "b", destroy_body, "destroy_body(body: int)"),
-    METHOD("step", "f", step, "step(dt: float)"),
-    METHOD("get_transform", "b", get_transform, "get_transform(body: int) -> Transform2D"),
-    METHOD("get_position", "b", get_position, "get_position(body: int) -> Vector2"),
-    METHOD("get_angle", "b", get_angle, "get_angle(body: int) -> float"),
-    METHOD("get_linear_velocity", "b", get_linear_velocity, "get_linear_velocity(body: int) -> Vector2"),
-    METHOD("get_angular_velocity", "b", get_angular_velocity, "get_angular_velocity(body: int) -> float"),
-    METHOD("set_velocity", "bvf", set_velocity, "set_velocity(body: int, linear: Vector2, angular: float)"),
-    METHOD("apply_impulse", "bvv", apply_impulse, "apply_impulse(body: int, impulse: Vector2, point: Vector2)"),
-    METHOD("get_mass", "b", get_mass, "get_mass(body: int) -> float"),
-    METHOD("set_transform", "bvf", set_transform, "set_transform(body: int, position: Vector2, angle: float)"),
-    METHOD("get_size", "b", get_size, "get_size(body: int) -> Vector2"),
-    METHOD("get_pivot", "b", get_pivot, "get_pivot(body: int) -> Vector2"),
-    METHOD("get_type", "b", get_type, "get_type(body: int) -> String"),
-    METHOD("is_awake", "b", is_awake, "is_awake(body: int) -> bool"),
-    METHOD("get_body_states", "|B", get_body_states, "get_body_states(awake_only: bool = false) -> Array"),
-    SET_FLOAT("set_friction", "set_friction(body: int, friction: float)", pp_body_set_friction),
-    GET_FLOAT("get_friction", "get_friction(body: int) -> float", pp_body_get_friction),
-    SET_FLOAT("set_restitution", "set_restitution(body: int, restitution: float)", pp_body_set_restitution),
-    GET_FLOAT("get_restitution", "get_restitution(body: int) -> float", pp_body_get_restitution),
-    SET_FLOAT("set_density", "set_density(body: int, density: float)", pp_body_set_density),
-    GET_FLOAT("get_density", "get_density(body: int) -> float", pp_body_get_density),
-    SET_FLOAT("set_gravity_scale", "set_gravity_scale(body: int, scale: float)", pp_body_set_gravity_scale),
-    GET_FLOAT("get_gravity_scale", "get_gravity_scale(body: int) -> float", pp_body_get_gravity_scale),
-    METHOD("set_damping", "bff", set_damping, "set_damping(body: int, linear: float, angular: float)"),
-    METHOD("set_filter", "bmm", set_filter, "set_filter(body: int, category_bits: int, mask_bits: int)"),
-    METHOD("set_awake", "bB", set_awake, "set_awake(body: int, awake: bool)"),
-    METHOD("set_type", "bt", set_type, "set_type(body: int, type: String) (\"dynamic\", \"static\" or \"kinematic\")"),
-    METHOD("set_fixed_rotation", "bB", set_fixed_rotation, "set_fixed_rotation(body: int, fixed: bool)"),
-    METHOD("apply_force", "bvv", apply_force, "apply_force(body: int, force: Vector2, point: Vector2)"),
-    SET_FLOAT("apply_torque", "apply_torque(body: int, torque: float)", pp_body_apply_torque),
-    SET_FLOAT("apply_angular_impulse", "apply_angular_impulse(body: int, impulse: float)",
-              pp_body_apply_angular_impulse),
-    METHOD("read_mask", "b", read_mask, "read_mask(body: int) -> PoolByteArray"),
-    METHOD("read_rgba", "b|ii", read_rgba,
-           "read_rgba(body: int, first_row: int = 0, rows: int = all) -> PoolByteArray"),
-    METHOD("write_pixels", "biiiiM|M", write_pixels,
-           "write_pixels(body: int, x: int, y: int, width: int, height: int, mask: PoolByteArray,"
-           " weights: PoolByteArray = all 255) -> bool"),
-    METHOD("erase_circle", "bvf", erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"),
-    METHOD("paint_circle", "bvfi", paint_circle,
-           "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"),
-    METHOD("world_erase_circle", "vf", world_erase_circle, "world_erase_circle(center: Vector2, radius: float) -> int"),
-    METHOD("get_bodies", "", get_bodies, "get_bodies() -> Array"),
-    METHOD("create_joint", "J", create_joint, "create_joint(def: Dictionary) -> int"),
-    METHOD("destroy_joint", "j", destroy_joint, "destroy_joint(joint: int)"),
-    METHOD("get_joints", "", get_joints, "get_joints() -> Array"),
-    METHOD("get_joint_reaction", "j", get_joint_reaction, "get_joint_reaction(joint: int) -> Dictionary"),
-    METHOD("get_joint_value", "j", get_joint_value, "get_joint_value(joint: int) -> Dictionary"),
-    METHOD("set_joint_motor", "jBff", set_joint_motor,
-           "set_joint_motor(joint: int, enabled: bool, speed: float, max_force: float)"),
-    METHOD("set_joint_limits", "jBff", set_joint_limits,
-           "set_joint_limits(joint: int, enabled: bool, lower: float, upper: float)"),
-    METHOD("set_joint_target", "jv", set_joint_target, "set_joint_target(joint: int, target: Vector2)"),
-    METHOD("get_contacts", "", get_contacts, "get_contacts() -> Array"),
-    METHOD("get_events", "", get_events, "get_events() -> Array"),
-    METHOD("raycast", "vv|m", raycast,
-           "raycast(from: Vector2, to: Vector2, mask: int = 0xffffffff) -> Dictionary or null"),
-    METHOD("query_point", "v|m", query_point, "query_point(point: Vector2, mask: int = 0xffffffff) -> Array"),
-    METHOD("query_aabb", "vv|m", query_aabb,
-           "query_aabb(lower: Vector2, upper: Vector2, mask: int = 0xffffffff) -> Array"),
-    METHOD("query_circle", "vf|m", query_circle,
-           "query_circle(center: Vector2, radius: float, mask: int = 0xffffffff) -> Array"),
-    METHOD("load_scene", "p", load_scene, "load_scene(path: String) -> bool"),
-    METHOD("save_snapshot", "p", save_snapshot, "save_snapshot(folder: String) -> bool"),
-    METHOD("load_snapshot", "p", load_snapshot, "load_snapshot(folder: String) -> bool"),
-    METHOD("create", "|d", create, "create(settings: Dictionary = {}) -> bool"),
-    METHOD("get_settings", "", get_settings, "get_settings() -> Dictionary"),
-    METHOD("set_gravity", "v", set_gravity, "set_gravity(gravity: Vector2)"),
-    METHOD("get_time", "", get_time, "get_time() -> float"),
-    METHOD("set_contact_events", "B", set_contact_events, "set_contact_events(enabled: bool)"),
-    METHOD("get_camera", "", get_camera, "get_camera() -> Dictionary"),
-    METHOD("get_last_error", "", get_last_error, "get_last_error() -> String"),
-};
+/* METHODS, and the wrappers of the regular methods (those that call one PhysPix function). */
+#include "methods_gen.h"
 
 /* Every method comes through here: count and types are checked before the handler runs. */
 static godot_variant dispatch(godot_object *instance, void *method_data, void *user_data, int argc,

@@ -370,6 +370,9 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_debug_normal", {{0}}},
         {"get_debug_local_normals", {{0}}},
         {"get_body_states", {{0}}},
+        {"create", {V_STR("{\"preset\": \"fast\", \"gravity\": [0, 500]}")}}, /* on the scratch world */
+        {"get_settings", {{0}}},
+        {"set_gravity", {V_VEC2(0, 980)}},
     };
     const recipe body_recipes[] = {
         {"get_position", {{0}}},
@@ -402,6 +405,13 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"set_awake", {V_BOOL(1)}},
         {"apply_force", {V_VEC2(1, 0), V_VEC2(50, 91)}},
         {"apply_torque", {V_FLOAT(1)}},
+        {"apply_angular_impulse", {V_FLOAT(1)}},
+        {"set_filter", {V_INT(1), V_INT(0xffffffff)}},
+        {"get_friction", {{0}}},
+        {"get_restitution", {{0}}},
+        {"get_density", {{0}}},
+        {"get_gravity_scale", {{0}}},
+        {"get_fixed_rotation", {{0}}},
     };
     const struct {
         const char *cls;
@@ -422,7 +432,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
             const int r = find_recipe(targets[t].recipes, targets[t].count, m->name);
             cr_assert(r >= 0, "%s.%s has no recipe", c->name, m->name);
             const pp_variant *right = targets[t].recipes[r].args;
-            const bool replaces = strcmp(m->name, "load_scene") == 0 || strcmp(m->name, "load_snapshot") == 0;
+            const bool replaces = strcmp(m->name, "load_scene") == 0 || strcmp(m->name, "load_snapshot") == 0 ||
+                                  strcmp(m->name, "create") == 0;
             const uint64_t object = replaces ? scratch : targets[t].object;
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
@@ -1041,4 +1052,121 @@ Test(methods, body_states_come_in_one_call_in_get_body_counts_order)
             cr_assert(f[3] == 12.0f && f[4] == -3.0f && f[5] == 0.5f, "the box's set velocity");
     }
     plugin.api.variant_clear(&states);
+}
+
+/* A STRING result's text, cleared; "" for any other result. */
+static void text_of(pp_variant v, char *out, size_t size)
+{
+    snprintf(out, size, "%s", v.type == PP_VARIANT_STRING ? v.as.string.data : "");
+    plugin.api.variant_clear(&v);
+}
+
+static pp_variant create_with(uint64_t world, const char *settings)
+{
+    return call(world, "create", (pp_variant[]){V_STR(settings)}, 1);
+}
+
+Test(methods, settings_given_at_creation_hold_and_read_back)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t w = ok_object(made);
+    pp_variant r = create_with(w, "{\"preset\": \"fast\", \"gravity\": [0, 0], \"substeps\": 2, \"backend\": \"cpu\", "
+                                  "\"allow_sleep\": false, \"contact_slop\": 0.5}");
+    cr_assert_eq(r.type, PP_VARIANT_NIL, "%s", r.type == PP_VARIANT_ERROR ? r.as.error.message : "");
+    memset(box_mask, 1, sizeof box_mask);
+    const uint64_t box = ok_object(call(
+        w, "add_body", (pp_variant[]){V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(50, 50),
+                                      V_STR("dynamic")}, 5));
+    for (int i = 0; i < 60; i++)
+        call(w, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    const pp_vec2 p = call(box, "get_position", NULL, 0).as.vec2;
+    cr_assert(p.x == 50 && p.y == 50, "without gravity a lone box stays put: (%g, %g)", p.x, p.y);
+    cr_assert(call(box, "is_awake", NULL, 0).as.boolean, "allow_sleep false: still awake after 1 s at rest");
+    char text[1024], again[1024];
+    text_of(call(w, "get_settings", NULL, 0), text, sizeof text);
+    const char *const expect[] = {"\"gravity\":[0,0]", "\"substeps\":2", "\"solver_iterations\":10", "\"backend\":\"cpu\"",
+                                  "\"allow_sleep\":false", "\"contact_slop\":0.5", "\"normal_method\":\"area_gradient\""};
+    for (size_t i = 0; i < sizeof expect / sizeof expect[0]; i++)
+        cr_assert(strstr(text, expect[i]), "get_settings '%s' should hold %s (the fast preset, then the keys)", text,
+                  expect[i]);
+    /* What get_settings writes, create reads: the same settings come back. */
+    cr_assert_eq(create_with(w, text).type, PP_VARIANT_NIL);
+    text_of(call(w, "get_settings", NULL, 0), again, sizeof again);
+    cr_assert_str_eq(again, text);
+    /* The default settings: the body falls 0.5·980·t² px. */
+    cr_assert_eq(create_with(w, "{}").type, PP_VARIANT_NIL);
+    pp_variant stale = call(box, "get_position", NULL, 0);
+    expect_error(&stale, PP_ERR_INVALID_HANDLE, "destroyed or stale"); /* create replaced the world */
+    const uint64_t faller = ok_object(call(
+        w, "add_body", (pp_variant[]){V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(50, 50),
+                                      V_STR("dynamic")}, 5));
+    for (int i = 0; i < 30; i++)
+        call(w, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    cr_assert_float_eq(call(faller, "get_position", NULL, 0).as.vec2.y, 50 + 0.5 * 980 * 0.25, 2.0, "free fall");
+}
+
+Test(methods, bad_settings_get_invalid_argument_naming_the_key_and_leave_the_world_as_it_was)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t w = ok_object(made);
+    cr_assert_eq(create_with(w, "{\"substeps\": 3}").type, PP_VARIANT_NIL);
+    const struct {
+        const char *settings, *says;
+    } cases[] = {
+        {"{\"substepz\": 2}", "PhysPixWorld.create: settings.substepz: unknown key"},
+        {"{\"substeps\": 2.5}", "settings.substeps: expected an integer"},
+        {"{\"allow_sleep\": 1}", "settings.allow_sleep: expected true or false"},
+        {"{\"gravity\": [0]}", "settings.gravity: expected [x, y], two finite numbers"},
+        {"{\"contact_slop\": 1e39}", "settings.contact_slop: expected a finite number"},
+        {"{\"contact_erp\": NaN}", "settings: invalid JSON"},
+        {"{\"backend\": \"gpx\"}", "settings.backend: expected \"auto\", \"cpu\" or \"gpu\""},
+        {"{\"preset\": \"slow\"}", "settings.preset: expected \"fast\", \"balanced\" or \"accurate\""},
+        {"{\"substeps\": 2, \"substeps\": 4}", "settings.substeps: given twice"},
+        {"[1, 2]", "settings: expected a JSON object"},
+        {"{\"substeps\": 99}", "PhysPixWorld.create: pp_world_create: substeps must be 1..64, got 99"},
+        {"{\"contact_slop\": -1}", "pp_world_create: contact_slop must be finite"},
+    };
+    char text[1024];
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        pp_variant r = create_with(w, cases[i].settings);
+        expect_error(&r, PP_ERR_INVALID_ARGUMENT, cases[i].says);
+        text_of(call(w, "get_settings", NULL, 0), text, sizeof text);
+        cr_assert(strstr(text, "\"substeps\":3"), "case %zu: a refused create keeps the world: %s", i, text);
+    }
+}
+
+/* Every PhysPixBody method of a body an edit destroyed is PP_ERR_INVALID_HANDLE named after the method: the generated
+ * wrappers pass the library's refusal on (get_world, which needs no body, aside). */
+Test(methods, every_body_method_refuses_a_body_an_edit_destroyed)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    /* Erased whole, the body is gone but its object stays (object_destroy would free the object too). */
+    cr_assert_eq(call(ground, "erase_circle", (pp_variant[]){V_VEC2(100, 110), V_FLOAT(500)}, 2).type, PP_VARIANT_INT);
+    const pp_plugin_class *c = host_plugin_class(&plugin, "PhysPixBody");
+    int refused = 0;
+    for (int32_t k = 0; k < c->method_count; k++) {
+        const pp_plugin_method *m = &c->methods[k];
+        pp_variant args[6];
+        for (int32_t i = 0; i < m->arg_count; i++)
+            args[i] = m->args[i].type == PP_VARIANT_STRING ? V_STR("dynamic")
+                      : m->args[i].type == PP_VARIANT_VEC2 ? V_VEC2(1, 1)
+                      : m->args[i].type == PP_VARIANT_BOOL ? V_BOOL(1)
+                      : m->args[i].type == PP_VARIANT_FLOAT ? V_FLOAT(1)
+                                                             : V_INT(1);
+        pp_variant r = call(ground, m->name, args, m->arg_count);
+        if (strcmp(m->name, "get_world") == 0) {
+            cr_assert_eq(r.type, PP_VARIANT_OBJECT);
+            cr_assert_eq(r.as.object, world);
+            continue;
+        }
+        char says[96];
+        snprintf(says, sizeof says, "PhysPixBody.%s: ", m->name);
+        cr_assert_eq(r.type, PP_VARIANT_ERROR, "%s of a destroyed body gave type %d", m->name, r.type);
+        expect_error(&r, PP_ERR_INVALID_HANDLE, says);
+        refused++;
+    }
+    cr_assert_eq(refused, c->method_count - 1);
 }
