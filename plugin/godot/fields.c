@@ -43,6 +43,7 @@ static const field BODY_FIELDS[] = {
     B(is_sensor, F_BOOL),
     B(one_way, F_BOOL),
     B(one_way_direction, F_VEC2),
+    B(user_data, F_ID),
 };
 #undef B
 

@@ -409,6 +409,42 @@ func test_native_gains():
 	return true  # a runtime error returns null before this: the caller checks
 
 
+# Issue 24: world def fields by name at creation (a world without gravity keeps a body at rest; every field
+# get_settings names goes back through create), NaN and wrong types refused with the world kept, the new getters.
+func test_settings_at_creation():
+	var g = PhysPixWorld.new()
+	check(g.create({"gravity": Vector2(0, 0), "substeps": 3, "allow_sleep": false, "backend": "cpu"}) == true,
+		"create without gravity: %s" % g.get_last_error())
+	var st = g.get_settings()
+	check(st["substeps"] == 3 and st["gravity"] == Vector2(0, 0) and st["allow_sleep"] == false
+		and st["solver_iterations"] == 20, "settings read back over the balanced preset: %s" % [st])
+	var box = g.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(40, 40), "dynamic", {"user_data": 77})
+	steps(g, 60)
+	check(g.get_position(box) == Vector2(40, 40) and g.get_linear_velocity(box) == Vector2(0, 0) and g.is_awake(box),
+		"without gravity a lone box stays put, awake (allow_sleep off): %s" % [g.get_position(box)])
+	check(g.get_user_data(box) == 77, "get_user_data gives the options' user_data: %s" % [g.get_user_data(box)])
+	check(g.get_fixed_rotation(box) == false, "get_fixed_rotation: free by default")
+	g.set_fixed_rotation(box, true)
+	check(g.get_fixed_rotation(box) == true, "get_fixed_rotation after set_fixed_rotation(true)")
+	check(g.create(5) == null and g.get_last_error().find("expected Dictionary") >= 0,
+		"settings that are no Dictionary refused: %s" % g.get_last_error())
+	check(g.create({"gravity": Vector2(NAN, 0)}) == null and g.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0
+		and g.get_last_error().find("gravity") >= 0, "a NaN gravity refused by PhysPix: %s" % g.get_last_error())
+	check(g.create({"allow_sleep": 1}) == null and g.get_last_error().find("expected bool") >= 0,
+		"an int flag refused: %s" % g.get_last_error())
+	check(g.create({"gravity": [0, 0]}) == null and g.get_last_error().find("expected Vector2") >= 0,
+		"an Array for a Vector2 refused: %s" % g.get_last_error())
+	check(g.get_position(box) == Vector2(40, 40) and g.get_settings()["substeps"] == 3,
+		"refused creates leave the world and its bodies as they were")
+	var back = g.create(st)
+	var again = g.get_settings()
+	var same = back == true and again.size() == st.size()
+	for k in st:
+		same = same and again.has(k) and again[k] == st[k]
+	check(same, "every field get_settings names goes back through create: %s" % [again])
+	return true
+
+
 func _init():
 	# A runtime error stops _init, and with no quit() pending the engine then hangs; quit(1) first
 	# makes any early stop exit 1. Only the end of this function turns it into quit(0).
@@ -629,6 +665,7 @@ func _init():
 	test_one_way()
 	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
 	check(test_joints() == true, "test_joints ran to its end (no script error)")
+	check(test_settings_at_creation() == true, "test_settings_at_creation ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.
