@@ -82,6 +82,30 @@ def _call_args(params, self_args, ins_expr, chosen):
     return ", ".join(exprs)
 
 
+def _regular(desc, entry, self_types, self_exprs, table, expr_at, host):
+    """What a regular method's wrapper needs: (inputs, outs, chosen out, the host's argument names, the C call),
+    each input converted by table[c type][expr_at] (a format of the argument index i)."""
+    fname, ins, outs, chosen = _split_call(desc, entry, self_types)
+    for n, t in ins:
+        if t not in table:
+            raise ValueError(f"{host} {entry['method']}: no conversion for {t} {n}; write it by hand (\"fn\")")
+    names = _host_names(entry, [{"pp_body": "body", "pp_joint": "joint"}.get(t, n) for n, t in ins])
+    exprs = [table[t][expr_at].format(i=k) for k, (_, t) in enumerate(ins)]
+    params = [tuple(p) for p in desc["functions"][fname][1]]
+    return ins, outs, chosen, names, f"{fname}({_call_args(params, self_exprs, exprs, chosen)})"
+
+
+def _result(entry, outs, chosen, table, as_table, host):
+    """(C type, host type, expression of `out`) of a regular method's result; "returns" overrides the table."""
+    otype = dict(outs)[chosen][:-2]
+    if otype not in table:
+        raise ValueError(f"{host} {entry['method']}: no conversion for a {otype} result; write it by hand (\"fn\")")
+    htype, make = table[otype]
+    if entry.get("returns"):
+        htype, make = entry["returns"], as_table[entry["returns"]]
+    return otype, htype, make
+
+
 def _host_names(entry, defaults):
     names = entry.get("names", defaults)
     if len(names) != len(defaults):
@@ -184,25 +208,13 @@ _PLUGIN_CLASSES = {"PhysPixWorld": ("world", ["pp_world"], ["self->world"]),
 def _plugin_wrapper(desc, cls, entry):
     """(C function text, args [(name, variant)], returns) of a regular plugin method."""
     prefix, self_types, self_exprs = _PLUGIN_CLASSES[cls]
-    fname, ins, outs, chosen = _split_call(desc, entry, self_types)
-    for n, t in ins:
-        if t not in _PLUGIN_IN:
-            raise ValueError(f"{cls}.{entry['method']}: no plugin variant for {t} {n}; write it by hand (\"fn\")")
-    names = _host_names(entry, ["joint" if t == "pp_joint" else n for n, t in ins])
+    ins, outs, chosen, names, call = _regular(desc, entry, self_types, self_exprs, _PLUGIN_IN, 1, cls)
     args = [(names[k], _PLUGIN_IN[t][0]) for k, (_, t) in enumerate(ins)]
-    exprs = [_PLUGIN_IN[t][1].format(i=k) for k, (_, t) in enumerate(ins)]
-    params = [tuple(p) for p in desc["functions"][fname][1]]
-    call = f"{fname}({_call_args(params, self_exprs, exprs, chosen)})"
     label = f'"{cls}.{entry["method"]}"'
     head = f"static void gen_{prefix}_{entry['method']}(plugin_object *self, const pp_variant *a, pp_variant *ret)\n{{\n"
     if chosen is None:
         return head + _wrap(f"    ret_ok(ret, {call}, {label});") + "\n}\n", args, "NIL"
-    otype = dict(outs)[chosen][:-2]
-    if otype not in _PLUGIN_OUT:
-        raise ValueError(f"{cls}.{entry['method']}: no plugin result for {otype}; write it by hand (\"fn\")")
-    returns, put = _PLUGIN_OUT[otype]
-    if entry.get("returns"):
-        returns, put = entry["returns"], _PLUGIN_RET_AS[entry["returns"]]
+    otype, returns, put = _result(entry, outs, chosen, _PLUGIN_OUT, _PLUGIN_RET_AS, cls)
     body = f"    {otype} out;\n" + _wrap(f"    if (ret_ok(ret, {call}, {label}))") + f"\n        {put};\n}}\n"
     return head + body, args, returns
 
@@ -253,27 +265,14 @@ _GODOT_RET_AS = {"bool": "gdn_bool(out != 0)", "int": "gdn_int((int64_t)out)"}
 
 def _godot_wrapper(desc, entry):
     """(C function text, spec, usage) of a regular Godot method."""
-    fname, ins, outs, chosen = _split_call(desc, entry, ["pp_world"])
-    for n, t in ins:
-        if t not in _GODOT_IN:
-            raise ValueError(f"godot {entry['method']}: no spec letter for {t} {n}; write it by hand (\"fn\")")
-    defaults = [{"pp_body": "body", "pp_joint": "joint"}.get(t, n) for n, t in ins]
-    names = _host_names(entry, defaults)
+    ins, outs, chosen, names, call = _regular(desc, entry, ["pp_world"], ["c->self->world"], _GODOT_IN, 2, "godot")
     spec = "".join(_GODOT_IN[t][0] for _, t in ins)
-    exprs = [_GODOT_IN[t][2].format(i=k) for k, (_, t) in enumerate(ins)]
-    params = [tuple(p) for p in desc["functions"][fname][1]]
-    call = f"{fname}({_call_args(params, ['c->self->world'], exprs, chosen)})"
     usage = f"{entry['method']}({', '.join(f'{names[k]}: {_GODOT_IN[t][1]}' for k, (_, t) in enumerate(ins))})"
     head = f"static godot_variant api_{entry['method']}(call *c)\n{{\n"
     if chosen is None:
         text = head + _wrap(f"    return done(c, {call});") + "\n}\n"
     else:
-        otype = dict(outs)[chosen][:-2]
-        if otype not in _GODOT_OUT:
-            raise ValueError(f"godot {entry['method']}: no variant for a {otype} result; write it by hand (\"fn\")")
-        gtype, make = _GODOT_OUT[otype]
-        if entry.get("returns"):
-            gtype, make = entry["returns"], _GODOT_RET_AS[entry["returns"]]
+        otype, gtype, make = _result(entry, outs, chosen, _GODOT_OUT, _GODOT_RET_AS, "godot")
         usage += f" -> {gtype}"
         text = head + f"    {otype} out;\n" + _wrap(f"    return ok(c, {call}) ? {make} : gdn_nil();") + "\n}\n"
     if entry.get("note"):
