@@ -61,14 +61,41 @@ static void strike(carry *c, const body *bd)
 
 static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
 
-pp_status carry_record(world *wd, double dt)
+/* The body sits the substep out (after island_plan; before the next one's, it sat the last one out), or never
+ * moves. A sensor's or a one-way platform's pairs are always collided: their touch state lives on pairs that
+ * make no contacts. */
+static bool sits_out(const world *wd, const body *bd)
+{
+    return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->substep_serial);
+}
+
+/* The pair carried for these slots among the first n sorted keys, or NULL. */
+static carried_pair *find_pair(carry *c, int32_t n, uint32_t a, uint32_t b)
+{
+    const carried_key want = {key_of(a, b), 0};
+    const carried_key *k = bsearch(&want, c->by_slots, (size_t)n, sizeof want, key_cmp);
+    return k ? &c->pairs[k->pair] : NULL;
+}
+
+/* Drop the pairs carried no further than before substep k and sort the rest's keys. */
+static void keep_from(carry *c, int32_t k)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; i < c->pair_count; i++)
+        if (c->pairs[i].last >= k)
+            c->pairs[n++] = c->pairs[i];
+    c->pair_count = n;
+    for (int32_t i = 0; i < n; i++)
+        c->by_slots[i] = (carried_key){key_of(c->pairs[i].a, c->pairs[i].b), i};
+    qsort(c->by_slots, (size_t)n, sizeof *c->by_slots, key_cmp);
+}
+
+/* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */
+static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
     c->contact_count = c->pair_count = 0;
     c->active = false;
-    const int32_t n = wd->contact_count;
-    if (n == 0)
-        return PP_OK;
     const int32_t had = c->struck_capacity;
     pp_status st =
         world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
@@ -80,48 +107,67 @@ pp_status carry_record(world *wd, double dt)
         memset(c->struck, 0, (size_t)c->struck_capacity * sizeof *c->struck);
         c->step = 1;
     }
-    if (!world_room((void **)&c->contacts, n, &c->contact_capacity, sizeof *c->contacts) ||
-        !world_room((void **)&c->pairs, n, &c->pair_capacity, sizeof *c->pairs) ||
-        !world_room((void **)&c->by_slots, n, &c->by_slots_capacity, sizeof *c->by_slots))
+    return PP_OK;
+}
+
+pp_status carry_record(world *wd, double dt, int32_t k)
+{
+    carry *c = &wd->carry;
+    pp_status st = k == 0 ? start_step(wd) : PP_OK;
+    if (st)
+        return st;
+    keep_from(c, k);
+    const int32_t n = wd->contact_count, pairs_before = c->pair_count;
+    if (n == 0)
+        return PP_OK;
+    if (!world_room((void **)&c->contacts, c->contact_count + n, &c->contact_capacity, sizeof *c->contacts) ||
+        !world_room((void **)&c->pairs, c->pair_count + n, &c->pair_capacity, sizeof *c->pairs) ||
+        !world_room((void **)&c->by_slots, c->pair_count + n, &c->by_slots_capacity, sizeof *c->by_slots))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
     for (int32_t i = 0, end; i < n; i = end) {
         const pp_contact *ct = &wd->contacts[i];
         for (end = i + 1; end < n && wd->contacts[end].a.id == ct->a.id && wd->contacts[end].b.id == ct->b.id;)
             end++;
         const body *a = body_of(wd, ct->a), *b = body_of(wd, ct->b);
+        const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
+        PP_ASSERT(sa < sb); /* contacts keep the broadphase pair's order */
         /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
          * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
          * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
-        if (wd->island_kind[(a->sb.body ? a : b)->index] == ISLAND_EXACT || body_round_radius(a) > 0 ||
-            body_round_radius(b) > 0 || !slow_pair(wd, a, b, dt)) {
+        const bool slow = k == 0 && wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
+                          body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt);
+        const bool still = !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));
+        if (k == 0 && !slow)
             strike(c, a), strike(c, b);
+        if (!slow && !still)
             continue;
-        }
-        const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
-        PP_ASSERT(sa < sb); /* contacts keep the broadphase pair's order */
-        c->by_slots[c->pair_count] = (carried_key){key_of(sa, sb), c->pair_count};
-        c->pairs[c->pair_count++] = (carried_pair){sa, sb, c->contact_count, end - i, false};
+        c->pairs[c->pair_count++] = (carried_pair){sa, sb, c->contact_count, end - i,
+                                                   slow ? wd->def.substeps - 1 : k + 1, false};
         const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
-        for (int32_t k = i; k < end; k++)
+        for (int32_t j = i; j < end; j++)
             c->contacts[c->contact_count++] =
-                (carried_contact){wd->contacts[k], com_a, com_b, a->cos_a, a->sin_a, b->cos_a, b->sin_a};
+                (carried_contact){wd->contacts[j], com_a, com_b, a->cos_a, a->sin_a, b->cos_a, b->sin_a};
     }
-    c->active = true;
-    qsort(c->by_slots, (size_t)c->pair_count, sizeof *c->by_slots, key_cmp);
+    if (c->pair_count > pairs_before)
+        keep_from(c, k);
+    c->active = c->pair_count > 0;
     return PP_OK;
 }
 
 bool carry_claim(world *wd, uint32_t a, uint32_t b)
 {
     carry *c = &wd->carry;
-    if (!c->active || c->pair_count == 0 || struck(c, a) || struck(c, b))
+    if (c->substep == 0)
         return false;
-    const carried_key want = {key_of(a, b), 0};
-    const carried_key *k = bsearch(&want, c->by_slots, (size_t)c->pair_count, sizeof want, key_cmp);
-    if (!k)
-        return false;
-    c->pairs[k->pair].claimed = true;
-    return true;
+    const bool still = sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
+    carried_pair *p = c->active ? find_pair(c, c->pair_count, a, b) : NULL;
+    /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
+     * bodies were pushed nowhere. */
+    if (p && p->last >= c->substep && (still || !(struck(c, a) || struck(c, b)))) {
+        p->claimed = true;
+        return true;
+    }
+    return still; /* then it made no contact last substep, and nothing has moved since */
 }
 
 /* How far the material point of a body that was at p when the contact was found has moved, px. */
@@ -193,9 +239,12 @@ pp_status carry_push(world *wd)
     return PP_OK;
 }
 
-void carry_unclaim(world *wd)
+void carry_begin(world *wd, int32_t k)
 {
     carry *c = &wd->carry;
+    c->substep = k;
+    if (k == 0)
+        c->active = false;
     for (int32_t i = 0; i < c->pair_count; i++)
         c->pairs[i].claimed = false;
 }

@@ -3,7 +3,10 @@
  * (fixed) normals by their relative motion, as Box2D's substeps do, instead of colliding the rasters
  * again. Pairs that move fast against each other, round bodies and islands the exact solver takes are
  * collided at every substep, and so is a pair that did not touch at the step's start, until it does: a
- * body that lands mid-step is caught at the substep it lands in. */
+ * body that lands mid-step is caught at the substep it lands in.
+ * A pair whose bodies sat a substep out (island.h: QuickStep stacks solve every other substep) is where it
+ * was, so its contacts are carried into the next substep too, however fast it moves: the raster would
+ * find the same ones. */
 #ifndef PP_CARRY_H
 #define PP_CARRY_H
 
@@ -26,6 +29,7 @@ typedef struct carried_contact {
 typedef struct carried_pair {
     uint32_t a, b;               /* body slots, a < b (the broadphase's pair) */
     int32_t first, count;        /* in carry.contacts */
+    int32_t last;                /* the last substep (0 = the step's first) it is carried into */
     bool claimed;                /* the substep's broadphase still pairs them */
 } carried_pair;
 
@@ -43,22 +47,25 @@ typedef struct carry {
     int32_t by_slots_capacity;
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
-    uint32_t step;               /* counts carry_record's calls, from 1 */
+    uint32_t step;               /* counts the steps carry_record started, from 1 */
+    int32_t substep;             /* the substep now, 0 = the step's first */
     bool active;                 /* a later substep: carried pairs are not collided */
 } carry;
 
-/* At the step's first substep of a step of dt s, after its contacts and islands: record the pairs to carry. */
-pp_status carry_record(struct world *wd, double dt);
+/* At substep k of a step of dt s, after its contacts and islands: at the first (k = 0), record the pairs to
+ * carry; at any, the pairs whose bodies sit it out. */
+pp_status carry_record(struct world *wd, double dt, int32_t k);
 /* At a later substep, for each broadphase pair: true if it is carried (it is then not collided). A body
  * that a collided pair touched (something landed on it, or it is round or in an exact island) has its
- * pairs collided from the next substep on: what struck it may push it onto features it was not touching. */
+ * pairs collided from the next substep on: what struck it may push it onto features it was not touching.
+ * A pair whose bodies both sat the last substep out is not collided either, touching or not. */
 bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 /* At a later substep, after the collided pairs' contacts are pushed: mark their bodies struck. */
 void carry_strike(struct world *wd);
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through touch_pair. */
 pp_status carry_push(struct world *wd);
-/* At a later substep's start: no pair is claimed yet. */
-void carry_unclaim(struct world *wd);
+/* At substep k's start: no pair is claimed yet (and at the step's first, none is carried). */
+void carry_begin(struct world *wd, int32_t k);
 void carry_free(carry *c);
 
 #endif

@@ -38,8 +38,8 @@ void forces_apply(world *wd)
     const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
     for (int32_t i = 0; i < wd->forced_count; i++) {
         const body *bd = wd->bodies[wd->forced[i]];
-        if (!solver_body_is_awake(&bd->sb))
-            continue; /* ODE keeps a sleeper's sum until it steps it: it would get every substep's at once */
+        if (!solver_body_is_awake(&bd->sb) || wd->island_span[bd->index] == SPAN_SKIP)
+            continue; /* ODE keeps the sum of a body it does not step: it would get every substep's at once */
         const dvec2 f = dv_add(bd->force, dv_scale(g, (bd->gravity_scale - 1) * bd->mass.mass));
         solver_body_add_force(wd->solver, &bd->sb, f, bd->fixed_rotation ? 0.0 : bd->torque);
     }

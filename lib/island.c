@@ -13,12 +13,23 @@
 /* Constraint rows a contact costs (the normal and one in-plane friction row), and at most a joint's. */
 enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
 
+/* What an island holds, for its span: a joint (whose springs are tuned to one substep) or a body pressing on
+ * one over HARD_MASS_RATIO times lighter (QuickStep at twice the time step let a 1:10:100:1000 chain fall),
+ * both solved every substep; an awake body that sat the last substep out, and one that did not. */
+enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4 };
+enum { HARD_MASS_RATIO = 4 };
+
 static bool within_reach(const world *wd, const body *bd)
 {
     solver_body_state s;
     solver_body_get_state(wd->solver, &bd->sb, &s);
     const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
     return dv_norm(dv_sub(s.com_world, body_com_world(bd))) <= reach;
+}
+
+static bool is_node(const world *wd, const body *bd)
+{
+    return bd && bd->sb.body && wd->node_mark[bd->index] == wd->node_pass;
 }
 
 /* Make a movable body a node of this pass (once): its own root, value 0. */
@@ -102,20 +113,91 @@ static void join_island(int32_t *parent, int32_t *rows, int32_t *dynamic, const 
         rows[rb >= 0 ? rb : ra] += n;
 }
 
-pp_status island_plan(world *wd, solver_islands *out)
+/* Each node's span. At the first substep of a pair a QuickStep stack without joints sits out; at the second
+ * one whose awake bodies all sat out solves twice the time step. A lone body, cheap to solve, keeps every
+ * substep's accuracy (a free fall, a rolling disc, a bounce). An island that bodies at both times joined
+ * (rare: a merge in between) solves one substep, and its late bodies stay one substep late. */
+static void set_spans(world *wd, substep_pairing pairing)
 {
+    int32_t *parent = wd->group, *flags = wd->group + 2 * wd->group_capacity;
+    for (int32_t n = 0; n < wd->node_count; n++)
+        flags[wd->nodes[n]] = 0;
+    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
+        const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
+        if (node)
+            flags[world_group_root(parent, (int32_t)node->index)] |= ROOT_EVERY_SUBSTEP;
+    }
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
+            fmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * fmin(a->mass.mass, b->mass.mass))
+            flags[world_group_root(parent, (int32_t)a->index)] |= ROOT_EVERY_SUBSTEP;
+    }
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const body *bd = wd->bodies[wd->nodes[n]];
+        if (awake_mover(bd))
+            flags[world_group_root(parent, wd->nodes[n])] |=
+                bd->sat_out + 1 == wd->substep_serial ? ROOT_BEHIND : ROOT_CURRENT;
+    }
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int32_t i = wd->nodes[n], f = flags[world_group_root(parent, i)];
+        uint8_t span = SPAN_ONE;
+        if (wd->island_kind[i] == ISLAND_QUICK_STACK) {
+            if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
+                span = SPAN_SKIP;
+            else if (pairing == PAIR_SECOND && f == ROOT_BEHIND)
+                span = SPAN_TWO;
+        }
+        wd->island_span[i] = span;
+        if (span == SPAN_SKIP)
+            wd->bodies[i]->sat_out = wd->substep_serial;
+    }
+}
+
+/* The stepped islands' bodies for solver_step, one list after another in wd->island_bodies: every body of
+ * the exact islands (ODE wakes their sleepers), then QuickStep's awake bodies over h, over 2·h, and those
+ * sitting out. */
+static void list_islands(world *wd, solver_islands *out)
+{
+    int32_t *parent = wd->group;
+    const int32_t *rows = wd->group + wd->group_capacity;
+    solver_body **list = wd->island_bodies;
+    int32_t counts[4] = {0}, n_listed = 0;
+    for (int32_t pass = 0; pass < 4; pass++) {
+        for (int32_t n = 0; n < wd->node_count; n++) {
+            const int32_t i = wd->nodes[n];
+            body *bd = wd->bodies[i];
+            if (rows[world_group_root(parent, i)] >= 0)
+                continue; /* asleep */
+            const bool exact = wd->island_kind[i] == ISLAND_EXACT;
+            const int32_t which = exact ? 0 : wd->island_span[i] == SPAN_ONE ? 1 : wd->island_span[i] == SPAN_TWO ? 2 : 3;
+            if (which == pass && (exact || awake_mover(bd)))
+                list[n_listed + counts[pass]++] = &bd->sb;
+        }
+        n_listed += counts[pass];
+    }
+    *out = (solver_islands){list, counts[0], list + counts[0], counts[1], list + counts[0] + counts[1], counts[2],
+                            list + counts[0] + counts[1] + counts[2], counts[3]};
+}
+
+pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
+{
+    wd->substep_serial++;
     *out = (solver_islands){0};
     wd->node_count = 0;
     if (wd->body_capacity == 0)
         return PP_OK;
-    pp_status st = world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 2 * sizeof *wd->group,
+    pp_status st = world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 3 * sizeof *wd->group,
                                     "the islands");
     if (st || (st = world_slot_array(wd, (void **)&wd->island_bodies, &wd->island_capacity,
                                      sizeof *wd->island_bodies, "the islands")) ||
         (st = world_slot_array(wd, (void **)&wd->island_kind, &wd->island_kind_capacity, 1, "the islands")) ||
+        (st = world_slot_array(wd, (void **)&wd->island_span, &wd->island_span_capacity, 1, "the islands")) ||
         (st = collect_nodes(wd)))
         return st;
-    /* Per root: the island's rows (the group array's second half) and its dynamic bodies. */
+    /* Per root: the island's rows (the group array's second third) and its dynamic bodies. */
     int32_t *parent = wd->group, *rows = wd->group + wd->group_capacity;
     int32_t *dynamic = (int32_t *)wd->island_bodies; /* scratch until the lists are written */
     PP_ASSERT(sizeof *wd->island_bodies >= sizeof *dynamic);
@@ -132,8 +214,7 @@ pp_status island_plan(world *wd, solver_islands *out)
     for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
-        if ((a && a->sb.body && wd->node_mark[a->index] == wd->node_pass) ||
-            (b && b->sb.body && wd->node_mark[b->index] == wd->node_pass))
+        if (is_node(wd, a) || is_node(wd, b))
             join_island(parent, rows, dynamic, a, b, ROWS_PER_JOINT);
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
@@ -150,24 +231,14 @@ pp_status island_plan(world *wd, solver_islands *out)
     for (int32_t n = 0; n < wd->node_count; n++)
         if (awake_mover(wd->bodies[wd->nodes[n]]))
             rows[world_group_root(parent, wd->nodes[n])] |= INT32_MIN;
-    /* Exact islands fill the array from the front, QuickStep's awake bodies from the back. */
     const int32_t limit = wd->def.exact_island_rows;
-    solver_body **list = wd->island_bodies;
-    int32_t n_exact = 0, n_quick = 0;
     for (int32_t n = 0; n < wd->node_count; n++) {
-        const int32_t i = wd->nodes[n];
-        body *bd = wd->bodies[i];
-        const int32_t r = rows[world_group_root(parent, i)];
-        if (r >= 0)
-            continue; /* asleep */
-        if (wd->def.exact_solver || (wd->island_kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)) {
+        const int32_t i = wd->nodes[n], r = rows[world_group_root(parent, i)];
+        if (r < 0 && (wd->def.exact_solver || (wd->island_kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
             wd->island_kind[i] = ISLAND_EXACT;
-            list[n_exact++] = &bd->sb;
-        }
-        else if (awake_mover(bd))
-            list[wd->body_capacity - 1 - n_quick++] = &bd->sb;
     }
-    *out = (solver_islands){list, n_exact, list + wd->body_capacity - n_quick, n_quick};
+    set_spans(wd, pairing);
+    list_islands(wd, out);
     return PP_OK;
 }
 

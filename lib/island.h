@@ -6,9 +6,14 @@
 #include "solver_ode.h"
 #include "world.h"
 
+/* Where a substep falls in its pair: QuickStep islands sit the first of a pair out and solve the second with
+ * twice its time step, which halves their cost; exact islands and jointed ones solve every substep. A
+ * substep without a pair (FAST's one, an odd count's last) solves everything. */
+typedef enum substep_pairing { PAIR_NONE, PAIR_FIRST, PAIR_SECOND } substep_pairing;
+
 /* Collect the substep's nodes and sort the awake islands into `out` (arrays owned by the world) for
- * solver_step. */
-pp_status island_plan(world *wd, solver_islands *out);
+ * solver_step, each body's span (SPAN_*) in wd->island_span. */
+pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out);
 
 /* After solver_step: list in the awake set every node ODE woke through a contact. */
 void island_list_woken(world *wd);

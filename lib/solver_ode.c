@@ -467,27 +467,37 @@ static void set_enabled(solver_body *const *list, int32_t n, bool enabled)
             dBodyDisable((dBodyID)list[i]->body);
 }
 
-/* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding one method's bodies
- * while the other runs steps each island once, by its own method. dWorldStep wakes every body of its
- * islands, so all of them are hidden from QuickStep. */
+/* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding the other lists' bodies
+ * while one list's method runs steps each island once, by its own method and time step. The exact lists
+ * go first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
+ * wakes nothing that it did not. The idle bodies stay hidden throughout. */
 static int step_methods(pp_solver *s, double h, const solver_islands *is)
 {
-    if (is->exact_count == 0)
-        return dWorldQuickStep(s->world, h);
-    if (is->quick_count == 0)
-        return dWorldStep(s->world, h);
-    set_enabled(is->quick, is->quick_count, false);
-    const int ok = dWorldStep(s->world, h);
-    set_enabled(is->quick, is->quick_count, true);
-    set_enabled(is->exact, is->exact_count, false);
-    const int ok_quick = dWorldQuickStep(s->world, h);
-    set_enabled(is->exact, is->exact_count, true);
-    return ok && ok_quick;
+    solver_body **const lists[3] = {is->exact, is->quick, is->quick_two};
+    const int32_t counts[3] = {is->exact_count, is->quick_count, is->quick_two_count};
+    int32_t runs = 0;
+    for (int i = 0; i < 3; i++)
+        runs += counts[i] > 0;
+    set_enabled(is->idle, is->idle_count, false);
+    int ok = 1;
+    for (int i = 0; i < 3; i++) {
+        if (counts[i] == 0)
+            continue;
+        for (int j = 0; j < 3 && runs > 1; j++)
+            if (j != i)
+                set_enabled(lists[j], counts[j], false);
+        ok &= i == 0 ? dWorldStep(s->world, h) : dWorldQuickStep(s->world, i == 2 ? 2 * h : h);
+        for (int j = 0; j < 3 && runs > 1; j++)
+            if (j != i)
+                set_enabled(lists[j], counts[j], true);
+    }
+    set_enabled(is->idle, is->idle_count, true);
+    return ok;
 }
 
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
-    if (islands->exact_count + islands->quick_count == 0) {
+    if (islands->exact_count + islands->quick_count + islands->quick_two_count == 0) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
         dJointGroupEmpty(s->contacts);
         return true;

@@ -137,8 +137,12 @@ void solver_set_steps(pp_solver *s, uint64_t steps);
 typedef struct solver_islands {
     solver_body **exact;   /* every body of the islands ODE's exact dWorldStep solves */
     int32_t exact_count;
-    solver_body **quick;   /* the awake bodies of the islands QuickStep solves */
+    solver_body **quick;   /* the awake bodies of the islands QuickStep solves over h … */
     int32_t quick_count;
+    solver_body **quick_two; /* … over 2·h (they sat the substep before out) … */
+    int32_t quick_two_count;
+    solver_body **idle;    /* … and not at all: the awake bodies of islands that sit this substep out */
+    int32_t idle_count;
 } solver_islands;
 
 /* Advance by h seconds (one substep) and drop the contact joints. Nothing awake skips ODE, which

@@ -258,6 +258,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->group);
     pp_free(wd->island_bodies);
     pp_free(wd->island_kind);
+    pp_free(wd->island_span);
     pp_free(wd->node_mark);
     pp_free(wd->nodes);
     pp_free(wd->swept);
@@ -466,16 +467,14 @@ static void touch_round(const world *wd, const body *a, const body *b, np_result
     r->count = 1;
 }
 
-/* Broadphase and narrowphase at the current poses; fills wd->contacts. At a step's first substep every
- * pair is collided and its contacts are carried through the later ones (carry.h). */
-static pp_status find_contacts(world *wd, bool first_substep, double *t_broad, double *t_narrow)
+/* Broadphase and narrowphase at the current poses of `substep`; fills wd->contacts. At a step's first
+ * substep every pair is collided and resting pairs' contacts are carried through the later ones, as are a
+ * pair's whose bodies sat a substep out into the next (carry.h). */
+static pp_status find_contacts(world *wd, int32_t substep, double *t_broad, double *t_narrow)
 {
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
-    if (first_substep)
-        wd->carry.active = false;
-    else
-        carry_unclaim(wd);
+    carry_begin(wd, substep);
     pp_status st = awake_refresh(wd);
     if (st)
         return st;
@@ -589,15 +588,21 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
     return wd->def.contact_erp * gap / h;
 }
 
-/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
- * pairs each have two points leans toward the point solved first. The order flips every solver
- * step (by the step count, so snapshots keep it), and the biases cancel. */
-static void add_contact_joints(world *wd, double h)
+/* The substeps of time a contact's island advances in this one (SPAN_*). */
+static int contact_span(const world *wd, const pp_contact *c)
 {
-    const bool reversed = solver_get_steps(wd->solver) & 1;
+    const body *a = body_of(wd, c->a);
+    return wd->island_span[(a->sb.body ? a : body_of(wd, c->b))->index];
+}
+
+/* The joints of the contacts whose island advances `span` substeps of h / span s, in order or reversed. */
+static void add_span_joints(world *wd, int span, double h, bool reversed)
+{
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const int32_t i = reversed ? wd->contact_count - 1 - k : k;
         const pp_contact *c = &wd->contacts[i];
+        if (contact_span(wd, c) != span)
+            continue;
         const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         const double e = fmax(a->restitution, b->restitution);
         const solver_contact sc = {
@@ -608,6 +613,18 @@ static void add_contact_joints(world *wd, double h)
         };
         solver_add_contact(wd->solver, &sc, i);
     }
+}
+
+/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
+ * pairs each have two points leans toward the point solved first. The order flips every time an island
+ * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
+ * by its parity, those solved every other substep (SPAN_TWO, at every second count) by the next bit. No
+ * contact joins two islands, so each span's contacts go in their own order. */
+static void add_contact_joints(world *wd, double substep)
+{
+    const uint64_t steps = solver_get_steps(wd->solver);
+    for (int span = SPAN_ONE; span <= SPAN_TWO; span++)
+        add_span_joints(wd, span, substep * span, span == SPAN_ONE ? steps & 1 : steps >> 1 & 1);
 }
 
 static bool within_float(double x) { return fabs(x) <= FLT_MAX; } /* false for NaN too */
@@ -862,7 +879,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
 {
     const double h = (double)dt / wd->def.substeps;
     for (int32_t k = 0; k < wd->def.substeps; k++) {
-        pp_status st = find_contacts(wd, k == 0, t_broad, t_narrow);
+        pp_status st = find_contacts(wd, k, t_broad, t_narrow);
         if (st)
             return st;
         const double t0 = now_ms();
@@ -871,7 +888,9 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
-        if ((st = island_plan(wd, &islands)) || (k == 0 && wd->def.substeps > 1 && (st = carry_record(wd, dt))))
+        const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
+        if ((st = island_plan(wd, pairing, &islands)) ||
+            ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
             return st;
         save_contact_bodies(wd);
         add_contact_joints(wd, h);
@@ -883,7 +902,10 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         island_list_woken(wd);
         for (int32_t c = 0; c < wd->contact_count; c++) {
             pp_contact *ct = &wd->contacts[c];
-            ct->normal_impulse = (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h);
+            /* Over one substep, whatever the span: force × h, as the header has it. */
+            ct->normal_impulse = contact_span(wd, ct) > 0
+                                     ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h)
+                                     : 0;
         }
         if ((st = sync_bodies(wd)))
             return st;

@@ -50,6 +50,7 @@ typedef struct body {
     double gravity_scale;    /* of the world's gravity; 1 by default */
     bool forced;             /* listed in wd->forced: a force, torque or gravity scale acts on it */
     int32_t joint_count;     /* joints attached to it (joint.c) */
+    uint64_t sat_out;        /* the substep (wd->substep_serial) its QuickStep island last sat out (island.c) */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -102,6 +103,9 @@ typedef struct joint_table {
 
 /* How a body's island is solved this substep (island.c). */
 enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
+/* How many substeps of time a body's island advances this substep (island.c): QuickStep islands sit the
+ * first substep of a pair out and solve the second with twice its time step. */
+enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2 };
 
 typedef struct world {
     uint32_t slot;
@@ -142,7 +146,8 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
-    int32_t *group;          /* two per slot: union-find parents, then each root's rows or restless flag (island.c) */
+    int32_t *group;          /* three per slot: union-find parents, each root's rows or restless flag, and its
+                              * ROOT_* flags (island.c) */
     int32_t group_capacity;
     uint32_t *node_mark;     /* by slot: the island pass that last made it a node (island.c) */
     int32_t node_mark_capacity;
@@ -155,6 +160,9 @@ typedef struct world {
     int32_t island_capacity;
     uint8_t *island_kind;    /* … and by slot, how each body's island is solved (ISLAND_*) */
     int32_t island_kind_capacity;
+    uint8_t *island_span;    /* … and by slot, the substeps of time it advances (SPAN_*) */
+    int32_t island_span_capacity;
+    uint64_t substep_serial; /* counts island_plan's calls: which substep a body's sat_out names */
     touch *touching;         /* pairs touching at the last substep with a body awake, sorted (touch.c) */
     int32_t touch_count, touch_capacity;
     touch *resting;          /* pairs touching whose bodies all sleep (or are static), sorted; no substep visits them */
