@@ -21,10 +21,8 @@ enum { HARD_MASS_RATIO = 4 };
 
 static bool within_reach(const world *wd, const body *bd)
 {
-    solver_body_state s;
-    solver_body_get_state(wd->solver, &bd->sb, &s);
     const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
-    return dv_norm(dv_sub(s.com_world, body_com_world(bd))) <= reach;
+    return dv_norm(dv_sub(solver_body_get_com(wd->solver, &bd->sb), body_com_world(bd))) <= reach;
 }
 
 static bool is_node(const world *wd, const body *bd)
@@ -260,10 +258,10 @@ void island_sleep(world *wd, double h)
             continue;
         if (bd->slow_time > d->sleep_time)
             bd->slow_time = 0; /* woken since it slept (the mark set below) */
-        solver_body_state s;
-        solver_body_get_state(wd->solver, &bd->sb, &s);
-        const bool slow = hypot(s.velocity.x, s.velocity.y) <= d->sleep_linear_speed &&
-                          fabs(s.angular_velocity) <= d->sleep_angular_speed;
+        dvec2 v;
+        double w;
+        solver_body_get_velocity(wd->solver, &bd->sb, &v, &w);
+        const bool slow = dv_norm(v) <= d->sleep_linear_speed && fabs(w) <= d->sleep_angular_speed;
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
         bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
     }

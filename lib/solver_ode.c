@@ -196,6 +196,19 @@ void solver_body_sleep(const solver_body *sb)
 
 bool solver_body_is_awake(const solver_body *sb) { return dBodyIsEnabled((dBodyID)sb->body) != 0; }
 
+void solver_body_get_velocity(const pp_solver *s, const solver_body *sb, dvec2 *v, double *w)
+{
+    const dReal *lv = dBodyGetLinearVel((dBodyID)sb->body), *av = dBodyGetAngularVel((dBodyID)sb->body);
+    *v = dv(lv[0] * s->ppm, lv[1] * s->ppm);
+    *w = av[2];
+}
+
+dvec2 solver_body_get_com(const pp_solver *s, const solver_body *sb)
+{
+    const dReal *p = dBodyGetPosition((dBodyID)sb->body);
+    return dv(p[0] * s->ppm, p[1] * s->ppm);
+}
+
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out)
 {
     dBodyID b = sb->body;

@@ -70,6 +70,9 @@ bool solver_body_is_awake(const solver_body *sb);
 /* Undo ODE's drift out of the plane; call once per body after each step. */
 void solver_body_flatten(solver_body *sb);
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
+/* The state's velocities alone (px/s, rad/s), and its centre of mass alone (px): no angle to work out. */
+void solver_body_get_velocity(const pp_solver *s, const solver_body *sb, dvec2 *v, double *w);
+dvec2 solver_body_get_com(const pp_solver *s, const solver_body *sb);
 
 /* A joint's ODE objects. ODE's first body is body_b, or body_a when body_b is the world: ODE never swaps
  * them itself, so its hinge and slider read b relative to a, or the reverse (sign −1) against the world. */

@@ -439,9 +439,10 @@ static double angular_speed(const world *wd, const body *bd)
 {
     if (!bd->sb.body)
         return 0;
-    solver_body_state s;
-    solver_body_get_state(wd->solver, &bd->sb, &s);
-    return s.angular_velocity;
+    dvec2 v;
+    double w;
+    solver_body_get_velocity(wd->solver, &bd->sb, &v, &w);
+    return w;
 }
 
 /* A round body that rolls touches where a circle would: at one point on the line from its centre of mass
@@ -643,13 +644,13 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
     solver_body_set_velocity(wd->solver, &bd->sb, s->velocity, s->angular_velocity);
 }
 
-/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved), its speed
- * clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
+/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved, nor has one
+ * that sat the substep out), its speed clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
 static pp_status sync_bodies(world *wd)
 {
     for (int32_t k = 0; k < wd->awake_count; k++) {
         body *bd = wd->bodies[wd->awake_slots[k]];
-        if (!awake_mover(bd))
+        if (!awake_mover(bd) || wd->island_span[bd->index] == SPAN_SKIP)
             continue;
         solver_body_flatten(&bd->sb);
         solver_body_state s;
