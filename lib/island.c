@@ -249,7 +249,7 @@ void island_list_woken(world *wd)
     }
 }
 
-void island_sleep(world *wd, double h)
+bool island_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
     for (int32_t k = 0; k < wd->awake_count; k++) {
@@ -266,7 +266,7 @@ void island_sleep(world *wd, double h)
         bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
     }
     if (!d->allow_sleep || wd->node_count == 0)
-        return; /* no node: nothing awake, and maybe no arrays yet */
+        return false; /* no node: nothing awake, and maybe no arrays yet */
     /* Sleep groups: dynamic bodies joined by contacts, over the nodes island_plan collected (every body of a
      * group with an awake body is one: awake, or a contact's). */
     int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
@@ -283,6 +283,7 @@ void island_sleep(world *wd, double h)
             wd->node_mark[a->index] == wd->node_pass)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
     }
+    bool slept = false;
     /* A group with a body not yet ready stays awake. */
     for (int32_t n = 0; n < wd->node_count; n++) {
         const body *bd = wd->bodies[wd->nodes[n]];
@@ -294,6 +295,8 @@ void island_sleep(world *wd, double h)
         if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd) && !restless[world_group_root(parent, (int32_t)bd->index)]) {
             solver_body_sleep(&bd->sb);
             bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
+            slept = true;
         }
     }
+    return slept;
 }

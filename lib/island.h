@@ -19,7 +19,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out);
 void island_list_woken(world *wd);
 
 /* Advance the awake dynamic bodies' sleep timers by h s and put to sleep each group of bodies in contact
- * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. */
-void island_sleep(world *wd, double h);
+ * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. True if a body fell asleep. */
+bool island_sleep(world *wd, double h);
 
 #endif

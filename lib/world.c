@@ -879,8 +879,9 @@ static void step_restore(world *wd)
 static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_narrow, double *t_solver)
 {
     const double h = (double)dt / wd->def.substeps;
+    bool still = false; /* nothing moved, woke or slept in the substep before: its contacts stand */
     for (int32_t k = 0; k < wd->def.substeps; k++) {
-        pp_status st = find_contacts(wd, k, t_broad, t_narrow);
+        pp_status st = still ? PP_OK : find_contacts(wd, k, t_broad, t_narrow);
         if (st)
             return st;
         const double t0 = now_ms();
@@ -900,6 +901,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         forces_damp(wd, h);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+        still = islands.exact_count + islands.quick_count + islands.quick_two_count == 0;
         island_list_woken(wd);
         for (int32_t c = 0; c < wd->contact_count; c++) {
             pp_contact *ct = &wd->contacts[c];
@@ -912,7 +914,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         if ((st = continuous_end(wd)))
             return st;
-        island_sleep(wd, h);
+        still &= !island_sleep(wd, h);
         *t_solver += now_ms() - t0;
     }
     return PP_OK;
