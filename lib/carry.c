@@ -87,13 +87,16 @@ static carried_pair *find_pair(carry *c, int32_t n, uint32_t a, uint32_t b)
     return k ? &c->pairs[k->pair] : NULL;
 }
 
-/* Drop the pairs carried no further than before substep k and sort the rest's keys. */
-static void keep_from(carry *c, int32_t k)
+/* Drop the pairs carried no further than before substep k and sort the rest's keys (unless the pairs and
+ * their keys are as they were). */
+static void keep_from(carry *c, int32_t k, bool added)
 {
     int32_t n = 0;
     for (int32_t i = 0; i < c->pair_count; i++)
         if (c->pairs[i].last >= k)
             c->pairs[n++] = c->pairs[i];
+    if (n == c->pair_count && !added)
+        return;
     c->pair_count = n;
     for (int32_t i = 0; i < n; i++)
         c->by_slots[i] = (carried_key){key_of(c->pairs[i].a, c->pairs[i].b), i};
@@ -126,7 +129,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
     pp_status st = k == 0 ? start_step(wd) : PP_OK;
     if (st)
         return st;
-    keep_from(c, k);
+    keep_from(c, k, false);
     const int32_t n = wd->contact_count, pairs_before = c->pair_count;
     if (n == 0)
         return PP_OK;
@@ -160,7 +163,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
                 (carried_contact){wd->contacts[j], com_a, com_b, a->cos_a, a->sin_a, b->cos_a, b->sin_a};
     }
     if (c->pair_count > pairs_before)
-        keep_from(c, k);
+        keep_from(c, k, true);
     c->active = c->pair_count > 0;
     return PP_OK;
 }

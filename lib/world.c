@@ -621,11 +621,13 @@ static void add_span_joints(world *wd, int span, double h, bool reversed)
  * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
  * by its parity, those solved every other substep (SPAN_TWO, at every second count) by the next bit. No
  * contact joins two islands, so each span's contacts go in their own order. */
-static void add_contact_joints(world *wd, double substep)
+static void add_contact_joints(world *wd, const solver_islands *is, double substep)
 {
     const uint64_t steps = solver_get_steps(wd->solver);
-    for (int span = SPAN_ONE; span <= SPAN_TWO; span++)
-        add_span_joints(wd, span, substep * span, span == SPAN_ONE ? steps & 1 : steps >> 1 & 1);
+    if (is->exact_count + is->quick_count > 0)
+        add_span_joints(wd, SPAN_ONE, substep, steps & 1);
+    if (is->quick_two_count > 0)
+        add_span_joints(wd, SPAN_TWO, 2 * substep, steps >> 1 & 1);
 }
 
 static bool within_float(double x) { return fabs(x) <= FLT_MAX; } /* false for NaN too */
@@ -895,7 +897,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
             return st;
         save_contact_bodies(wd);
-        add_contact_joints(wd, h);
+        add_contact_joints(wd, &islands, h);
         joint_prepare(wd, h);
         forces_apply(wd);
         forces_damp(wd, h);
