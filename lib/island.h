@@ -6,9 +6,10 @@
 #include "solver_ode.h"
 #include "world.h"
 
-/* Where a substep falls in its pair: QuickStep islands sit the first of a pair out and solve the second with
- * twice its time step, which halves their cost; exact islands and jointed ones solve every substep. A
- * substep without a pair (FAST's one, an odd count's last) solves everything. */
+/* Where a substep falls in its pair: QuickStep stacks sit the first of a pair out and solve the second with
+ * twice its time step, which halves their cost; exact islands, lone bodies, jointed islands and piles with a
+ * body over 4 times heavier than one it touches solve every substep. A substep without a pair (FAST's one,
+ * an odd count's last) solves everything. */
 typedef enum substep_pairing { PAIR_NONE, PAIR_FIRST, PAIR_SECOND } substep_pairing;
 
 /* Collect the substep's nodes and sort the awake islands into `out` (arrays owned by the world) for

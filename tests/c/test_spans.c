@@ -1,0 +1,141 @@
+/* QuickStep stacks solve every other substep with twice its time step (lib/island.h): what the bodies of
+ * such a pile feel per step (weight, forces, contact impulses) is what they would feel solved every substep,
+ * its pairs are collided once a step, and a snapshot continues it exactly. */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "helpers.h"
+#include "physpix.h"
+
+PP_TEST_SUITE(spans);
+
+#define DT (1.0f / 60.0f)
+#define G 980.0
+#define GROUND_TOP 500.0f
+
+/* Sleep off, the exact solver off: every pile of two or more dynamic bodies is a QuickStep stack. */
+static pp_world quick_world(int32_t substeps)
+{
+    pp_world_def d = pp_world_def_default();
+    d.substeps = substeps;
+    d.exact_island_rows = 0;
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    return w;
+}
+
+/* A column of n 16 px boxes on the ground, each sunk 1 px into the one below; their handles into b. */
+static void add_column(pp_world w, pp_body *b, int n)
+{
+    for (int k = 0; k < n; k++)
+        b[k] = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 7 - 15 * k, 0), 16, 16);
+}
+
+static int64_t pixels_tested(pp_world w)
+{
+    pp_step_stats s;
+    PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
+    return s.pixels_tested;
+}
+
+Test(spans, a_quickstep_pile_reports_its_weight_per_substep)
+{
+    /* Solved over 2·h, the ground still reports the pile's weight × h a substep (force × the substep). */
+    pp_world w = quick_world(4);
+    pp_body b[3];
+    add_column(w, b, 3);
+    step_n(w, DT, 120);
+    double mass = 0;
+    for (int k = 0; k < 3; k++) {
+        float m = 0;
+        PP_OK_OR_FAIL(pp_body_get_mass(w, b[k], &m, NULL, NULL));
+        mass += m;
+    }
+    pp_contact c[16];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_contacts(w, c, 16, &n));
+    double ground = 0;
+    for (int i = 0; i < n; i++)
+        if (c[i].a.id != b[0].id && c[i].b.id == b[0].id)
+            ground += c[i].normal_impulse;
+    const double weight_h = mass * G * DT / 4;
+    cr_log_info("ground impulses %.3f against the pile's m·g·h %.3f", ground, weight_h);
+    cr_assert_float_eq(ground, weight_h, 0.02 * weight_h, "%g against %g", ground, weight_h);
+    pp_world_destroy(w);
+}
+
+Test(spans, a_force_on_a_box_of_a_quickstep_pile_acts_once_a_step)
+{
+    /* Held up by a force equal to its weight, the top box stays put: a force counted again in the substep
+     * its pile sits out would lift it at g (490 px in the second). */
+    pp_world w = quick_world(4);
+    pp_body b[2];
+    add_column(w, b, 2);
+    step_n(w, DT, 60);
+    float m = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, b[1], &m, NULL, NULL));
+    const pp_vec2 start = body_pos(w, b[1]);
+    for (int k = 0; k < 60; k++) {
+        /* A 16 px box made at its centre keeps its centre of mass on its pivot. */
+        PP_OK_OR_FAIL(pp_body_apply_force(w, b[1], v2(0, (float)(-m * G)), body_pos(w, b[1])));
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+    }
+    const float moved = body_pos(w, b[1]).y - start.y;
+    cr_assert_lt(fabsf(moved), 0.5f, "the held box moved %g px", moved);
+    pp_world_destroy(w);
+}
+
+Test(spans, a_pair_sliding_in_a_quickstep_pile_is_collided_once_a_step)
+{
+    /* A frictionless box sliding at 30 px/s (0.5 px a step) along a plank: over a resting pair's bound, under a
+     * stack's, so four substeps test the rasters as much as one (exactly at the first step, from the same
+     * poses; then within the drift of two runs apart, where colliding the sliding pair again would add half). */
+    pp_world w[2] = {quick_world(1), quick_world(4)};
+    pp_body box[2];
+    for (int i = 0; i < 2; i++) {
+        /* 4 times the box's mass: a stack, not a heavy-on-light pile (those solve every substep). */
+        const pp_body plank = add_rect(w[i], body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 7, 0), 64, 16);
+        box[i] = add_rect(w[i], body_def(PP_BODY_DYNAMIC, 380, GROUND_TOP - 22, 0), 16, 16);
+        PP_OK_OR_FAIL(pp_body_set_friction(w[i], plank, 0));
+        PP_OK_OR_FAIL(pp_body_set_friction(w[i], box[i], 0));
+        PP_OK_OR_FAIL(pp_body_set_velocity(w[i], box[i], v2(30, 0), 0));
+    }
+    for (int s = 0; s < 30; s++) {
+        PP_OK_OR_FAIL(pp_world_step(w[0], DT));
+        PP_OK_OR_FAIL(pp_world_step(w[1], DT));
+        const int64_t four = pixels_tested(w[1]), one = pixels_tested(w[0]);
+        cr_assert(s == 0 ? four == one : 4 * four < 5 * one, "step %d: 4 substeps tested %lld samples, 1 tested %lld",
+                  s, (long long)four, (long long)one);
+    }
+    const pp_vec2 v = body_vel(w[1], box[1]);
+    cr_assert_float_eq(v.x, 30.0f, 0.5f, "it slides at %g px/s", v.x);
+    pp_world_destroy(w[0]);
+    pp_world_destroy(w[1]);
+}
+
+Test(spans, a_snapshot_of_a_settling_quickstep_pile_continues_it_exactly)
+{
+    /* Sitting out is decided inside a step: the loaded world steps the pile as the saved one does. */
+    pp_world w = quick_world(4);
+    pp_body b[6];
+    add_column(w, b, 6);
+    add_rect(w, body_def(PP_BODY_DYNAMIC, 420, GROUND_TOP - 140, 0.3f), 24, 12);
+    step_n(w, DT, 20);
+    pp_world back = snapshot_round_trip(w);
+    step_n(w, DT, 60);
+    step_n(back, DT, 60);
+    pp_body_state s[2][8];
+    int32_t n[2] = {0, 0};
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, s[0], 8, &n[0]));
+    PP_OK_OR_FAIL(pp_world_get_body_states(back, s[1], 8, &n[1]));
+    cr_assert_eq(n[0], n[1]);
+    for (int i = 0; i < n[0]; i++) {
+        cr_assert(s[0][i].position.x == s[1][i].position.x && s[0][i].position.y == s[1][i].position.y &&
+                      s[0][i].angle == s[1][i].angle,
+                  "body %d: (%.9g, %.9g) against (%.9g, %.9g) after the load", i, s[0][i].position.x,
+                  s[0][i].position.y, s[1][i].position.x, s[1][i].position.y);
+    }
+    pp_world_destroy(w);
+    pp_world_destroy(back);
+}
