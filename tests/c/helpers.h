@@ -248,6 +248,25 @@ static inline void remove_tree(const char *dir) {
     rmdir(dir);
 }
 
+/* Sleep off and the exact solver off (every pile of two or more dynamic bodies is a QuickStep stack), with
+ * a static ground 800 × 40 px centred at x = 400 whose top is at y = ground_top. */
+static inline pp_world quickstep_world(int32_t substeps, float ground_top) {
+    pp_world_def d = pp_world_def_default();
+    d.substeps = substeps;
+    d.exact_island_rows = 0;
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, ground_top + 20, 0), 800, 40);
+    return w;
+}
+
+/* The raster samples the last step tested. */
+static inline int64_t pixels_tested(pp_world w) {
+    pp_step_stats s;
+    PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
+    return s.pixels_tested;
+}
+
 /* Save w to a snapshot in a fresh temporary folder, load it back and remove the folder: the loaded world. */
 static inline pp_world snapshot_round_trip(pp_world w) {
     char dir[] = "/tmp/pp_snapshot_XXXXXX";

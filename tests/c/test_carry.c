@@ -15,23 +15,11 @@ PP_TEST_SUITE(carry);
  * island (no exact solver), so every pair touches at the first step's start and is carried. */
 static pp_world towers(int32_t substeps)
 {
-    pp_world_def d = pp_world_def_default();
-    d.substeps = substeps;
-    d.exact_island_rows = 0;
-    d.allow_sleep = 0;
-    pp_world w = make_world_def(&d);
-    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    pp_world w = quickstep_world(substeps, GROUND_TOP);
     for (int t = 0; t < 2; t++)
         for (int k = 0; k < 5; k++)
             add_rect(w, body_def(PP_BODY_DYNAMIC, 300.0f + 200.0f * t, GROUND_TOP - 7 - 15 * k, 0), 16, 16);
     return w;
-}
-
-static int64_t pixels_tested(pp_world w)
-{
-    pp_step_stats s;
-    PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
-    return s.pixels_tested;
 }
 
 Test(carry, the_narrowphase_runs_once_a_step_whatever_the_substeps)

@@ -13,30 +13,13 @@ PP_TEST_SUITE(spans);
 #define G 980.0
 #define GROUND_TOP 500.0f
 
-/* Sleep off, the exact solver off: every pile of two or more dynamic bodies is a QuickStep stack. */
-static pp_world quick_world(int32_t substeps)
-{
-    pp_world_def d = pp_world_def_default();
-    d.substeps = substeps;
-    d.exact_island_rows = 0;
-    d.allow_sleep = 0;
-    pp_world w = make_world_def(&d);
-    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
-    return w;
-}
+static pp_world quick_world(int32_t substeps) { return quickstep_world(substeps, GROUND_TOP); }
 
 /* A column of n 16 px boxes on the ground, each sunk 1 px into the one below; their handles into b. */
 static void add_column(pp_world w, pp_body *b, int n)
 {
     for (int k = 0; k < n; k++)
         b[k] = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 7 - 15 * k, 0), 16, 16);
-}
-
-static int64_t pixels_tested(pp_world w)
-{
-    pp_step_stats s;
-    PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
-    return s.pixels_tested;
 }
 
 Test(spans, a_quickstep_pile_reports_its_weight_per_substep)
