@@ -22,7 +22,8 @@ enum { HARD_MASS_RATIO = 4 };
 static bool within_reach(const world *wd, const body *bd)
 {
     const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
-    return dv_norm(dv_sub(solver_body_get_com(wd->solver, &bd->sb), body_com_world(bd))) <= reach;
+    const dvec2 off = dv_sub(solver_body_get_com(wd->solver, &bd->sb), body_com_world(bd));
+    return dv_dot(off, off) <= reach * reach;
 }
 
 static bool is_node(const world *wd, const body *bd)
@@ -261,7 +262,8 @@ bool island_sleep(world *wd, double h)
         dvec2 v;
         double w;
         solver_body_get_velocity(wd->solver, &bd->sb, &v, &w);
-        const bool slow = dv_norm(v) <= d->sleep_linear_speed && fabs(w) <= d->sleep_angular_speed;
+        const double vmax = d->sleep_linear_speed; /* squared: no hypot for every body every substep */
+        const bool slow = dv_dot(v, v) <= vmax * vmax && fabs(w) <= d->sleep_angular_speed;
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
         bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
     }

@@ -71,8 +71,10 @@ static void set_anchor(const touch *old, const body *a, const body *b, const np_
     double now[3];
     relative_pose(a, b, now);
     bool keep = old && !(old->flags & TOUCH_UNANCHORED) && fabs(now[2] - old->anchor[2]) <= ANCHOR_TURN_RAD;
-    for (int32_t c = 0; keep && c < r->count; c++)
-        keep = dv_norm(touch_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y))) <= ANCHOR_SLIP_PX;
+    for (int32_t c = 0; keep && c < r->count; c++) {
+        const dvec2 slip = touch_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y));
+        keep = dv_dot(slip, slip) <= ANCHOR_SLIP_PX * ANCHOR_SLIP_PX;
+    }
     memcpy(t->anchor, keep ? old->anchor : now, sizeof now);
 }
 

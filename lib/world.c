@@ -530,11 +530,11 @@ static pp_status find_contacts(world *wd, int32_t substep, double *t_broad, doub
 /* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
  * pair's friction anchor (touch.c); Coulomb's bound still caps the force, so a sliding body slides.
  * Only QuickStep's stacks slip unasked (their solve stops short); an exact or lone-body solve does not. */
-static double anchor_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double h)
+static double anchor_speed(const world *wd, const body *a, const body *b, const touch *t, const pp_contact *c,
+                           double h)
 {
     if (wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_QUICK_STACK)
         return 0;
-    const touch *t = touch_find(wd, a->handle.id, b->handle.id);
     if (!t || handle_slot(t->a) != a->index)
         return 0;
     const dvec2 slip = touch_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
@@ -599,18 +599,22 @@ static int contact_span(const world *wd, const pp_contact *c)
 /* The joints of the contacts whose island advances `span` substeps of h / span s, in order or reversed. */
 static void add_span_joints(world *wd, int span, double h, bool reversed)
 {
+    const touch *t = NULL; /* the last pair's, found once for its points (they come together) */
+    uint64_t ta = 0, tb = 0;
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const int32_t i = reversed ? wd->contact_count - 1 - k : k;
         const pp_contact *c = &wd->contacts[i];
         if (contact_span(wd, c) != span)
             continue;
         const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
+        if (c->a.id != ta || c->b.id != tb)
+            t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id;
         const double e = fmax(a->restitution, b->restitution);
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
             sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, e),
-            anchor_speed(wd, a, b, c, h), closing_speed(wd, a, b, c, h, e),
+            anchor_speed(wd, a, b, t, c, h), closing_speed(wd, a, b, c, h, e),
         };
         solver_add_contact(wd->solver, &sc, i);
     }
