@@ -155,30 +155,40 @@ static void set_spans(world *wd, substep_pairing pairing)
     }
 }
 
-/* The stepped islands' bodies for solver_step, one list after another in wd->island_bodies: every body of
- * the exact islands (ODE wakes their sleepers), then QuickStep's awake bodies over h, over 2·h, and those
- * sitting out. */
+/* Which of solver_step's lists a node goes in (0 exact, 1 QuickStep over h, 2 over 2·h, 3 sitting out), or
+ * -1: asleep, or a QuickStep island's sleeper (ODE wakes it through its contact). */
+static int list_of(world *wd, int32_t i)
+{
+    const body *bd = wd->bodies[i];
+    if (wd->group[wd->group_capacity + world_group_root(wd->group, i)] >= 0)
+        return -1; /* the island's rows carry no awake mark: asleep */
+    if (wd->island_kind[i] == ISLAND_EXACT)
+        return 0;
+    if (!awake_mover(bd))
+        return -1;
+    return wd->island_span[i] == SPAN_ONE ? 1 : wd->island_span[i] == SPAN_TWO ? 2 : 3;
+}
+
+/* The stepped islands' bodies for solver_step, one list after another in wd->island_bodies, each in node
+ * order: every body of the exact islands (ODE wakes their sleepers), then QuickStep's awake bodies over h,
+ * over 2·h, and those sitting out. */
 static void list_islands(world *wd, solver_islands *out)
 {
-    int32_t *parent = wd->group;
-    const int32_t *rows = wd->group + wd->group_capacity;
-    solver_body **list = wd->island_bodies;
-    int32_t counts[4] = {0}, n_listed = 0;
-    for (int32_t pass = 0; pass < 4; pass++) {
-        for (int32_t n = 0; n < wd->node_count; n++) {
-            const int32_t i = wd->nodes[n];
-            body *bd = wd->bodies[i];
-            if (rows[world_group_root(parent, i)] >= 0)
-                continue; /* asleep */
-            const bool exact = wd->island_kind[i] == ISLAND_EXACT;
-            const int32_t which = exact ? 0 : wd->island_span[i] == SPAN_ONE ? 1 : wd->island_span[i] == SPAN_TWO ? 2 : 3;
-            if (which == pass && (exact || awake_mover(bd)))
-                list[n_listed + counts[pass]++] = &bd->sb;
-        }
-        n_listed += counts[pass];
+    int32_t counts[4] = {0}, filled[4] = {0};
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int which = list_of(wd, wd->nodes[n]);
+        if (which >= 0)
+            counts[which]++;
     }
-    *out = (solver_islands){list, counts[0], list + counts[0], counts[1], list + counts[0] + counts[1], counts[2],
-                            list + counts[0] + counts[1] + counts[2], counts[3]};
+    solver_body **start[4] = {wd->island_bodies};
+    for (int w = 1; w < 4; w++)
+        start[w] = start[w - 1] + counts[w - 1];
+    for (int32_t n = 0; n < wd->node_count; n++) {
+        const int which = list_of(wd, wd->nodes[n]);
+        if (which >= 0)
+            start[which][filled[which]++] = &wd->bodies[wd->nodes[n]]->sb;
+    }
+    *out = (solver_islands){start[0], counts[0], start[1], counts[1], start[2], counts[2], start[3], counts[3]};
 }
 
 pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
