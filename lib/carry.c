@@ -150,7 +150,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         const double bound = sits_out(wd, a) && sits_out(wd, b) ? CARRY_STACK_PX : CARRY_MOTION_PX;
         const bool slow = k == 0 && wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
-        const bool still = !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));
+        const bool still =
+            !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));
         if (k == 0 && !slow)
             strike(c, a), strike(c, b);
         if (!slow && !still)

@@ -651,7 +651,8 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
 }
 
 /* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved, nor has one
- * that sat the substep out), its speed clamped. PP_ERR_LIMIT for a pose or velocity past a float even so; the caller undoes the step. */
+ * that sat the substep out), its speed clamped. PP_ERR_LIMIT for a pose or velocity past a float even so;
+ * the caller undoes the step. */
 static pp_status sync_bodies(world *wd)
 {
     for (int32_t k = 0; k < wd->awake_count; k++) {
