@@ -111,7 +111,7 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/world_def_fields.h lib/handle.h \
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/def_fields.h lib/handle.h \
   include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
 	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lcjson -lm -lpthread
@@ -149,7 +149,7 @@ test-compile: | $(BUILD)/tests
 	@echo "public headers compile as C11 and C++17 with -Werror"
 
 # The API's one description, plugin/api/physpix_api.json: `make api` writes the bindings generated from it (the Python
-# ctypes mirror, the plugin's and the Godot adapter's method tables, the world def fields); check-api checks that they
+# ctypes mirror, the plugin's and the Godot adapter's method tables, the def fields); check-api checks that they
 # are current, that the description matches include/physpix.h and that every call reaches each host or says why not,
 # then runs the checker's own tests (tests/api). Standard-library Python only; -B keeps bytecode out of the tree.
 api:

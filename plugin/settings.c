@@ -1,9 +1,9 @@
 /* A world's settings as JSON text, the plugin's stand-in for a dictionary: the keys of a scene file's "world"
  * object ("preset" first, then any pp_world_def field by name), read into a def and written back. The field
- * list is generated from plugin/api/physpix_api.json (api/world_def_fields.h). The only plugin file with cJSON. */
+ * list is generated from plugin/api/physpix_api.json (api/def_fields.h). The only plugin file with cJSON. */
 #include "plugin.h"
 
-#include "api/world_def_fields.h"
+#include "api/def_fields.h"
 
 #include <cjson/cJSON.h>
 #include <float.h>

@@ -1,5 +1,5 @@
 """The files gen_api.py writes from the description: the Python ctypes mirror, the engine plugin's method tables,
-the Godot adapter's method table and the world def fields every host sets by name.
+the Godot adapter's method table and the def fields hosts set by name.
 
 A host method with "call" is regular: its wrapper is generated from the C signature (arguments after the world
 and, for PhysPixBody, the body become the method's, in order; one out-pointer, "out" or the only one, is the
@@ -295,30 +295,69 @@ def godot_header(desc):
     return "\n".join(out + ["static const method_def METHODS[] = {"] + rows + ["};", ""])
 
 
-# ---- world def fields -------------------------------------------------------------------------------------------
+# ---- def fields --------------------------------------------------------------------------------------------------
 
-_FIELD_KINDS = {"uint32_t": "BOOL", "int32_t": "INT", "float": "FLOAT", "pp_vec2": "VEC2"}
+# Kinds a C type decides alone; uint32_t (a flag, a bit mask or a count) needs its kind in "def_fields".
+_TYPE_KINDS = {"int32_t": "INT", "float": "FLOAT", "pp_vec2": "VEC2", "uint64_t": "ID", "pp_body": "ID"}
+_KINDS = ("BOOL", "INT", "FLOAT", "VEC2", "ENUM", "BITS", "ID")
 
 
-def world_fields_header(desc):
-    """plugin/api/world_def_fields.h: pp_world_def's settable fields, and the enums' lower-case names."""
-    rows, used = [], []
-    for name, ctype in desc["structs"]["pp_world_def"]:
-        if name == "struct_size":
+def def_field_rows(desc, struct):
+    """([(field, KIND, names)], problems) for one def of "def_fields": every field is given a kind or not_set."""
+    spec = desc["def_fields"][struct]
+    kinds, skipped = spec.get("kinds", {}), spec.get("not_set", {})
+    fields = [f for f, _ in desc["structs"][struct]]
+    where = f"\"def_fields\".\"{struct}\" of plugin/api/physpix_api.json"
+    rows, errors = [], []
+    errors += [f"{where} names {f}, which is no {struct} field" for f in list(kinds) + list(skipped) if f not in fields]
+    for name, ctype in desc["structs"][struct]:
+        if name in skipped:
+            if not str(skipped[name]).strip():
+                errors.append(f"{struct}.{name} is in \"not_set\" of {where} without a reason")
+            if name in kinds:
+                errors.append(f"{struct}.{name} is both in \"kinds\" and \"not_set\" of {where}")
             continue
-        if ctype in desc["enums"]:
-            rows.append(f"    X({name}, ENUM, {ctype}_names)")
-            used.append(ctype)
-        elif ctype in _FIELD_KINDS:
-            rows.append(f"    X({name}, {_FIELD_KINDS[ctype]}, NULL)")
+        kind = kinds.get(name) or ("ENUM" if ctype in desc["enums"] else _TYPE_KINDS.get(ctype))
+        if kind not in _KINDS:
+            errors.append(f"{struct}.{name} ({ctype}) is not classified: give it a kind ({', '.join(_KINDS)}) in "
+                          f"\"kinds\" or a reason in \"not_set\" of {where}" if kind is None else
+                          f"{struct}.{name}: {kind} is no kind ({', '.join(_KINDS)})")
+        elif kind == "ENUM" and ctype not in desc["enums"]:
+            errors.append(f"{struct}.{name}: ENUM but {ctype} is no described enum")
         else:
-            raise ValueError(f"pp_world_def.{name}: no field kind for {ctype}")
-    out = [f"/* The pp_world_def fields a host sets by name, and the names of enums' values. {BANNER}",
-           " * PP_WORLD_DEF_FIELDS(X) expands X(field, KIND, names) for every field but struct_size, in struct order:",
-           " * KIND is BOOL (a uint32_t flag), INT (int32_t), FLOAT, VEC2 or ENUM (a 32-bit enum whose values are named",
-           " * by the NULL-terminated names array, indexed by value; \"\" where no value is). */",
-           "#ifndef PP_API_WORLD_DEF_FIELDS_H", "#define PP_API_WORLD_DEF_FIELDS_H", "",
-           "#include <stddef.h>", "", "#define PP_WORLD_DEF_FIELDS(X) \\", " \\\n".join(rows), ""]
+            rows.append((name, kind, f"{ctype}_names" if kind == "ENUM" else "NULL"))
+    return rows, errors
+
+
+def check_def_fields(desc):
+    """Every def field of "def_fields" classified, as messages that say what to do."""
+    errors = [f"\"def_fields\" has {s}, which is no described struct" for s in desc["def_fields"]
+              if s != "about" and s not in desc["structs"]]
+    for struct in desc["def_fields"]:
+        if struct in desc["structs"]:
+            errors += def_field_rows(desc, struct)[1]
+    return errors
+
+
+def def_fields_header(desc):
+    """plugin/api/def_fields.h: the fields of each def in "def_fields" hosts set by name, and enums' names."""
+    out = [f"/* The def fields hosts set by name, and the names of enums' values. {BANNER}",
+           " * PP_<DEF>_FIELDS(X) expands X(field, KIND, names) for the def's fields in struct order, but those the",
+           " * description's \"def_fields\" lists as not set: KIND is BOOL (a uint32_t flag), BITS (a uint32_t mask),",
+           " * INT (32-bit), FLOAT, VEC2, ID (a 64-bit id: pp_body, user_data) or ENUM (a 32-bit enum whose values",
+           " * are named by the NULL-terminated names array, indexed by value; \"\" where no value is). */",
+           "#ifndef PP_API_DEF_FIELDS_H", "#define PP_API_DEF_FIELDS_H", "", "#include <stddef.h>", ""]
+    used = []
+    for struct, spec in desc["def_fields"].items():
+        if struct == "about":
+            continue
+        rows, errors = def_field_rows(desc, struct)
+        if errors:
+            raise ValueError("; ".join(errors))
+        hosts = " and ".join(spec["hosts"])
+        out += [f"/* {struct}: read by {hosts}. */", f"#define PP_{struct[3:].upper()}_FIELDS(X) \\",
+                " \\\n".join(f"    X({n}, {k}, {names})" for n, k, names in rows), ""]
+        used += [names[:-len("_names")] for _, _, names in rows if names != "NULL"]
     for enum in dict.fromkeys(used + desc["named_enums"]):
         names = ", ".join(_cstr(n) for n in _enum_names(desc["enums"][enum]))
         out.append(f"static const char *const {enum}_names[] = {{{names}, NULL}};")
@@ -329,7 +368,7 @@ GENERATED = {
     "plugin/python/physpix/_api.py": python_module,
     "plugin/classes_gen.h": plugin_header,
     "plugin/godot/methods_gen.h": godot_header,
-    "plugin/api/world_def_fields.h": world_fields_header,
+    "plugin/api/def_fields.h": def_fields_header,
 }
 
 

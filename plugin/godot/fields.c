@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "adapter.h"
-#include "../api/world_def_fields.h"
+#include "../api/def_fields.h"
 
 typedef enum field_kind { F_BOOL, F_FLOAT, F_INT, F_BITS, F_VEC2, F_ENUM, F_ID } field_kind;
 
@@ -17,59 +17,29 @@ typedef struct field {
     const char *const *names; /* F_ENUM: the enum's names by value */
 } field;
 
-/* pp_world_def's fields, and the enums' names, come from plugin/api/physpix_api.json (gen_api.py). */
-#define W(name, KIND, names) {#name, F_##KIND, offsetof(pp_world_def, name), names},
+/* The defs' fields, and the enums' names, come from plugin/api/physpix_api.json (gen_api.py); the fields a
+ * Dictionary must not set are listed there. set_field writes a kind's C type, so a field of another size is refused
+ * here. */
+enum { SIZE_BOOL = 4, SIZE_BITS = 4, SIZE_INT = 4, SIZE_FLOAT = 4, SIZE_ENUM = 4, SIZE_ID = 8, SIZE_VEC2 = 8 };
+#define ROW(def, name, KIND, names) {#name, F_##KIND, offsetof(def, name), names},
+#define SIZED(def, name, KIND) _Static_assert(sizeof(((def *)0)->name) == SIZE_##KIND, #def "." #name " is no " #KIND);
+#define W(name, KIND, names) ROW(pp_world_def, name, KIND, names)
+#define B(name, KIND, names) ROW(pp_body_def, name, KIND, names)
+#define J(name, KIND, names) ROW(pp_joint_def, name, KIND, names)
 static const field WORLD_FIELDS[] = {PP_WORLD_DEF_FIELDS(W)};
+static const field BODY_FIELDS[] = {PP_BODY_DEF_FIELDS(B)}; /* "collision_mask" and "weights": body_special */
+static const field JOINT_FIELDS[] = {PP_JOINT_DEF_FIELDS(J)}; /* bodies and user_data: ints, 0 the static world */
 #undef W
-
-/* "pivot" also sets custom_pivot, and "weights" (a plane) is read by body_special. */
-#define B(name, kind) {#name, kind, offsetof(pp_body_def, name), NULL}
-static const field BODY_FIELDS[] = {
-    B(angle, F_FLOAT),
-    B(pivot, F_VEC2),
-    B(linear_velocity, F_VEC2),
-    B(angular_velocity, F_FLOAT),
-    B(density, F_FLOAT),
-    B(friction, F_FLOAT),
-    B(restitution, F_FLOAT),
-    B(linear_damping, F_FLOAT),
-    B(angular_damping, F_FLOAT),
-    B(category_bits, F_BITS),
-    B(mask_bits, F_BITS),
-    B(fixed_rotation, F_BOOL),
-    B(alpha_threshold, F_INT),
-    B(detach_islands, F_BOOL),
-    B(bullet, F_BOOL),
-    B(is_sensor, F_BOOL),
-    B(one_way, F_BOOL),
-    B(one_way_direction, F_VEC2),
-    B(user_data, F_ID),
-};
 #undef B
-
-/* "type" was read first. Bodies and user_data are ints: a body's id, 0 the static world. */
-#define J(name, kind) {#name, kind, offsetof(pp_joint_def, name), NULL}
-static const field JOINT_FIELDS[] = {
-    J(body_a, F_ID),
-    J(body_b, F_ID),
-    J(anchor_a, F_VEC2),
-    J(anchor_b, F_VEC2),
-    J(axis, F_VEC2),
-    J(collide_connected, F_BOOL),
-    J(enable_limit, F_BOOL),
-    J(lower, F_FLOAT),
-    J(upper, F_FLOAT),
-    J(enable_motor, F_BOOL),
-    J(motor_speed, F_FLOAT),
-    J(max_motor_force, F_FLOAT),
-    J(min_length, F_FLOAT),
-    J(max_length, F_FLOAT),
-    J(spring_hertz, F_FLOAT),
-    J(spring_damping_ratio, F_FLOAT),
-    J(max_force, F_FLOAT),
-    J(break_force, F_FLOAT),
-    J(user_data, F_ID),
-};
+#undef J
+#define W(name, KIND, names) SIZED(pp_world_def, name, KIND)
+#define B(name, KIND, names) SIZED(pp_body_def, name, KIND)
+#define J(name, KIND, names) SIZED(pp_joint_def, name, KIND)
+PP_WORLD_DEF_FIELDS(W)
+PP_BODY_DEF_FIELDS(B)
+PP_JOINT_DEF_FIELDS(J)
+#undef W
+#undef B
 #undef J
 
 static const char *kind_name(field_kind k)

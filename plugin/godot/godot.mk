@@ -20,7 +20,7 @@ godot-api:
 	$(PYTHON) plugin/godot/gen_gdnative_api.py $(GODOT_API_JSON) $(GODOT_API_H) --ext nativescript
 
 # Exports only the three godot_* entry points; finds libphyspix.so.0 beside itself ($ORIGIN).
-$(GODOT_LIB): $(GODOT_SRC) $(wildcard plugin/godot/*.h) plugin/api/world_def_fields.h include/physpix.h $(SHARED)
+$(GODOT_LIB): $(GODOT_SRC) $(wildcard plugin/godot/*.h) plugin/api/def_fields.h include/physpix.h $(SHARED)
 	$(CC) $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden $(USER_CFLAGS) -shared -Wl,--no-undefined \
 	  -o $@ $(GODOT_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN'
 

@@ -1,7 +1,8 @@
 """plugin/api/gen_api.py --check catches drift: a call, a field or an enum value added to the header without being
-described, an argument whose type changed, a generated file left stale, a function that reaches no host, and a
-function listed as not exposed that a host uses. Each case runs the checker on a changed copy in a temporary folder
-and asserts the message; the committed tree itself passes. Standard library only (make check-api runs it)."""
+described, an argument whose type changed, a def field with neither a kind nor a reason not to be set, a generated
+file left stale, a function that reaches no host, and a function listed as not exposed that a host uses. Each case
+runs the checker on a changed copy in a temporary folder and asserts the message; the committed tree itself passes.
+Standard library only (make check-api runs it)."""
 import contextlib
 import io
 import json
@@ -17,6 +18,7 @@ import gen_api  # noqa: E402
 
 HEADER = ROOT / "include" / "physpix.h"
 DESCRIPTION = ROOT / "plugin" / "api" / "physpix_api.json"
+LAST_BODY_FIELD = "    pp_vec2 one_way_direction;"
 
 
 def run_check(header=HEADER, description=DESCRIPTION):
@@ -74,6 +76,23 @@ class Drift(unittest.TestCase):
     def test_a_field_dropped_from_the_description_is_named(self):
         description = self.description_with(lambda d: d["structs"]["pp_body_def"].pop())
         self.assert_fails_saying("pp_body_def.one_way_direction (pp_vec2) is in", description=description)
+
+    def test_a_body_def_field_described_but_not_classified_is_named(self):
+        header = self.header_with(LAST_BODY_FIELD, LAST_BODY_FIELD + "\n    uint32_t sticky;")
+
+        def change(d):
+            d["structs"]["pp_body_def"].append(["sticky", "uint32_t"])
+        self.assert_fails_saying("pp_body_def.sticky (uint32_t) is not classified: give it a kind",
+                                 header=header, description=self.description_with(change))
+
+    def test_a_body_def_field_added_to_the_header_alone_is_named(self):
+        header = self.header_with(LAST_BODY_FIELD, LAST_BODY_FIELD + "\n    uint32_t sticky;")
+        self.assert_fails_saying("pp_body_def.sticky (uint32_t) is in", header=header)
+
+    def test_a_def_field_not_set_without_a_reason_is_named(self):
+        def change(d):
+            d["def_fields"]["pp_joint_def"]["not_set"]["reserved"] = ""
+        self.assert_fails_saying("pp_joint_def.reserved is in \"not_set\"", description=self.description_with(change))
 
     def test_an_enum_value_added_to_the_header_alone_is_named(self):
         header = self.header_with("    PP_BACKEND_GPU = 2,", "    PP_BACKEND_GPU = 2,\n    PP_BACKEND_VULKAN = 3,")
