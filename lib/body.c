@@ -329,6 +329,7 @@ void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotat
         (void)solver_body_create(wd->solver, &desc, &bd->sb); /* ODE's creation cannot fail */
     }
     bd->slow_time = 0;
+    carry_forget(wd, bd->index); /* a static body, now moving, or the reverse: its pairs are collided anew */
     bd->serial = wd->next_serial++; /* ODE's newest body: a snapshot remakes it last too */
     joint_body_changed(wd, bd);
     awake_add(wd, bd); /* the broadphase hears of the new type */
@@ -341,6 +342,7 @@ void body_remove(world *wd, body *bd)
     joint_body_removed(wd, bd);
     awake_forget(wd, bd);
     forces_forget(wd, bd);
+    carry_forget(wd, slot);
     wd->touch_body_gone = true;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;

@@ -1,4 +1,4 @@
-/* Contacts carried through a step's substeps (carry.h). */
+/* Contacts carried through a step's substeps, and held from step to step (carry.h). */
 #include "carry.h"
 #include "alloc.h"
 #include "island.h"
@@ -100,15 +100,14 @@ static void keep_from(carry *c, int32_t k, bool added)
     c->pair_count = n;
     for (int32_t i = 0; i < n; i++)
         c->by_slots[i] = (carried_key){key_of(c->pairs[i].a, c->pairs[i].b), i};
-    qsort(c->by_slots, (size_t)n, sizeof *c->by_slots, key_cmp);
+    if (n > 0)
+        qsort(c->by_slots, (size_t)n, sizeof *c->by_slots, key_cmp);
 }
 
 /* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    c->contact_count = c->pair_count = 0;
-    c->active = false;
     const int32_t had = c->struck_capacity;
     pp_status st =
         world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
@@ -126,9 +125,6 @@ static pp_status start_step(world *wd)
 pp_status carry_record(world *wd, double dt, int32_t k)
 {
     carry *c = &wd->carry;
-    pp_status st = k == 0 ? start_step(wd) : PP_OK;
-    if (st)
-        return st;
     keep_from(c, k, false);
     const int32_t n = wd->contact_count, pairs_before = c->pair_count;
     if (n == 0)
@@ -147,7 +143,14 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
          * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
          * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
-        const double bound = sits_out(wd, a) && sits_out(wd, b) ? CARRY_STACK_PX : CARRY_MOTION_PX;
+        const bool stack = sits_out(wd, a) && sits_out(wd, b);
+        carried_pair *held = k == 0 ? find_pair(c, pairs_before, sa, sb) : NULL;
+        if (held) { /* held from the steps before: no longer a stack's, it is collided from the next substep */
+            if (held->stack && !stack)
+                held->last = 0;
+            continue;
+        }
+        const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
         const bool slow = k == 0 && wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
         const bool still =
@@ -156,8 +159,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
             strike(c, a), strike(c, b);
         if (!slow && !still)
             continue;
-        c->pairs[c->pair_count++] = (carried_pair){sa, sb, c->contact_count, end - i,
-                                                   slow ? wd->def.substeps - 1 : k + 1, false};
+        c->pairs[c->pair_count++] = (carried_pair){
+            sa, sb, c->contact_count, end - i, slow ? wd->def.substeps - 1 : k + 1, false, false, slow, stack};
         const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
         for (int32_t j = i; j < end; j++)
             c->contacts[c->contact_count++] =
@@ -172,9 +175,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
 bool carry_claim(world *wd, uint32_t a, uint32_t b)
 {
     carry *c = &wd->carry;
-    if (c->substep == 0)
-        return false;
-    const bool still = sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
+    /* At a step's first substep only held pairs are carried: nothing sat the substep before out. */
+    const bool still = c->substep > 0 && sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
     carried_pair *p = c->active ? find_pair(c, c->pair_count, a, b) : NULL;
     /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
      * bodies were pushed nowhere. */
@@ -182,6 +184,8 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
         p->claimed = true;
         return true;
     }
+    if (p && p->last >= c->substep)
+        p->missed = true;
     return still; /* then it made no contact last substep, and nothing has moved since */
 }
 
@@ -218,7 +222,7 @@ static void move_pair(const world *wd, const carried_pair *p, np_result *r)
 void carry_strike(world *wd)
 {
     carry *c = &wd->carry;
-    if (!c->active)
+    if (!c->active || c->substep == 0) /* at the first substep carry_record strikes */
         return;
     for (int32_t i = 0; i < wd->contact_count; i++)
         strike(c, body_of(wd, wd->contacts[i].a)), strike(c, body_of(wd, wd->contacts[i].b));
@@ -254,15 +258,110 @@ pp_status carry_push(world *wd)
     return PP_OK;
 }
 
-void carry_begin(world *wd, int32_t k)
+/* Whether a held pair stays within its bound through a step of dt s: its points' motion against each other
+ * since the raster found them, plus what the bodies' velocities add this step; neither body turned past
+ * CARRY_TURN_RAD since. */
+static bool still_held(const world *wd, const carried_pair *p, const void *step_dt)
+{
+    const double dt = *(const double *)step_dt;
+    const double bound = p->stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
+    const carried_contact *cc = &wd->carry.contacts[p->first];
+    const body *a = body_find(wd, cc->c.a), *b = body_find(wd, cc->c.b);
+    if (!a || !b)
+        return false;
+    const double max_sin = sin(CARRY_TURN_RAD);
+    if (fabs(a->sin_a * cc->cos_a - a->cos_a * cc->sin_a) > max_sin || a->cos_a * cc->cos_a + a->sin_a * cc->sin_a < 0 ||
+        fabs(b->sin_a * cc->cos_b - b->cos_a * cc->sin_b) > max_sin || b->cos_a * cc->cos_b + b->sin_a * cc->sin_b < 0)
+        return false;
+    double drift = 0;
+    for (int32_t k = 0; k < p->count; k++, cc++) {
+        const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y);
+        const dvec2 d = dv_sub(moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0), moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0));
+        drift = fmax(drift, dv_dot(d, d));
+    }
+    drift = sqrt(drift);
+    return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);
+}
+
+/* Keep the pairs for which keep(…, arg) holds, in order, their contacts packed; then sort their keys. */
+static void keep_pairs(world *wd, bool (*keep)(const world *, const carried_pair *, const void *), const void *arg)
+{
+    carry *c = &wd->carry;
+    int32_t n = 0, m = 0;
+    for (int32_t i = 0; i < c->pair_count; i++) {
+        carried_pair p = c->pairs[i];
+        if (!keep(wd, &p, arg))
+            continue;
+        memmove(&c->contacts[m], &c->contacts[p.first], (size_t)p.count * sizeof *c->contacts);
+        p.first = m, m += p.count;
+        c->pairs[n++] = p;
+    }
+    c->pair_count = n, c->contact_count = m;
+    keep_from(c, 0, true);
+}
+
+pp_status carry_begin(world *wd, int32_t k, double dt)
 {
     carry *c = &wd->carry;
     c->substep = k;
-    if (k == 0)
-        c->active = false;
+    if (k == 0) {
+        pp_status st = start_step(wd);
+        if (st)
+            return st;
+        keep_pairs(wd, still_held, &dt);
+        c->active = c->pair_count > 0;
+    }
     for (int32_t i = 0; i < c->pair_count; i++)
         c->pairs[i].claimed = false;
+    return PP_OK;
 }
+
+/* Carried through the whole step and never collided: the raster's contacts, moved. */
+static bool to_hold(const world *wd, const carried_pair *p, const void *unused)
+{
+    return p->held && p->last == wd->def.substeps - 1 && p->claimed && !p->missed;
+}
+
+void carry_end_step(world *wd)
+{
+    keep_pairs(wd, to_hold, NULL);
+    wd->carry.active = false;
+}
+
+pp_status carry_save(world *wd)
+{
+    carry *c = &wd->carry;
+    if (!world_room((void **)&c->saved_pairs, c->pair_count, &c->saved_pair_capacity, sizeof *c->saved_pairs) ||
+        !world_room((void **)&c->saved_contacts, c->contact_count, &c->saved_contact_capacity,
+                    sizeof *c->saved_contacts))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d held pairs", (int)c->pair_count);
+    if (c->pair_count > 0) {
+        memcpy(c->saved_pairs, c->pairs, (size_t)c->pair_count * sizeof *c->pairs);
+        memcpy(c->saved_contacts, c->contacts, (size_t)c->contact_count * sizeof *c->contacts);
+    }
+    c->saved_pair_count = c->pair_count, c->saved_contact_count = c->contact_count;
+    return PP_OK;
+}
+
+void carry_restore(world *wd)
+{
+    carry *c = &wd->carry;
+    /* The arrays only grow, and they held these counts when they were saved. */
+    PP_ASSERT(c->saved_pair_count <= c->pair_capacity && c->saved_contact_count <= c->contact_capacity);
+    if (c->saved_pair_count > 0) {
+        memcpy(c->pairs, c->saved_pairs, (size_t)c->saved_pair_count * sizeof *c->pairs);
+        memcpy(c->contacts, c->saved_contacts, (size_t)c->saved_contact_count * sizeof *c->contacts);
+    }
+    c->pair_count = c->saved_pair_count, c->contact_count = c->saved_contact_count;
+    c->active = false;
+}
+
+static bool not_of(const world *wd, const carried_pair *p, const void *slot)
+{
+    return p->a != *(const uint32_t *)slot && p->b != *(const uint32_t *)slot;
+}
+
+void carry_forget(world *wd, uint32_t slot) { keep_pairs(wd, not_of, &slot); }
 
 void carry_free(carry *c)
 {
@@ -270,4 +369,6 @@ void carry_free(carry *c)
     pp_free(c->contacts);
     pp_free(c->pairs);
     pp_free(c->by_slots);
+    pp_free(c->saved_pairs);
+    pp_free(c->saved_contacts);
 }

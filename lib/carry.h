@@ -1,4 +1,5 @@
-/* Contacts carried through a step's substeps. The raster narrowphase runs at a step's first substep;
+/* Contacts carried through a step's substeps, and resting pairs' from step to step. The raster narrowphase
+ * runs at a step's first substep;
  * each later substep moves a touching pair's points with its two bodies and its depths along the
  * (fixed) normals by their relative motion, as Box2D's substeps do, instead of colliding the rasters
  * again. Pairs that move fast against each other, round bodies and islands the exact solver takes are
@@ -6,7 +7,11 @@
  * body that lands mid-step is caught at the substep it lands in.
  * A pair whose bodies sat a substep out (island.h: QuickStep stacks solve every other substep) is where it
  * was, so its contacts are carried into the next substep too, however fast it moves: the raster would
- * find the same ones. */
+ * find the same ones.
+ * A resting pair carried through a whole step is held into the next ones (it is not collided at their first
+ * substeps either) for as long as its points move under a bound against each other since the raster found
+ * them, counting the step ahead, and neither body is edited, retyped or removed: a settled pile is collided
+ * once, not once a step. Held pairs are world state: snapshots save them and a failed step puts them back. */
 #ifndef PP_CARRY_H
 #define PP_CARRY_H
 
@@ -31,6 +36,9 @@ typedef struct carried_pair {
     int32_t first, count;        /* in carry.contacts */
     int32_t last;                /* the last substep (0 = the step's first) it is carried into */
     bool claimed;                /* the substep's broadphase still pairs them */
+    bool missed;                 /* collided at a substep it was carried into */
+    bool held;                   /* resting at the substep that found it: may be held into later steps */
+    bool stack;                  /* its bodies sat that substep out: bound CARRY_STACK_PX, else CARRY_MOTION_PX */
 } carried_pair;
 
 typedef struct carried_key {
@@ -44,6 +52,9 @@ typedef struct carry {
     carried_pair *pairs;         /* in the order the first substep found them */
     int32_t pair_count, pair_capacity;
     carried_key *by_slots;       /* the pairs sorted by their slots, for carry_claim */
+    carried_contact *saved_contacts; /* the held pairs as the step found them, put back if it fails */
+    carried_pair *saved_pairs;
+    int32_t saved_contact_count, saved_contact_capacity, saved_pair_count, saved_pair_capacity;
     int32_t by_slots_capacity;
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
@@ -64,8 +75,16 @@ bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 void carry_strike(struct world *wd);
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through touch_pair. */
 pp_status carry_push(struct world *wd);
-/* At substep k's start: no pair is claimed yet (and at the step's first, none is carried). */
-void carry_begin(struct world *wd, int32_t k);
+/* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that
+ * stay within their bound through this step are carried into it, the rest dropped. */
+pp_status carry_begin(struct world *wd, int32_t k, double dt);
+/* After a step's last substep: keep the pairs to hold (carried through it, never collided) and drop the rest. */
+void carry_end_step(struct world *wd);
+/* Before a step changes the held pairs, a copy; carry_restore puts it back (cannot fail). */
+pp_status carry_save(struct world *wd);
+void carry_restore(struct world *wd);
+/* Drop the held pairs of the body in this slot: its pixels, type or existence changed outside a step. */
+void carry_forget(struct world *wd, uint32_t slot);
 void carry_free(carry *c);
 
 #endif

@@ -156,6 +156,7 @@ static void job_commit(world *wd, edit_job *j)
     if (e->changed == 0)
         return;
     raster_edit_done(&bd->raster, e->y0, e->y1);
+    carry_forget(wd, bd->index); /* its held contacts are the old pixels' */
     body_update_pose_cache(bd);
     awake_add(wd, bd); /* new bounds, even for a static body */
     wake_around(wd, edited_region(bd, e));

@@ -329,6 +329,39 @@ static bool write_touching(const world *wd, cJSON *root)
     return ok && add(root, "touching", arr);
 }
 
+/* A held pair's contact as 15 numbers: point, normal, depth, pixel count, impulse, then both bodies' centres of
+ * mass and rotations when the raster found it. */
+enum { HELD_NUMBERS = 15 };
+
+/* The pairs held from step to step (carry.h), in their order: the next step carries them uncollided. */
+static bool write_held(const world *wd, cJSON *root)
+{
+    const carry *c = &wd->carry;
+    cJSON *arr = cJSON_CreateArray();
+    bool ok = arr != NULL;
+    for (int32_t i = 0; ok && i < c->pair_count; i++) {
+        const carried_pair *p = &c->pairs[i];
+        const carried_contact *first = &c->contacts[p->first];
+        cJSON *e = cJSON_CreateObject(), *points = cJSON_CreateArray();
+        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(first->c.a.id))) &&
+             add(e, "b", json_handle(handle_saved(first->c.b.id))) && add(e, "stack", cJSON_CreateBool(p->stack)) &&
+             add(e, "contacts", points);
+        for (int32_t k = 0; ok && k < p->count; k++) {
+            const carried_contact *cc = &first[k];
+            const double v[HELD_NUMBERS] = {cc->c.point.x, cc->c.point.y, cc->c.normal.x, cc->c.normal.y, cc->c.depth,
+                                            cc->c.pixel_count, cc->c.normal_impulse, cc->com_a.x, cc->com_a.y,
+                                            cc->com_b.x, cc->com_b.y, cc->cos_a, cc->sin_a, cc->cos_b, cc->sin_b};
+            cJSON *nums = json_doubles(v, HELD_NUMBERS);
+            ok = nums && cJSON_AddItemToArray(points, nums);
+            if (!ok)
+                cJSON_Delete(nums);
+        }
+    }
+    if (!ok)
+        cJSON_Delete(arr);
+    return ok && add(root, "held", arr);
+}
+
 /* Whether world.json can hold every number (JSON has no inf or NaN) and the loader would take it back (its
  * poses, velocities and event points are within ±FLT_MAX); PP_ERR_LIMIT naming the first that is not. */
 static pp_status check_savable(const world *wd)
@@ -380,7 +413,8 @@ static pp_status write_world(const save_dir *dir, const world *wd, cJSON *root)
               add(root, "time", json_number(wd->time, false)) &&
               add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
-              write_edits_and_events(wd, root) && write_touching(wd, root) && write_joints(wd, root);
+              write_edits_and_events(wd, root) && write_touching(wd, root) && write_held(wd, root) &&
+              write_joints(wd, root);
     body **live = ok ? pp_malloc(((size_t)wd->live_count + 1) * sizeof *live) : NULL;
     cJSON *arr = live ? cJSON_CreateArray() : NULL;
     if (!live || !add(root, "bodies", arr)) {
@@ -641,7 +675,7 @@ static const char *const state_keys[] = {"pose", "user_data", "slow_time", "ode"
 static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *where, world *wd, body *bd)
 {
     const cJSON *state;
-    char at[48];
+    char at[64];
     snprintf(at, sizeof at, "%s.state", where);
     pp_status st = read_section(c, obj, where, "state", false, &state);
     if (!st && !state)
@@ -828,6 +862,101 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     return PP_OK;
 }
 
+/* One held pair's contacts, in order, into the carry's arrays (room made). */
+static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, const char *where, world *wd,
+                                       pp_body a, pp_body b)
+{
+    carry *cy = &wd->carry;
+    int32_t k = 0;
+    char at[64];
+    for (const cJSON *it = arr->child; it; it = it->next, k++) {
+        snprintf(at, sizeof at, "%s.contacts[%d]", where, (int)k);
+        double v[HELD_NUMBERS];
+        bool ok = cJSON_IsArray(it) && cJSON_GetArraySize(it) == HELD_NUMBERS;
+        for (int i = 0; ok && i < HELD_NUMBERS; i++) {
+            const cJSON *x = cJSON_GetArrayItem(it, i);
+            ok = cJSON_IsNumber(x) && fabs(x->valuedouble) <= FLT_MAX;
+            v[i] = ok ? x->valuedouble : 0;
+        }
+        /* A unit normal, a count of pixels, rotations as cosines and sines: anything else is no saved contact. */
+        ok = ok && fabs(hypot(v[2], v[3]) - 1) < 1e-3 && v[5] >= 0 && v[5] <= INT32_MAX && v[5] == floor(v[5]) &&
+             fabs(hypot(v[11], v[12]) - 1) < 1e-6 && fabs(hypot(v[13], v[14]) - 1) < 1e-6;
+        if (!ok)
+            return json_fail(c, PP_ERR_FORMAT, at, NULL,
+                             "expected %d finite numbers: point, unit normal, depth, pixel count, impulse, two centres "
+                             "of mass, two (cos, sin) pairs",
+                             HELD_NUMBERS);
+        carried_contact *cc = &cy->contacts[cy->contact_count++];
+        cc->c = (pp_contact){a, b, {(float)v[0], (float)v[1]}, {(float)v[2], (float)v[3]}, (float)v[4],
+                             (int32_t)v[5], (float)v[6], 0};
+        cc->com_a = dv(v[7], v[8]), cc->com_b = dv(v[9], v[10]);
+        cc->cos_a = v[11], cc->sin_a = v[12], cc->cos_b = v[13], cc->sin_b = v[14];
+    }
+    return PP_OK;
+}
+
+static int by_held_slots(const void *x, const void *y)
+{
+    const uint64_t p = ((const carried_key *)x)->slots, q = ((const carried_key *)y)->slots;
+    return p < q ? -1 : p > q;
+}
+
+/* The held pairs; absent in snapshots from before pairs were held from step to step. */
+static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
+{
+    static const char *const keys[] = {"a", "b", "stack", "contacts", NULL};
+    const cJSON *arr;
+    pp_status st = read_section(c, root, "", "held", true, &arr);
+    const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
+    if (st || n == 0)
+        return st;
+    carry *cy = &wd->carry;
+    if (!world_room((void **)&cy->pairs, n, &cy->pair_capacity, sizeof *cy->pairs) ||
+        !world_room((void **)&cy->by_slots, n, &cy->by_slots_capacity, sizeof *cy->by_slots))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
+    char where[32];
+    int32_t i = 0;
+    for (const cJSON *it = arr->child; it && st == PP_OK; it = it->next, i++) {
+        snprintf(where, sizeof where, "held[%d]", (int)i);
+        uint64_t a = 0, b = 0;
+        const cJSON *stack = cJSON_GetObjectItemCaseSensitive(it, "stack");
+        const cJSON *points = cJSON_GetObjectItemCaseSensitive(it, "contacts");
+        if ((st = check_keys(c, it, where, NULL, keys)) || (st = read_body_handle(c, it, where, "a", false, wd, &a)) ||
+            (st = read_body_handle(c, it, where, "b", false, wd, &b)))
+            break;
+        if (!body_find(wd, (pp_body){a}) || !body_find(wd, (pp_body){b}) || handle_slot(a) >= handle_slot(b))
+            st = json_fail(c, PP_ERR_FORMAT, where, "a", "expected two live bodies, a in the lower slot");
+        else if (!cJSON_IsBool(stack))
+            st = json_fail(c, PP_ERR_FORMAT, where, "stack", "expected true or false");
+        else if (!cJSON_IsArray(points) || cJSON_GetArraySize(points) < 1 ||
+                 cJSON_GetArraySize(points) > PP_MAX_CONTACTS_PER_PAIR)
+            st = json_fail(c, PP_ERR_FORMAT, where, "contacts", "expected 1 to %d contacts", PP_MAX_CONTACTS_PER_PAIR);
+        if (st)
+            break;
+        const int32_t first = cy->contact_count;
+        if (!world_room((void **)&cy->contacts, first + cJSON_GetArraySize(points), &cy->contact_capacity,
+                        sizeof *cy->contacts)) {
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
+            break;
+        }
+        if ((st = restore_held_contacts(c, points, where, wd, (pp_body){a}, (pp_body){b})))
+            break;
+        cy->pairs[cy->pair_count++] = (carried_pair){handle_slot(a), handle_slot(b), first, cy->contact_count - first,
+                                                     (int32_t)wd->def.substeps - 1, false, false, true,
+                                                     cJSON_IsTrue(stack)};
+    }
+    for (int32_t k = 0; !st && k < cy->pair_count; k++) /* carry.c finds a pair by its slots: once each */
+        cy->by_slots[k] = (carried_key){(uint64_t)cy->pairs[k].a << 32 | cy->pairs[k].b, k};
+    if (!st)
+        qsort(cy->by_slots, (size_t)cy->pair_count, sizeof *cy->by_slots, by_held_slots);
+    for (int32_t k = 1; !st && k < cy->pair_count; k++)
+        if (cy->by_slots[k].slots == cy->by_slots[k - 1].slots)
+            st = json_fail(c, PP_ERR_FORMAT, "held", NULL, "a pair is held twice");
+    if (st)
+        cy->pair_count = cy->contact_count = 0;
+    return st;
+}
+
 /* One joint as write_joint saved it, into its slot of the restored table; attach_order counts the file's order. */
 static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *where, world *wd, uint64_t order)
 {
@@ -920,7 +1049,7 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
         (st = read_required_int(c, root, "", "next_serial", 0, JSON_MAX_EXACT_INT, &serial)) ||
         (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = restore_free_list(c, root, wd)) ||
         (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)) || (st = restore_touching(c, root, wd)) ||
-        (st = restore_joints(c, root, wd)))
+        (st = restore_held(c, root, wd)) || (st = restore_joints(c, root, wd)))
         return st;
     solver_set_steps(wd->solver, (uint64_t)steps);
     wd->next_serial = (uint64_t)serial;
@@ -930,7 +1059,7 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
 static pp_status build_snapshot(const json_ctx *c, const cJSON *root, pp_world *out)
 {
     static const char *const top_keys[] = {"format", "version", "world", "camera", "time", "solver_steps", "next_serial",
-                                           "generations", "free_slots", "edits", "events", "touching", "bodies",
+                                           "generations", "free_slots", "edits", "events", "touching", "held", "bodies",
                                            "joint_generations", "joint_free_slots", "joints", NULL};
     if (!cJSON_IsObject(root))
         return json_fail(c, PP_ERR_FORMAT, "(root)", NULL, "expected an object");

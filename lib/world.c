@@ -469,15 +469,14 @@ static void touch_round(const world *wd, const body *a, const body *b, np_result
 }
 
 /* Broadphase and narrowphase at the current poses of `substep`; fills wd->contacts. At a step's first
- * substep every pair is collided and resting pairs' contacts are carried through the later ones, as are a
- * pair's whose bodies sat a substep out into the next (carry.h). */
-static pp_status find_contacts(world *wd, int32_t substep, double *t_broad, double *t_narrow)
+ * substep every pair is collided but the held ones, and resting pairs' contacts are carried through the later
+ * ones, as are a pair's whose bodies sat a substep out into the next (carry.h). */
+static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_broad, double *t_narrow)
 {
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
-    carry_begin(wd, substep);
-    pp_status st = awake_refresh(wd);
-    if (st)
+    pp_status st = carry_begin(wd, substep, dt);
+    if (st || (st = awake_refresh(wd)))
         return st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     if (wd->awake_movers > 0)
@@ -805,7 +804,7 @@ static pp_status step_save(world *wd)
     u->event_count = wd->event_count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
-    return PP_OK;
+    return carry_save(wd);
 }
 
 pp_status world_save_touching(world *wd, bool resting)
@@ -879,6 +878,7 @@ static void step_restore(world *wd)
         u->resting = list, u->resting_capacity = cap;
     }
     wd->event_count = u->event_count;
+    carry_restore(wd);
     awake_rebuild(wd); /* poses and sleep came back behind the set's back */
 }
 
@@ -888,7 +888,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
     const double h = (double)dt / wd->def.substeps;
     bool still = false; /* nothing moved, woke or slept in the substep before: its contacts stand */
     for (int32_t k = 0; k < wd->def.substeps; k++) {
-        pp_status st = still ? PP_OK : find_contacts(wd, k, t_broad, t_narrow);
+        pp_status st = still ? PP_OK : find_contacts(wd, k, dt, t_broad, t_narrow);
         if (st)
             return st;
         const double t0 = now_ms();
@@ -924,6 +924,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         still &= !island_sleep(wd, h);
         *t_solver += now_ms() - t0;
     }
+    carry_end_step(wd);
     return PP_OK;
 }
 

@@ -278,4 +278,22 @@ static inline pp_world snapshot_round_trip(pp_world w) {
     return back;
 }
 
+/* Replace the first `from` in a snapshot folder's world.json by `to`. */
+static inline void patch_json(const char *snap, const char *from, const char *to) {
+    char path[160];
+    snprintf(path, sizeof path, "%s/world.json", snap);
+    static char text[1 << 20], out[1 << 20];
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot open %s", path);
+    const size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    char *at = strstr(text, from);
+    cr_assert_not_null(at, "'%s' not in world.json", from);
+    snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    f = fopen(path, "wb");
+    fputs(out, f);
+    fclose(f);
+}
+
 #endif /* PHYSPIX_TEST_HELPERS_H */

@@ -64,3 +64,115 @@ Test(carry, carried_contacts_hold_a_quickstep_tower_at_its_resting_height)
     }
     pp_world_destroy(w);
 }
+
+/* Steps w until a step tests no raster sample (its pairs are held), at most 240 steps; how many it took. */
+static int step_until_held(pp_world w)
+{
+    for (int k = 1; k <= 240; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        if (pixels_tested(w) == 0)
+            return k;
+    }
+    cr_assert_fail("the pile was still collided after 240 steps");
+    return 0;
+}
+
+Test(carry, a_settled_pile_is_collided_once_not_once_a_step)
+{
+    /* Resting pairs are held from step to step: after the towers settle, whole steps test nothing, and the
+     * towers stand as when collided every step (the resting-height test above). */
+    pp_world w = towers(4);
+    step_n(w, DT, 120);
+    int idle = 0;
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        idle += pixels_tested(w) == 0;
+        pp_step_stats s;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
+        cr_assert_eq(s.contacts, 20, "step %d: %d contacts (10 pairs of two points)", k, (int)s.contacts);
+    }
+    cr_assert_geq(idle, 50, "only %d of 60 settled steps tested no raster sample", idle);
+    pp_body bodies[11];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 11, &n));
+    for (int t = 0; t < 2; t++) {
+        const float sink = body_pos(w, bodies[5 + 5 * t]).y - (GROUND_TOP - 4 * 16 - 8);
+        cr_assert(sink >= 0 && sink <= 5, "tower %d's top box sank %g px", t, sink);
+    }
+    pp_world_destroy(w);
+}
+
+/* A 16 px box resting on a 64 px static block on the ground; the pair held. */
+static pp_world box_on_block(pp_body *block, pp_body *box)
+{
+    pp_world w = quickstep_world(4, GROUND_TOP);
+    *block = add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP - 100, 0), 64, 16);
+    *box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 116, 0), 16, 16);
+    step_until_held(w);
+    return w;
+}
+
+Test(carry, a_held_pair_is_dropped_when_its_pixels_or_pose_change)
+{
+    /* Held contacts would hold the box in the air: an edit or a move of the block must drop them. */
+    for (int how = 0; how < 3; how++) {
+        pp_body block, box;
+        pp_world w = box_on_block(&block, &box);
+        const float rest = body_pos(w, box).y;
+        if (how == 0) /* erase the block's middle, under the box */
+            PP_OK_OR_FAIL(pp_body_erase_circle(w, block, v2(400, GROUND_TOP - 100), 20, NULL));
+        else if (how == 1) /* move the block 40 px down */
+            PP_OK_OR_FAIL(pp_body_set_transform(w, block, v2(400, GROUND_TOP - 60), 0));
+        else /* destroy it */
+            PP_OK_OR_FAIL(pp_body_destroy(w, block));
+        step_n(w, DT, 10);
+        const float fell = body_pos(w, box).y - rest;
+        cr_assert_gt(fell, 5.0f, "case %d: the box fell %g px in 10 steps", how, fell);
+        pp_world_destroy(w);
+    }
+}
+
+Test(carry, a_snapshot_keeps_the_held_pairs)
+{
+    /* The loaded world carries the same held pairs uncollided, and goes on bit for bit. */
+    pp_world w = towers(4);
+    step_until_held(w);
+    pp_world back = snapshot_round_trip(w);
+    for (int k = 0; k < 30; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        PP_OK_OR_FAIL(pp_world_step(back, DT));
+        cr_assert_eq(pixels_tested(back), pixels_tested(w), "step %d", k);
+    }
+    pp_body_state s[2][11];
+    int32_t n[2] = {0, 0};
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, s[0], 11, &n[0]));
+    PP_OK_OR_FAIL(pp_world_get_body_states(back, s[1], 11, &n[1]));
+    cr_assert_eq(n[0], n[1]);
+    for (int i = 0; i < n[0]; i++)
+        cr_assert(memcmp(&s[0][i].position, &s[1][i].position, sizeof s[0][i].position) == 0 &&
+                      s[0][i].angle == s[1][i].angle,
+                  "body %d moved otherwise after the load", i);
+    pp_world_destroy(w);
+    pp_world_destroy(back);
+}
+
+Test(carry, broken_held_pairs_in_a_snapshot_are_refused)
+{
+    pp_world w = towers(4);
+    step_until_held(w);
+    const struct { const char *from, *to, *words; } cases[] = {
+        {"\"stack\":\ttrue", "\"stack\":\t1", "held[0].stack: expected true or false"},
+        {"\"contacts\":\t[[", "\"contacts\":\t[[0, ", "held[0].contacts[0]: expected 15 finite numbers"},
+        {"\"held\":\t[{", "\"held\":\t[{\n\"x\": 1,", "held[0].x: unknown key"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char dir[] = "/tmp/pp_held_XXXXXX";
+        cr_assert_not_null(mkdtemp(dir));
+        PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
+        patch_json(dir, cases[i].from, cases[i].to);
+        pp_world out = {0};
+        EXPECT_ERR(pp_world_load_snapshot(dir, &out), PP_ERR_FORMAT, cases[i].words);
+        remove_tree(dir);
+    }
+    pp_world_destroy(w);
+}

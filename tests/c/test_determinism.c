@@ -153,8 +153,8 @@ static const struct {
     uint64_t hash;
 } golden[] = {
     {PP_PRESET_FAST, "FAST", 0x7f5aec197fe0fc83ull},
-    {PP_PRESET_BALANCED, "BALANCED", 0x10f3e0d7d3aa30c2ull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0xe26a1a1e44e5726dull},
+    {PP_PRESET_BALANCED, "BALANCED", 0x061dfd4a627a1750ull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0x4c674c40209acf02ull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {

@@ -289,23 +289,6 @@ Test(snapshot, an_image_save_that_fails_keeps_the_old_file)
     remove_tree(dir);
 }
 
-static void patch_json(const char *snap, const char *from, const char *to)
-{
-    char path[160];
-    snprintf(path, sizeof path, "%s/world.json", snap);
-    static char text[1 << 20], out[1 << 20];
-    FILE *f = fopen(path, "rb");
-    const size_t n = fread(text, 1, sizeof text - 1, f);
-    fclose(f);
-    text[n] = 0;
-    char *at = strstr(text, from);
-    cr_assert_not_null(at, "'%s' not in world.json", from);
-    snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
-    f = fopen(path, "wb");
-    fputs(out, f);
-    fclose(f);
-}
-
 Test(snapshot, broken_snapshots_are_refused_with_their_reason)
 {
     char dir[64], snap[96], path[160];
