@@ -783,7 +783,8 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
  * the bits that name the world (a handle of the saved world is PP_ERR_INVALID_HANDLE in the loaded one). The
  * last step's contacts are not saved (the next step makes them); the pairs touching at the last substep are,
  * so a loaded world does not report resting contacts as begun again and a body halfway through a one-way
- * platform is not stopped inside it. A world holding a number that is not finite, or past ±FLT_MAX (which
+ * platform is not stopped inside it, and so are the resting pairs held from step to step with their contacts
+ * ("held"), which the loaded world carries uncollided as the saved one would. A world holding a number that is not finite, or past ±FLT_MAX (which
  * the loader refuses), is refused with PP_ERR_LIMIT before anything is written. */
 
 /// Write the whole state of a world into a new folder (world.json and PNG planes), atomically by rename.

@@ -79,12 +79,20 @@ static bool sits_out(const world *wd, const body *bd)
     return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->substep_serial);
 }
 
-/* The pair carried for these slots among the first n sorted keys, or NULL. */
+/* The pair carried for these slots among the first n sorted keys, or NULL. (A loop, not bsearch: it runs for
+ * every broadphase pair of every substep.) */
 static carried_pair *find_pair(carry *c, int32_t n, uint32_t a, uint32_t b)
 {
-    const carried_key want = {key_of(a, b), 0};
-    const carried_key *k = bsearch(&want, c->by_slots, (size_t)n, sizeof want, key_cmp);
-    return k ? &c->pairs[k->pair] : NULL;
+    const uint64_t want = key_of(a, b);
+    int32_t lo = 0, hi = n;
+    while (lo < hi) {
+        const int32_t mid = lo + (hi - lo) / 2;
+        if (c->by_slots[mid].slots < want)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && c->by_slots[lo].slots == want ? &c->pairs[c->by_slots[lo].pair] : NULL;
 }
 
 /* Drop the pairs carried no further than before substep k and sort the rest's keys (unless the pairs and
@@ -292,7 +300,8 @@ static void keep_pairs(world *wd, bool (*keep)(const world *, const carried_pair
         carried_pair p = c->pairs[i];
         if (!keep(wd, &p, arg))
             continue;
-        memmove(&c->contacts[m], &c->contacts[p.first], (size_t)p.count * sizeof *c->contacts);
+        if (p.first != m)
+            memmove(&c->contacts[m], &c->contacts[p.first], (size_t)p.count * sizeof *c->contacts);
         p.first = m, m += p.count;
         c->pairs[n++] = p;
     }

@@ -133,10 +133,12 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
     sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle,
                 remainder(bd->angle - from->angle, 2 * PP_PI), body_com_local(bd)};
     /* The farthest any solid pixel lies from the centre of mass bounds how far a point moves. */
-    double reach = 0;
-    for (int k = 0; k < 4; k++)
-        reach = fmax(reach, dv_norm(dv_sub(dv(k & 1 ? r->x1 : r->x0, k & 2 ? r->y1 : r->y0), sw.com_local)));
-    const double travel = dv_norm(sw.dcom) + fabs(sw.dangle) * reach;
+    double reach2 = 0;
+    for (int k = 0; k < 4; k++) {
+        const dvec2 d = dv_sub(dv(k & 1 ? r->x1 : r->x0, k & 2 ? r->y1 : r->y0), sw.com_local);
+        reach2 = fmax(reach2, dv_dot(d, d));
+    }
+    const double reach = sqrt(reach2), travel = sqrt(dv_dot(sw.dcom, sw.dcom)) + fabs(sw.dangle) * reach;
     const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
     const double spacing = fmax(1.0, 0.5 * thin);
     if (travel <= spacing)

@@ -24,11 +24,23 @@ static int touch_cmp(const void *x, const void *y)
 
 int touch_order(const touch *p, const touch *q) { return touch_cmp(p, q); }
 
-/* Whether a pair is in a sorted list; an empty list may have no buffer (bsearch must not see NULL, fuzz_api). */
-static bool listed(const touch *t, const touch *list, int32_t n)
+/* The pair in a sorted list, or NULL. A loop, not bsearch: it runs for every pair of every substep. An empty
+ * list may have no buffer, and is never read. */
+static const touch *search(const touch *key, const touch *list, int32_t n)
 {
-    return n > 0 && bsearch(t, list, (size_t)n, sizeof *t, touch_cmp) != NULL;
+    int32_t lo = 0, hi = n;
+    while (lo < hi) {
+        const int32_t mid = lo + (hi - lo) / 2;
+        const touch *t = &list[mid];
+        if (t->a < key->a || (t->a == key->a && t->b < key->b))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && list[lo].a == key->a && list[lo].b == key->b ? &list[lo] : NULL;
 }
+
+static bool listed(const touch *t, const touch *list, int32_t n) { return search(t, list, n) != NULL; }
 
 void touch_sort(touch *list, int32_t n)
 {
@@ -39,11 +51,8 @@ void touch_sort(touch *list, int32_t n)
 const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 {
     const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0, {0}} : (touch){y, x, 0, 0, {0}};
-    const touch *t = wd->touch_count > 0 ? bsearch(&key, wd->touching, (size_t)wd->touch_count, sizeof key, touch_cmp)
-                                         : NULL;
-    if (!t && wd->resting_count > 0)
-        t = bsearch(&key, wd->resting, (size_t)wd->resting_count, sizeof key, touch_cmp);
-    return t;
+    const touch *t = search(&key, wd->touching, wd->touch_count);
+    return t ? t : search(&key, wd->resting, wd->resting_count);
 }
 
 /* A pair re-anchors (its static friction gave way) when a contact point has slipped this far, or the
