@@ -106,10 +106,19 @@ static void keep_from(carry *c, int32_t k, bool added)
     if (n == c->pair_count && !added)
         return;
     c->pair_count = n;
-    for (int32_t i = 0; i < n; i++)
+    (void)carry_index(c); /* the pairs were unique before */
+}
+
+bool carry_index(carry *c)
+{
+    for (int32_t i = 0; i < c->pair_count; i++)
         c->by_slots[i] = (carried_key){key_of(c->pairs[i].a, c->pairs[i].b), i};
-    if (n > 0)
-        qsort(c->by_slots, (size_t)n, sizeof *c->by_slots, key_cmp);
+    if (c->pair_count > 0)
+        qsort(c->by_slots, (size_t)c->pair_count, sizeof *c->by_slots, key_cmp);
+    for (int32_t i = 1; i < c->pair_count; i++)
+        if (c->by_slots[i].slots == c->by_slots[i - 1].slots)
+            return false;
+    return true;
 }
 
 /* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */

@@ -83,6 +83,8 @@ void carry_end_step(struct world *wd);
 /* Before a step changes the held pairs, a copy; carry_restore puts it back (cannot fail). */
 pp_status carry_save(struct world *wd);
 void carry_restore(struct world *wd);
+/* Sort the pairs' keys (carry_claim finds a pair by its slots); false if two pairs have the same slots. */
+bool carry_index(carry *c);
 /* Drop the held pairs of the body in this slot: its pixels, type or existence changed outside a step. */
 void carry_forget(struct world *wd, uint32_t slot);
 void carry_free(carry *c);

@@ -895,12 +895,6 @@ static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, cons
     return PP_OK;
 }
 
-static int by_held_slots(const void *x, const void *y)
-{
-    const uint64_t p = ((const carried_key *)x)->slots, q = ((const carried_key *)y)->slots;
-    return p < q ? -1 : p > q;
-}
-
 /* The held pairs; absent in snapshots from before pairs were held from step to step. */
 static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
 {
@@ -945,13 +939,8 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
                                                      (int32_t)wd->def.substeps - 1, false, false, true,
                                                      cJSON_IsTrue(stack)};
     }
-    for (int32_t k = 0; !st && k < cy->pair_count; k++) /* carry.c finds a pair by its slots: once each */
-        cy->by_slots[k] = (carried_key){(uint64_t)cy->pairs[k].a << 32 | cy->pairs[k].b, k};
-    if (!st)
-        qsort(cy->by_slots, (size_t)cy->pair_count, sizeof *cy->by_slots, by_held_slots);
-    for (int32_t k = 1; !st && k < cy->pair_count; k++)
-        if (cy->by_slots[k].slots == cy->by_slots[k - 1].slots)
-            st = json_fail(c, PP_ERR_FORMAT, "held", NULL, "a pair is held twice");
+    if (!st && !carry_index(cy))
+        st = json_fail(c, PP_ERR_FORMAT, "held", NULL, "a pair is held twice");
     if (st)
         cy->pair_count = cy->contact_count = 0;
     return st;

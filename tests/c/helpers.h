@@ -278,10 +278,8 @@ static inline pp_world snapshot_round_trip(pp_world w) {
     return back;
 }
 
-/* Replace the first `from` in a snapshot folder's world.json by `to`. */
-static inline void patch_json(const char *snap, const char *from, const char *to) {
-    char path[160];
-    snprintf(path, sizeof path, "%s/world.json", snap);
+/* Replace the first `from` in path's text by `to`. */
+static inline void patch_file(const char *path, const char *from, const char *to) {
     static char text[1 << 20], out[1 << 20];
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f, "cannot open %s", path);
@@ -289,11 +287,19 @@ static inline void patch_json(const char *snap, const char *from, const char *to
     fclose(f);
     text[n] = 0;
     char *at = strstr(text, from);
-    cr_assert_not_null(at, "'%s' not in world.json", from);
+    cr_assert_not_null(at, "'%s' not in %s", from, path);
     snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
     f = fopen(path, "wb");
+    cr_assert_not_null(f, "cannot write %s", path);
     fputs(out, f);
     fclose(f);
+}
+
+/* Replace the first `from` in a snapshot folder's world.json by `to`. */
+static inline void patch_json(const char *snap, const char *from, const char *to) {
+    char path[160];
+    snprintf(path, sizeof path, "%s/world.json", snap);
+    patch_file(path, from, to);
 }
 
 #endif /* PHYSPIX_TEST_HELPERS_H */

@@ -338,21 +338,6 @@ Test(files, missing_and_outside_get_the_same_message)
     root_close();
 }
 
-/* Replace the first `from` in path's text by `to`. */
-static void patch_file(const char *path, const char *from, const char *to)
-{
-    static char text[1 << 20], out[1 << 20];
-    FILE *f = fopen(path, "rb");
-    cr_assert(f, "%s", path);
-    const size_t n = fread(text, 1, sizeof text - 1, f);
-    fclose(f);
-    text[n] = 0;
-    char *p = strstr(text, from);
-    cr_assert_not_null(p, "'%s' not in %s", from, path);
-    snprintf(out, sizeof out, "%.*s%s%s", (int)(p - text), text, to, p + strlen(from));
-    write_text(path, out);
-}
-
 /* A snapshot whose first mask plane is renamed `plane` in world.json; asserts the refusal. */
 static void snapshot_plane_refused(pp_world w, const char *plane, const char *shown)
 {
