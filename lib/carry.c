@@ -275,6 +275,13 @@ pp_status carry_push(world *wd)
     return PP_OK;
 }
 
+/* Whether a body turned less than CARRY_TURN_RAD from the rotation (cos, sin) it had. */
+static bool turned_little(const body *bd, double c0, double s0)
+{
+    const double sin_turn = bd->sin_a * c0 - bd->cos_a * s0, cos_turn = bd->cos_a * c0 + bd->sin_a * s0;
+    return cos_turn > 0 && fabs(sin_turn) <= sin(CARRY_TURN_RAD);
+}
+
 /* Whether a held pair stays within its bound through a step of dt s: its points' motion against each other
  * since the raster found them, plus what the bodies' velocities add this step; neither body turned past
  * CARRY_TURN_RAD since. */
@@ -286,15 +293,14 @@ static bool still_held(const world *wd, const carried_pair *p, const void *step_
     const body *a = body_find(wd, cc->c.a), *b = body_find(wd, cc->c.b);
     if (!a || !b)
         return false;
-    const double max_sin = sin(CARRY_TURN_RAD);
-    if (fabs(a->sin_a * cc->cos_a - a->cos_a * cc->sin_a) > max_sin || a->cos_a * cc->cos_a + a->sin_a * cc->sin_a < 0 ||
-        fabs(b->sin_a * cc->cos_b - b->cos_a * cc->sin_b) > max_sin || b->cos_a * cc->cos_b + b->sin_a * cc->sin_b < 0)
+    if (!turned_little(a, cc->cos_a, cc->sin_a) || !turned_little(b, cc->cos_b, cc->sin_b))
         return false;
     double drift = 0;
     for (int32_t k = 0; k < p->count; k++, cc++) {
         const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y);
-        const dvec2 d = dv_sub(moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0), moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0));
-        drift = fmax(drift, dv_dot(d, d));
+        const dvec2 ua = moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0);
+        const dvec2 ub = moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0);
+        drift = fmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
     }
     drift = sqrt(drift);
     return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);

@@ -52,10 +52,10 @@ typedef struct carry {
     carried_pair *pairs;         /* in the order the first substep found them */
     int32_t pair_count, pair_capacity;
     carried_key *by_slots;       /* the pairs sorted by their slots, for carry_claim */
+    int32_t by_slots_capacity;
     carried_contact *saved_contacts; /* the held pairs as the step found them, put back if it fails */
     carried_pair *saved_pairs;
     int32_t saved_contact_count, saved_contact_capacity, saved_pair_count, saved_pair_capacity;
-    int32_t by_slots_capacity;
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
     uint32_t step;               /* counts the steps carry_record started, from 1 */

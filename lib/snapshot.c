@@ -342,10 +342,10 @@ static bool write_held(const world *wd, cJSON *root)
     for (int32_t i = 0; ok && i < c->pair_count; i++) {
         const carried_pair *p = &c->pairs[i];
         const carried_contact *first = &c->contacts[p->first];
-        cJSON *e = cJSON_CreateObject(), *points = cJSON_CreateArray();
+        cJSON *e = cJSON_CreateObject(), *points = NULL;
         ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(first->c.a.id))) &&
              add(e, "b", json_handle(handle_saved(first->c.b.id))) && add(e, "stack", cJSON_CreateBool(p->stack)) &&
-             add(e, "contacts", points);
+             add(e, "contacts", points = cJSON_CreateArray());
         for (int32_t k = 0; ok && k < p->count; k++) {
             const carried_contact *cc = &first[k];
             const double v[HELD_NUMBERS] = {cc->c.point.x, cc->c.point.y, cc->c.normal.x, cc->c.normal.y, cc->c.depth,
@@ -904,6 +904,8 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
     if (st || n == 0)
         return st;
+    if (wd->def.substeps < 2) /* one substep carries nothing: such a world never holds a pair */
+        return json_fail(c, PP_ERR_FORMAT, "held", NULL, "expected none in a world of one substep");
     carry *cy = &wd->carry;
     if (!world_room((void **)&cy->pairs, n, &cy->pair_capacity, sizeof *cy->pairs) ||
         !world_room((void **)&cy->by_slots, n, &cy->by_slots_capacity, sizeof *cy->by_slots))
