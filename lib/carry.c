@@ -328,7 +328,7 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
 {
     carry *c = &wd->carry;
     c->substep = k;
-    if (k == 0) {
+    if (k == 0 && wd->def.substeps > 1) { /* one substep carries nothing and holds nothing */
         pp_status st = start_step(wd);
         if (st)
             return st;
