@@ -48,3 +48,18 @@ void pp_free(void *ptr)
     if (ptr)
         current.free(ptr, current.user);
 }
+
+bool array_reserve(void **items, int32_t *capacity, int32_t n, size_t size)
+{
+    if (n <= *capacity)
+        return true;
+    int32_t cap = *capacity > 0 ? *capacity : 64;
+    while (cap < n)
+        cap = cap <= INT32_MAX / 2 ? 2 * cap : n;
+    void *p = pp_realloc(*items, (size_t)cap * size);
+    if (!p)
+        return false;
+    *items = p;
+    *capacity = cap;
+    return true;
+}

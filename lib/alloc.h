@@ -3,12 +3,20 @@
 #ifndef PP_ALLOC_H
 #define PP_ALLOC_H
 
+#include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* malloc, calloc (overflow-checked), realloc and free through the installed pp_allocator. */
 void *pp_malloc(size_t size);
 void *pp_calloc(size_t count, size_t size);
 void *pp_realloc(void *ptr, size_t size);
 void pp_free(void *ptr);
+
+/* Room for n items of `size` bytes in *items, whose room is *capacity items: doubled from 64 until n fit;
+ * false, with nothing changed, without memory. Every array the library grows grows through it. */
+bool array_reserve(void **items, int32_t *capacity, int32_t n, size_t size);
+/* array_reserve with the item size taken from the array's own type. */
+#define ARRAY_RESERVE(items, capacity, n) array_reserve((void **)&(items), &(capacity), (n), sizeof *(items))
 
 #endif

@@ -8,7 +8,7 @@
 
 pp_status awake_reserve(world *wd, int32_t n)
 {
-    if (!world_room((void **)&wd->awake_slots, n, &wd->awake_capacity, sizeof *wd->awake_slots))
+    if (!ARRAY_RESERVE(wd->awake_slots, wd->awake_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for %d awake bodies", (int)n);
     return PP_OK;
 }
@@ -76,14 +76,11 @@ static bp_proxy proxy_of(const body *bd)
 
 pp_status awake_refresh(world *wd)
 {
-    if (wd->body_capacity > wd->proxy_capacity) { /* new slots hold no body until one is listed */
-        bp_proxy *p = pp_realloc(wd->proxies, (size_t)wd->body_capacity * sizeof *p);
-        if (!p)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
-        for (int32_t i = wd->proxy_capacity; i < wd->body_capacity; i++)
-            p[i] = (bp_proxy){.live = false};
-        wd->proxies = p, wd->proxy_capacity = wd->body_capacity;
-    }
+    const int32_t had = wd->proxy_capacity;
+    if (!ARRAY_RESERVE(wd->proxies, wd->proxy_capacity, wd->body_capacity))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
+    for (int32_t i = had; i < wd->proxy_capacity; i++) /* new slots hold no body until one is listed */
+        wd->proxies[i] = (bp_proxy){.live = false};
     for (int32_t k = 0; k < wd->awake_count; k++) {
         const int32_t i = wd->awake_slots[k];
         wd->proxies[i] = proxy_of(wd->bodies[i]);
@@ -152,7 +149,7 @@ typedef struct slot_list {
 static bool list_slot(world *wd, body *bd, void *user)
 {
     slot_list *l = user;
-    if (!world_room((void **)&l->slots, l->count + 1, &l->capacity, sizeof *l->slots))
+    if (!ARRAY_RESERVE(l->slots, l->capacity, l->count + 1))
         return l->failed = true, false;
     l->slots[l->count++] = (int32_t)bd->index;
     return true;

@@ -28,22 +28,6 @@ static bool contains(pp_aabb outer, pp_aabb in)
 
 static int32_t max_i(int32_t a, int32_t b) { return a > b ? a : b; }
 
-/* Room for `need` items of `size` bytes, doubling; false (nothing changed) without memory. */
-static bool grow(void **buf, int32_t *cap, int32_t need, size_t size)
-{
-    if (need <= *cap)
-        return true;
-    int32_t n = *cap ? *cap : 64;
-    while (n < need)
-        n *= 2;
-    void *p = pp_realloc(*buf, (size_t)n * size);
-    if (!p)
-        return false;
-    *buf = p;
-    *cap = n;
-    return true;
-}
-
 /* ---- nodes ---- */
 
 /* At least n free nodes, or PP_ERR_OUT_OF_MEMORY with nothing changed. */
@@ -51,18 +35,16 @@ static pp_status reserve_nodes(pp_broadphase *bp, int32_t n)
 {
     if (bp->node_cap - bp->node_count >= n)
         return PP_OK;
-    int32_t cap = bp->node_cap ? 2 * bp->node_cap : 64;
-    while (cap - bp->node_count < n)
-        cap *= 2;
-    bp_node *p = pp_realloc(bp->nodes, (size_t)cap * sizeof *p);
-    if (!p)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d tree nodes", (int)cap);
+    int32_t cap = bp->node_cap;
+    if (!ARRAY_RESERVE(bp->nodes, cap, bp->node_count + n))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d tree nodes", (int)(bp->node_count + n));
+    bp_node *p = bp->nodes;
     for (int32_t i = cap - 1; i >= bp->node_cap; i--) /* the new nodes, lowest first, on the free list */
         p[i] = (bp_node){.parent = bp->free_node, .child1 = -1, .child2 = -1, .height = -1};
     for (int32_t i = bp->node_cap; i < cap; i++)
         p[i].parent = i + 1 < cap ? i + 1 : bp->free_node;
     bp->free_node = bp->node_cap;
-    bp->nodes = p, bp->node_cap = cap;
+    bp->node_cap = cap;
     return PP_OK;
 }
 
@@ -188,17 +170,12 @@ static pp_status reserve_slots(pp_broadphase *bp, int32_t slots)
 {
     if (slots <= bp->leaf_cap)
         return PP_OK;
-    int32_t *leaf = pp_realloc(bp->leaf, (size_t)slots * sizeof *leaf);
-    if (leaf)
-        bp->leaf = leaf;
-    uint8_t *roused = pp_realloc(bp->roused, (size_t)slots);
-    if (roused)
-        bp->roused = roused;
-    if (!leaf || !roused)
+    int32_t leaf_cap = bp->leaf_cap, roused_cap = bp->leaf_cap; /* both grow alike */
+    if (!ARRAY_RESERVE(bp->leaf, leaf_cap, slots) || !ARRAY_RESERVE(bp->roused, roused_cap, slots))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d bodies", (int)slots);
-    for (int32_t i = bp->leaf_cap; i < slots; i++)
+    for (int32_t i = bp->leaf_cap; i < leaf_cap; i++)
         bp->leaf[i] = -1, bp->roused[i] = 0;
-    bp->leaf_cap = slots;
+    bp->leaf_cap = leaf_cap;
     return PP_OK;
 }
 
@@ -222,7 +199,7 @@ pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t s
     const int32_t height = bp->root >= 0 ? bp->nodes[bp->root].height : 0;
     if ((st = reserve_nodes(bp, 2)))
         return st;
-    if (!grow((void **)&bp->stack, &bp->stack_cap, height + 3, sizeof *bp->stack))
+    if (!ARRAY_RESERVE(bp->stack, bp->stack_cap, height + 3))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for a query's walk");
     if (leaf >= 0)
         detach_leaf(bp, leaf);
@@ -356,7 +333,7 @@ static bool add_candidate(uint32_t other, void *user)
     if (!may_touch(p, q))
         return true;
     pp_broadphase *bp = s->bp;
-    if (!grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof *bp->pairs)) {
+    if (!ARRAY_RESERVE(bp->pairs, bp->pair_cap, bp->pair_count + 1)) {
         s->status = pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->pair_count + 1);
         return false;
     }
@@ -384,7 +361,7 @@ static uint32_t sleeper_of(const bp_proxy *px, bp_pair p)
  * then an insertion sort. `roused` marks the kept ones meanwhile. */
 static pp_status order_awake(pp_broadphase *bp, const bp_proxy *px, const int32_t *awake, int32_t awake_count)
 {
-    if (!grow((void **)&bp->order, &bp->order_cap, bp->order_count + awake_count, sizeof *bp->order))
+    if (!ARRAY_RESERVE(bp->order, bp->order_cap, bp->order_count + awake_count))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d awake bodies", (int)awake_count);
     int32_t m = 0;
     for (int32_t i = 0; i < bp->order_count; i++) {
@@ -421,7 +398,7 @@ static pp_status sweep_awake(pp_broadphase *bp, const bp_proxy *px)
                 break;
             if (!may_touch(&px[ip], &px[iq]))
                 continue;
-            if (!grow((void **)&bp->pairs, &bp->pair_cap, bp->pair_count + 1, sizeof *bp->pairs))
+            if (!ARRAY_RESERVE(bp->pairs, bp->pair_cap, bp->pair_count + 1))
                 return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->pair_count + 1);
             bp->pairs[bp->pair_count++] = ip < iq ? (bp_pair){ip, iq} : (bp_pair){iq, ip};
         }

@@ -146,9 +146,9 @@ pp_status carry_record(world *wd, double dt, int32_t k)
     const int32_t n = wd->contact_count, pairs_before = c->pair_count;
     if (n == 0)
         return PP_OK;
-    if (!world_room((void **)&c->contacts, c->contact_count + n, &c->contact_capacity, sizeof *c->contacts) ||
-        !world_room((void **)&c->pairs, c->pair_count + n, &c->pair_capacity, sizeof *c->pairs) ||
-        !world_room((void **)&c->by_slots, c->pair_count + n, &c->by_slots_capacity, sizeof *c->by_slots))
+    if (!ARRAY_RESERVE(c->contacts, c->contact_capacity, c->contact_count + n) ||
+        !ARRAY_RESERVE(c->pairs, c->pair_capacity, c->pair_count + n) ||
+        !ARRAY_RESERVE(c->by_slots, c->by_slots_capacity, c->pair_count + n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
     for (int32_t i = 0, end; i < n; i = end) {
         const pp_contact *ct = &wd->contacts[i];
@@ -265,8 +265,7 @@ pp_status carry_push(world *wd)
             return st;
         if (!keep)
             continue;
-        if (!world_room((void **)&wd->contacts, wd->contact_count + r.count, &wd->contact_capacity,
-                        sizeof *wd->contacts))
+        if (!ARRAY_RESERVE(wd->contacts, wd->contact_capacity, wd->contact_count + r.count))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts",
                            (int)(wd->contact_count + r.count));
         for (int32_t k = 0; k < r.count; k++)
@@ -355,9 +354,8 @@ void carry_end_step(world *wd)
 pp_status carry_save(world *wd)
 {
     carry *c = &wd->carry;
-    if (!world_room((void **)&c->saved_pairs, c->pair_count, &c->saved_pair_capacity, sizeof *c->saved_pairs) ||
-        !world_room((void **)&c->saved_contacts, c->contact_count, &c->saved_contact_capacity,
-                    sizeof *c->saved_contacts))
+    if (!ARRAY_RESERVE(c->saved_pairs, c->saved_pair_capacity, c->pair_count) ||
+        !ARRAY_RESERVE(c->saved_contacts, c->saved_contact_capacity, c->contact_count))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d held pairs", (int)c->pair_count);
     if (c->pair_count > 0) {
         memcpy(c->saved_pairs, c->pairs, (size_t)c->pair_count * sizeof *c->pairs);

@@ -49,7 +49,7 @@ static void open_list(crowd *c, uint32_t slot)
 static pp_status reserve_lists(crowd *c, int32_t n)
 {
     c->list_count = 0;
-    if (!world_room((void **)&c->lists, n, &c->list_capacity, sizeof *c->lists))
+    if (!ARRAY_RESERVE(c->lists, c->list_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the contact budget of %d bodies", (int)n);
     return PP_OK;
 }
@@ -138,8 +138,8 @@ pp_status crowd_plan(world *wd)
         return PP_OK;
     if ((st = reserve_lists(c, many)))
         return st;
-    if (!world_room((void **)&c->pass, np, &c->pass_capacity, sizeof *c->pass) ||
-        !world_room((void **)&c->box, np, &c->box_capacity, sizeof *c->box))
+    if (!ARRAY_RESERVE(c->pass, c->pass_capacity, np) ||
+        !ARRAY_RESERVE(c->box, c->box_capacity, np))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the contact budget of %d pairs", (int)np);
     for (int32_t k = 0; k < np; k++) {
         if (!both_eligible(wd, &pairs[k]))
@@ -198,7 +198,7 @@ void crowd_prove(world *wd, int32_t n)
 pp_status crowd_order(world *wd, int32_t first, int32_t n, const int32_t **order)
 {
     crowd *c = &wd->crowd;
-    if (!world_room((void **)&c->order, n, &c->order_capacity, sizeof *c->order))
+    if (!ARRAY_RESERVE(c->order, c->order_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to order %d pairs", (int)n);
     int32_t m = 0, first_at = 0, second_at = first;
     for (int32_t k = 0; k < wd->broad.pair_count; k++)

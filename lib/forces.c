@@ -1,5 +1,6 @@
 /* Forces, torques, gravity scales and damping (forces.h). A force or torque applies through every substep of the
  * next step and is then spent, as Box2D's are; a gravity scale stays until set back to 1. */
+#include "alloc.h"
 #include "forces.h"
 #include "awake.h"
 #include "check.h"
@@ -13,7 +14,7 @@ pp_status forces_list(world *wd, body *bd, const char *fn)
 {
     if (bd->forced)
         return PP_OK;
-    if (!world_room((void **)&wd->forced, wd->forced_count + 1, &wd->forced_capacity, sizeof *wd->forced))
+    if (!ARRAY_RESERVE(wd->forced, wd->forced_capacity, wd->forced_count + 1))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to list %d bodies under forces", fn,
                        (int)wd->forced_count + 1);
     wd->forced[wd->forced_count++] = (int32_t)bd->index;

@@ -26,14 +26,9 @@ static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack,
         for (int32_t i = 0; i < bw; i++) {
             if (label[(int64_t)j * bw + i] || !raster_solid(r, r->x0 + i, r->y0 + j))
                 continue;
-            if (n == cap) {
-                cap = cap ? 2 * cap : 8;
-                island *p = pp_realloc(isl, (size_t)cap * sizeof *p);
-                if (!p) {
-                    pp_free(isl);
-                    return -1;
-                }
-                isl = p;
+            if (!ARRAY_RESERVE(isl, cap, n + 1)) {
+                pp_free(isl);
+                return -1;
             }
             island *k = &isl[n++];
             *k = (island){0, i, j, i + 1, j + 1};

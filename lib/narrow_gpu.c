@@ -104,13 +104,8 @@ void gpu_narrow_forget(gpu_narrow *g, pp_raster *r)
         g->mask_top = s.at;
         return;
     }
-    if (g->hole_count == g->hole_cap) {
-        const int32_t cap = g->hole_cap ? 2 * g->hole_cap : 16;
-        span *p = pp_realloc(g->holes, (size_t)cap * sizeof *p);
-        if (!p)
-            return; /* the words stay unused until the world goes; nothing is lost but space */
-        g->holes = p, g->hole_cap = cap;
-    }
+    if (!ARRAY_RESERVE(g->holes, g->hole_cap, g->hole_count + 1))
+        return; /* the words stay unused until the world goes; nothing is lost but space */
     memmove(g->holes + i + 1, g->holes + i, (size_t)(g->hole_count - i) * sizeof(span));
     g->holes[i] = s;
     g->hole_count++;

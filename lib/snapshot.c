@@ -826,7 +826,7 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
     if (st || n == 0)
         return st;
-    if (!world_room((void **)&wd->touching, n, &wd->touch_capacity, sizeof *wd->touching))
+    if (!ARRAY_RESERVE(wd->touching, wd->touch_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", c->fn, (int)n);
     char where[32];
     int32_t i = 0;
@@ -907,8 +907,8 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
     if (wd->def.substeps < 2) /* one substep carries nothing: such a world never holds a pair */
         return json_fail(c, PP_ERR_FORMAT, "held", NULL, "expected none in a world of one substep");
     carry *cy = &wd->carry;
-    if (!world_room((void **)&cy->pairs, n, &cy->pair_capacity, sizeof *cy->pairs) ||
-        !world_room((void **)&cy->by_slots, n, &cy->by_slots_capacity, sizeof *cy->by_slots))
+    if (!ARRAY_RESERVE(cy->pairs, cy->pair_capacity, n) ||
+        !ARRAY_RESERVE(cy->by_slots, cy->by_slots_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
     char where[32];
     int32_t i = 0;
@@ -930,8 +930,7 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
         if (st)
             break;
         const int32_t first = cy->contact_count;
-        if (!world_room((void **)&cy->contacts, first + cJSON_GetArraySize(points), &cy->contact_capacity,
-                        sizeof *cy->contacts)) {
+        if (!ARRAY_RESERVE(cy->contacts, cy->contact_capacity, first + cJSON_GetArraySize(points))) {
             st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
             break;
         }

@@ -223,12 +223,8 @@ void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_bod
 
 pp_status solver_reserve_feedback(pp_solver *s, int32_t n)
 {
-    if (n > s->feedback_capacity) {
-        dJointFeedback *f = pp_realloc(s->feedback, (size_t)n * sizeof *f);
-        if (!f)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contact impulses", (int)n);
-        s->feedback = f, s->feedback_capacity = n;
-    }
+    if (!ARRAY_RESERVE(s->feedback, s->feedback_capacity, n))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contact impulses", (int)n);
     if (n > 0) /* a joint ODE leaves out of its step (all its bodies asleep) applied nothing */
         memset(s->feedback, 0, (size_t)n * sizeof *s->feedback);
     return PP_OK;

@@ -3,6 +3,7 @@
  * A pair whose bodies all sleep (or are static) is not tested; it rests in a list of its own that no substep
  * visits until a body enters the awake set or is removed. The lists are sorted by handle ids so that a
  * pair is found by binary search. */
+#include "alloc.h"
 #include "status.h"
 #include "world.h"
 
@@ -130,7 +131,7 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
     *keep = !(t.flags & (TOUCH_SENSOR | TOUCH_PASSING));
     /* Room for the record and its event first: a failure changes nothing. */
     pp_status st = world_reserve_events(wd, 1);
-    if (st || !world_room((void **)&wd->touch_next, wd->touch_next_count + 1, &wd->touch_next_capacity, sizeof t))
+    if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, wd->touch_next_count + 1))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs",
                                  (int)wd->touch_next_count + 1);
     touch *rec = &wd->touch_next[wd->touch_next_count++];
@@ -175,7 +176,7 @@ static pp_status wake_resting(world *wd)
 {
     const int32_t n = wd->touch_count + wd->resting_count;
     pp_status st = world_save_touching(wd, true);
-    if (st || !world_room((void **)&wd->resting_next, n, &wd->resting_next_capacity, sizeof *wd->resting_next))
+    if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, n))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
     merge(wd->touching, wd->touch_count, wd->resting, wd->resting_count, wd->resting_next);
     touch *list = wd->touching;
@@ -191,7 +192,7 @@ static pp_status put_to_rest(world *wd, const touch *pairs, int32_t n)
 {
     const int32_t total = wd->resting_count + n;
     pp_status st = world_save_touching(wd, true);
-    if (st || !world_room((void **)&wd->resting_next, total, &wd->resting_next_capacity, sizeof *wd->resting_next))
+    if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, total))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d resting pairs", (int)total);
     merge(wd->resting, wd->resting_count, pairs, n, wd->resting_next);
     touch *list = wd->resting;
@@ -221,8 +222,8 @@ pp_status touch_end(world *wd)
     const int32_t n = found + wd->touch_count;
     if (!st)
         st = world_reserve_events(wd, wd->touch_count);
-    if (st || !world_room((void **)&wd->touch_next, n, &wd->touch_next_capacity, sizeof *wd->touch_next) ||
-        !world_room((void **)&wd->touching, found, &wd->touch_capacity, sizeof *wd->touching))
+    if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, n) ||
+        !ARRAY_RESERVE(wd->touching, wd->touch_capacity, found))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
     wd->touch_body_gone = wd->resting_stale = false;
     for (int32_t i = 0; i < wd->touch_count; i++) {

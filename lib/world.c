@@ -283,37 +283,16 @@ PP_API pp_status pp_world_destroy(pp_world w)
     return PP_OK;
 }
 
-/* Room for n items in an array that doubles as it fills (from 64); false without memory, the array kept. */
-bool world_room(void **items, int32_t n, int32_t *capacity, size_t size)
-{
-    if (n <= *capacity)
-        return true;
-    int32_t cap = *capacity ? *capacity : 64;
-    while (cap < n)
-        cap *= 2;
-    void *p = pp_realloc(*items, (size_t)cap * size);
-    if (!p)
-        return false;
-    *items = p;
-    *capacity = cap;
-    return true;
-}
-
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
 {
-    if (wd->body_capacity <= *capacity)
-        return PP_OK;
-    void *p = pp_realloc(*items, (size_t)wd->body_capacity * per_slot);
-    if (!p)
+    if (!array_reserve(items, capacity, wd->body_capacity, per_slot))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %s", what);
-    *items = p;
-    *capacity = wd->body_capacity;
     return PP_OK;
 }
 
 static pp_status push_contact(world *wd, const pp_contact *c)
 {
-    if (!world_room((void **)&wd->contacts, wd->contact_count + 1, &wd->contact_capacity, sizeof *c))
+    if (!ARRAY_RESERVE(wd->contacts, wd->contact_capacity, wd->contact_count + 1))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)wd->contact_count + 1);
     wd->contacts[wd->contact_count++] = *c;
     return PP_OK;
@@ -328,19 +307,11 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
 {
     if (n <= wd->pair_capacity)
         return PP_OK;
-    const int32_t cap = n > 2 * wd->pair_capacity ? n : 2 * wd->pair_capacity;
-    np_pair *p = pp_realloc(wd->pairs, (size_t)cap * sizeof *p);
-    if (p)
-        wd->pairs = p;
-    np_core *c = pp_realloc(wd->cores, (size_t)cap * sizeof *c);
-    if (c)
-        wd->cores = c;
-    int32_t *s = pp_realloc(wd->pair_bodies, (size_t)cap * 2 * sizeof *s);
-    if (s)
-        wd->pair_bodies = s;
-    if (!p || !c || !s)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)cap);
-    wd->pair_capacity = cap;
+    int32_t pairs = wd->pair_capacity, cores = pairs, bodies = pairs; /* the three grow alike */
+    if (!ARRAY_RESERVE(wd->pairs, pairs, n) || !ARRAY_RESERVE(wd->cores, cores, n) ||
+        !array_reserve((void **)&wd->pair_bodies, &bodies, n, 2 * sizeof *wd->pair_bodies))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)n);
+    wd->pair_capacity = pairs;
     return PP_OK;
 }
 
@@ -779,16 +750,12 @@ static void save_body(step_undo *u, const body *bd)
 static pp_status step_save(world *wd)
 {
     step_undo *u = &wd->undo;
-    if (wd->body_capacity > u->body_capacity) {
-        step_saved_body *p = pp_realloc(u->bodies, (size_t)wd->body_capacity * sizeof *p);
-        if (!p)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
-                           (int)wd->live_count);
-        memset(p + u->body_capacity, 0, (size_t)(wd->body_capacity - u->body_capacity) * sizeof *p); /* step 0: never */
-        u->bodies = p;
-        u->body_capacity = wd->body_capacity;
-    }
-    if (!world_room((void **)&u->contacts, wd->contact_count, &u->contact_capacity, sizeof *u->contacts))
+    const int32_t saved = u->body_capacity;
+    if (!ARRAY_RESERVE(u->bodies, u->body_capacity, wd->body_capacity))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
+                       (int)wd->live_count);
+    memset(u->bodies + saved, 0, (size_t)(u->body_capacity - saved) * sizeof *u->bodies); /* step 0: never */
+    if (!ARRAY_RESERVE(u->contacts, u->contact_capacity, wd->contact_count))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->live_count);
     u->step++;
@@ -818,7 +785,7 @@ pp_status world_save_touching(world *wd, bool resting)
     const int32_t n = resting ? wd->resting_count : wd->touch_count;
     if (*saved)
         return PP_OK;
-    if (!world_room((void **)copy, n, copy_cap, sizeof **copy))
+    if (!ARRAY_RESERVE(*copy, *copy_cap, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)n);
     if (n > 0)
         memcpy(*copy, list, (size_t)n * sizeof **copy);
@@ -1023,7 +990,7 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
 
 pp_status world_reserve_events(world *wd, int32_t n)
 {
-    if (!world_room((void **)&wd->events, wd->event_count + n, &wd->event_capacity, sizeof *wd->events))
+    if (!ARRAY_RESERVE(wd->events, wd->event_capacity, wd->event_count + n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)(wd->event_count + n));
     return PP_OK;
 }
@@ -1130,7 +1097,7 @@ PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
     pp_status st = check_timed_edit(wd, edit);
     if (st)
         return st;
-    if (!world_room((void **)&wd->edits, wd->edit_count + 1, &wd->edit_capacity, sizeof *wd->edits))
+    if (!ARRAY_RESERVE(wd->edits, wd->edit_capacity, wd->edit_count + 1))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_schedule_edit: no memory for %d edits", (int)wd->edit_count + 1);
     edits_push(wd, edit);
     return PP_OK;

@@ -232,9 +232,6 @@ double body_round_radius(const body *bd);
 pp_status world_reserve_events(world *wd, int32_t n);
 void world_queue_event(world *wd, pp_event ev);
 
-/* Grow an array of `size`-byte items to hold n, doubling; false (nothing changed) when out of memory. */
-bool world_room(void **items, int32_t n, int32_t *capacity, size_t size);
-
 /* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */
 timed_edit *world_edits_in_order(const world *wd);
 
