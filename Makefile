@@ -111,7 +111,7 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/def_fields.h lib/handle.h \
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/def_fields.h lib/handle.h lib/id_pool.h \
   include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
 	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lcjson -lm -lpthread

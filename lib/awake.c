@@ -6,10 +6,10 @@
 
 #include <stdlib.h>
 
-pp_status awake_reserve(world *wd, int32_t n)
+pp_status awake_reserve(world *wd, int32_t n, const char *fn)
 {
     if (!ARRAY_RESERVE(wd->awake_slots, wd->awake_capacity, n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for %d awake bodies", (int)n);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d awake bodies", fn, (int)n);
     return PP_OK;
 }
 
@@ -52,10 +52,10 @@ void awake_rebuild(world *wd)
 {
     wd->awake_count = 0;
     wd->awake_sorted = true;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i])
             wd->bodies[i]->awake_at = -1;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i])
             awake_add(wd, wd->bodies[i]);
 }
@@ -77,14 +77,14 @@ static bp_proxy proxy_of(const body *bd)
 pp_status awake_refresh(world *wd)
 {
     const int32_t had = wd->proxy_capacity;
-    if (!ARRAY_RESERVE(wd->proxies, wd->proxy_capacity, wd->body_capacity))
+    if (!ARRAY_RESERVE(wd->proxies, wd->proxy_capacity, wd->body_ids.capacity))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
     for (int32_t i = had; i < wd->proxy_capacity; i++) /* new slots hold no body until one is listed */
         wd->proxies[i] = (bp_proxy){.live = false};
     for (int32_t k = 0; k < wd->awake_count; k++) {
         const int32_t i = wd->awake_slots[k];
         wd->proxies[i] = proxy_of(wd->bodies[i]);
-        pp_status st = broadphase_update(&wd->broad, &wd->proxies[i], (uint32_t)i, wd->body_capacity);
+        pp_status st = broadphase_update(&wd->broad, &wd->proxies[i], (uint32_t)i, wd->body_ids.capacity);
         if (st)
             return st;
     }

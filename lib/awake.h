@@ -8,7 +8,7 @@
 #include "world.h"
 
 /* Room for every live body and one more, so that awake_add cannot fail; call before creating a body. */
-pp_status awake_reserve(world *wd, int32_t n);
+pp_status awake_reserve(world *wd, int32_t n, const char *fn);
 
 /* List a body (if not listed): it is awake, or its proxy must be refreshed. */
 void awake_add(world *wd, body *bd);

@@ -29,8 +29,7 @@ PP_API pp_body_def pp_body_def_default(void)
 body *body_find(const world *wd, pp_body b)
 {
     const uint32_t slot = handle_slot(b.id);
-    if (b.id == 0 || handle_tag(b.id) != wd->tag || slot >= (uint32_t)wd->body_capacity ||
-        wd->generations[slot] != handle_gen(b.id))
+    if (b.id == 0 || handle_tag(b.id) != wd->tag || !id_pool_current(&wd->body_ids, slot, handle_gen(b.id)))
         return NULL;
     return wd->bodies[slot];
 }
@@ -137,9 +136,8 @@ pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, con
     return PP_OK;
 }
 
-static pp_status check_body_def(const pp_body_def *d)
+static pp_status check_body_def(const char *fn, const pp_body_def *d)
 {
-    static const char *fn = "pp_body_create";
     if (d->struct_size != sizeof(pp_body_def))
         return pp_fail(PP_ERR_ABI, "%s: def->struct_size is %u, this library expects %u", fn,
                        (unsigned)d->struct_size, (unsigned)sizeof(pp_body_def));
@@ -162,40 +160,25 @@ static pp_status check_body_def(const pp_body_def *d)
     const double dl = hypot(d->one_way_direction.x, d->one_way_direction.y);
     if (d->one_way && !(dl > 0 && isfinite(dl)))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: one_way_direction must be finite and not zero", fn);
-    return raster_check_def(d);
+    return raster_check_def(fn, d);
 }
 
-/* Reserve a slot; on failure nothing changes. */
-static pp_status alloc_slot(world *wd, uint32_t *slot)
+/* Reserve a slot: the pool's next, or `want`, a restored slot that holds nothing. On failure nothing changes. */
+static pp_status alloc_slot(world *wd, int64_t want, const char *fn, uint32_t *slot)
 {
-    if (wd->free_count > 0) {
-        *slot = wd->free_slots[--wd->free_count];
+    if (want != BODY_ANY_SLOT) {
+        *slot = (uint32_t)want;
+        id_pool_claim(&wd->body_ids);
         return PP_OK;
     }
-    if (wd->body_capacity >= PP_MAX_BODIES)
-        return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
-    const int32_t n = wd->body_capacity ? 2 * wd->body_capacity : 64;
-    body **bodies = pp_realloc(wd->bodies, (size_t)n * sizeof *bodies);
-    if (bodies)
-        wd->bodies = bodies;
-    uint32_t *gens = pp_realloc(wd->generations, (size_t)n * sizeof *gens);
-    if (gens)
-        wd->generations = gens;
-    uint32_t *fs = pp_realloc(wd->free_slots, (size_t)n * sizeof *fs);
-    if (fs)
-        wd->free_slots = fs;
-    if (!bodies || !gens || !fs)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for %d body slots", (int)n);
-    for (int32_t i = wd->body_capacity; i < n; i++) {
-        wd->bodies[i] = NULL;
-        wd->generations[i] = 1;
+    switch (ID_POOL_TAKE(&wd->body_ids, PP_MAX_BODIES, wd->bodies, pp_realloc, slot)) {
+    case ID_POOL_TAKEN:
+        return PP_OK;
+    case ID_POOL_FULL:
+        return pp_fail(PP_ERR_LIMIT, "%s: the world already has %d bodies (PP_MAX_BODIES)", fn, PP_MAX_BODIES);
+    default:
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", fn, (int)wd->body_ids.live + 1);
     }
-    /* Hand out low slots first so creation order is slot order. */
-    for (int32_t i = n - 1; i > wd->body_capacity; i--)
-        wd->free_slots[wd->free_count++] = (uint32_t)i;
-    *slot = (uint32_t)wd->body_capacity;
-    wd->body_capacity = n;
-    return PP_OK;
 }
 
 PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out)
@@ -205,18 +188,27 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         return PP_ERR_INVALID_HANDLE;
     if (!def || !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: %s is NULL", def ? "out" : "def");
-    pp_status st = check_body_def(def);
+    body *bd = NULL;
+    pp_status st = body_make(wd, def, BODY_ANY_SLOT, "pp_body_create", &bd);
+    if (!st)
+        *out = bd->handle;
+    return st;
+}
+
+pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const char *fn, body **out)
+{
+    pp_status st = check_body_def(fn, def);
     if (st)
         return st;
-    if (wd->free_count == 0 && wd->body_capacity >= PP_MAX_BODIES) /* before anything is allocated */
-        return pp_fail(PP_ERR_LIMIT, "pp_body_create: the world already has %d bodies (PP_MAX_BODIES)", PP_MAX_BODIES);
-    if ((st = awake_reserve(wd, wd->live_count + 1)))
+    if (want_slot == BODY_ANY_SLOT && wd->body_ids.free_count == 0 && wd->body_ids.capacity >= PP_MAX_BODIES)
+        return pp_fail(PP_ERR_LIMIT, "%s: the world already has %d bodies (PP_MAX_BODIES)", fn, PP_MAX_BODIES);
+    if ((st = awake_reserve(wd, wd->body_ids.live + 1, fn)))
         return st;
     body *bd = pp_calloc(1, sizeof *bd);
     if (!bd)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory");
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     bd->awake_at = -1;
-    if ((st = raster_init(&bd->raster, def))) {
+    if ((st = raster_init(fn, &bd->raster, def))) {
         pp_free(bd);
         return st;
     }
@@ -225,17 +217,17 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         const size_t bytes = (size_t)def->width * (size_t)def->height * 4;
         if (!(bd->sprite = pp_malloc(bytes))) {
             body_free(wd, bd);
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d sprite", (int)def->width,
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d sprite", fn, (int)def->width,
                            (int)def->height);
         }
         memcpy(bd->sprite, def->rgba, bytes);
     }
     mass_sums_of_raster(&bd->sums, &bd->raster);
     if (def->type == PP_BODY_DYNAMIC && bd->raster.solid_count == 0)
-        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: a dynamic body needs solid pixels; the bitmap (%s) has none",
+        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a dynamic body needs solid pixels; the bitmap (%s) has none", fn,
                      def->mask ? "mask" : "rgba alpha");
     else if (def->type == PP_BODY_DYNAMIC && bd->sums.w == 0)
-        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: a dynamic body needs mass; its weights sum to zero");
+        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a dynamic body needs mass; its weights sum to zero", fn);
     if (st) {
         body_free(wd, bd);
         return st;
@@ -279,17 +271,16 @@ PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out
         }
     }
     uint32_t slot = 0;
-    if ((st = alloc_slot(wd, &slot))) {
+    if ((st = alloc_slot(wd, want_slot, fn, &slot))) {
         body_free(wd, bd);
         return st;
     }
     bd->index = slot;
-    bd->handle.id = handle_make(wd->tag, slot, wd->generations[slot]);
+    bd->handle.id = handle_make(wd->tag, slot, wd->body_ids.generations[slot]);
     wd->bodies[slot] = bd;
-    wd->live_count++;
     bd->serial = wd->next_serial++;
     awake_add(wd, bd); /* its proxy is new */
-    *out = bd->handle;
+    *out = bd;
     return PP_OK;
 }
 
@@ -300,9 +291,7 @@ void body_unmake(world *wd, body *bd)
     forces_forget(wd, bd);
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
-    PP_ASSERT(wd->free_count < wd->body_capacity);
-    wd->free_slots[wd->free_count++] = slot; /* back on top, where alloc_slot took it */
-    wd->live_count--;
+    id_pool_untake(&wd->body_ids, slot);
     wd->next_serial--;
 }
 
@@ -346,10 +335,7 @@ void body_remove(world *wd, body *bd)
     wd->touch_body_gone = true;
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
-    wd->generations[slot] = handle_next_gen(wd->generations[slot]);
-    PP_ASSERT(wd->free_count < wd->body_capacity);
-    wd->free_slots[wd->free_count++] = slot;
-    wd->live_count--;
+    id_pool_release(&wd->body_ids, slot);
     /* Contacts of the last step may name this body; drop them so none is stale. */
     int32_t n = 0;
     for (int32_t i = 0; i < wd->contact_count; i++)

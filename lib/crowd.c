@@ -268,7 +268,7 @@ pp_status crowd_limit_contacts(world *wd)
         lists += both_crowded(wd, i);
     if (lists == 0)
         return PP_OK;
-    if ((st = reserve_lists(c, 2 * (int64_t)lists < wd->live_count ? 2 * lists : wd->live_count))) /* bodies with a list */
+    if ((st = reserve_lists(c, 2 * (int64_t)lists < wd->body_ids.live ? 2 * lists : wd->body_ids.live))) /* bodies with a list */
         return st;
     for (int32_t i = 0; i < wd->contact_count; i = pair_end(wd, i)) {
         if (!both_crowded(wd, i))

@@ -79,6 +79,7 @@ typedef struct edit_job {
     uint8_t *saved;         /* its pixels then: solid, and the weight after them where the body has a plane */
     pp_mass_sums sums;      /* the mass sums then */
     fracture_plan plan;
+    const char *fn;         /* the call the user made, for messages */
 } edit_job;
 
 /* Can removing pixels split this body? */
@@ -90,12 +91,12 @@ static bool may_split(const body *bd)
 /* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes
  * may remove pixels of a body that can split, the pixels to put back should the split fail. */
 static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool removes,
-                           edit_job *j, int32_t *events)
+                           const char *fn, edit_job *j, int32_t *events)
 {
     const pp_raster *r = &bd->raster;
-    *j = (edit_job){.bd = bd, .sums = bd->sums};
+    *j = (edit_job){.bd = bd, .sums = bd->sums, .fn = fn};
     *events += 1 + (removes ? bd->joint_count : 0); /* destroyed, and each joint an anchor's pixels may break */
-    pp_status st = world_reserve_events(wd, *events);
+    pp_status st = world_reserve_events(wd, *events, fn);
     if (st || !removes || !may_split(bd))
         return st;
     j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
@@ -104,7 +105,7 @@ static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t 
         return PP_OK;
     const int64_t n = (int64_t)(j->x1 - j->x0) * (j->y1 - j->y0);
     if (!(j->saved = pp_malloc((size_t)n * (r->weights ? 2 : 1))))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to save %lld pixels before an edit", (long long)n);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to save %lld pixels before an edit", fn, (long long)n);
     int64_t k = 0;
     for (int32_t y = j->y0; y < j->y1; y++)
         for (int32_t x = j->x0; x < j->x1; x++, k++) {
@@ -141,7 +142,7 @@ static pp_status job_prepare(world *wd, edit_job *j, int32_t *events)
 {
     if (j->e.changed == 0 || !j->e.removed || !may_split(j->bd) || job_destroys(j))
         return PP_OK;
-    pp_status st = fracture_prepare(wd, j->bd, &j->plan, events);
+    pp_status st = fracture_prepare(wd, j->bd, &j->plan, j->fn, events);
     if (st)
         job_cancel(wd, j);
     return st;
@@ -201,7 +202,8 @@ static void circle_write(body *bd, edit_span *e, dvec2 c, double r, int32_t x0, 
 static dvec2 world_to_local(const body *bd, pp_vec2 p) { return body_world_to_local(bd, dv(p.x, p.y)); }
 
 /* Erase a circle from one body, up to the commit. */
-static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, edit_job *j, int32_t *events)
+static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, const char *fn, edit_job *j,
+                              int32_t *events)
 {
     const pp_raster *r = &bd->raster;
     const dvec2 c = world_to_local(bd, center);
@@ -210,7 +212,7 @@ static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius,
     const double x1 = fmin(r->x1, ceil(c.x + radius) + 1), y1 = fmin(r->y1, ceil(c.y + radius) + 1);
     const bool touches = !raster_empty(r) && x0 < x1 && y0 < y1;
     pp_status st = job_begin(wd, bd, touches ? (int64_t)x0 : 0, touches ? (int64_t)y0 : 0, touches ? (int64_t)x1 : 0,
-                             touches ? (int64_t)y1 : 0, touches, j, events);
+                             touches ? (int64_t)y1 : 0, touches, fn, j, events);
     if (st)
         return st;
     if (touches)
@@ -224,42 +226,44 @@ PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_cente
     world *wd;
     body *bd;
     pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
-    if (st || (st = check_circle(fn, world_center, radius)))
-        return st;
-    edit_job j;
-    int32_t events = 0;
-    if ((st = erase_circle(wd, bd, world_center, radius, &j, &events)))
-        return st;
-    if (changed)
-        *changed = j.e.changed;
-    job_commit(wd, &j);
-    return PP_OK;
+    return st ? st : edit_erase_circle(wd, bd, world_center, radius, fn, changed);
 }
 
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed)
 {
     static const char *fn = "pp_world_erase_circle";
     world *wd = world_lookup(w, fn);
-    if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = check_circle(fn, world_center, radius);
-    if (st)
-        return st;
+    return wd ? edit_erase_circle(wd, NULL, world_center, radius, fn, changed) : PP_ERR_INVALID_HANDLE;
+}
+
+PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
+                                      int32_t *changed)
+{
+    static const char *fn = "pp_body_paint_circle";
+    world *wd;
+    body *bd;
+    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
+    return st ? st : edit_paint_circle(wd, bd, world_center, radius, weight, fn, changed);
+}
+
+/* Erase from every body the blast's box meets: every body's writes and pieces first, in slot order, then every
+ * commit, so a failure takes them all back. Pieces made on the way are not on the list. */
+static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed)
+{
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
     int32_t *hit = NULL, n_hit = 0;
-    if ((st = awake_bodies_in_box(wd, fn, blast, &hit, &n_hit)))
+    pp_status st = awake_bodies_in_box(wd, fn, blast, &hit, &n_hit);
+    if (st)
         return st;
     edit_job *jobs = n_hit > 0 ? pp_malloc((size_t)n_hit * sizeof *jobs) : NULL;
     if (n_hit > 0 && !jobs) {
         pp_free(hit);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)n_hit);
     }
-    /* Every body's writes and pieces first, in slot order, then every commit: a failure takes them all back.
-     * Pieces made on the way are not on the list. */
     int32_t n = 0, events = 0;
     for (int32_t k = 0; k < n_hit && !st; k++)
-        if ((st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, &jobs[n], &events)) == PP_OK)
+        if ((st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
             n++;
     pp_free(hit);
     if (st) {
@@ -279,22 +283,34 @@ PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float r
     return PP_OK;
 }
 
-PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
-                                      int32_t *changed)
+pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed)
 {
-    static const char *fn = "pp_body_paint_circle";
-    world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
-    if (st || (st = check_circle(fn, world_center, radius)))
+    pp_status st = check_circle(fn, world_center, radius);
+    if (st || !bd)
+        return st ? st : erase_everywhere(wd, world_center, radius, fn, changed);
+    edit_job j;
+    int32_t events = 0;
+    if ((st = erase_circle(wd, bd, world_center, radius, fn, &j, &events)))
+        return st;
+    if (changed)
+        *changed = j.e.changed;
+    job_commit(wd, &j);
+    return PP_OK;
+}
+
+pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,
+                            int32_t *changed)
+{
+    pp_status st = check_circle(fn, world_center, radius);
+    if (st)
         return st;
     if (weight == 0)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: weight must be 1..255 (0 would paint massless pixels)", fn);
-    if (weight != 255 && (st = raster_ensure_weights(&bd->raster)))
+    if (weight != 255 && (st = raster_ensure_weights(fn, &bd->raster)))
         return st;
     edit_job j;
     int32_t events = 0;
-    if ((st = job_begin(wd, bd, 0, 0, 0, 0, false, &j, &events)))
+    if ((st = job_begin(wd, bd, 0, 0, 0, 0, false, fn, &j, &events)))
         return st;
     circle_write(bd, &j.e, world_to_local(bd, world_center), radius, 0, 0, bd->raster.width, bd->raster.height, true,
                  weight);
@@ -326,11 +342,11 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
     if (cx0 >= cx1 || cy0 >= cy1)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the %d × %d rectangle at (%d, %d) is outside the %d × %d bitmap", fn,
                        (int)width, (int)height, (int)x, (int)y, (int)r->width, (int)r->height);
-    if (weights && (st = raster_ensure_weights(&bd->raster)))
+    if (weights && (st = raster_ensure_weights(fn, &bd->raster)))
         return st;
     edit_job j;
     int32_t events = 0;
-    if ((st = job_begin(wd, bd, cx0, cy0, cx1, cy1, true, &j, &events)))
+    if ((st = job_begin(wd, bd, cx0, cy0, cx1, cy1, true, fn, &j, &events)))
         return st;
     for (int64_t py = cy0; py < cy1; py++)
         for (int64_t px = cx0; px < cx1; px++) {

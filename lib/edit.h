@@ -19,6 +19,12 @@ void edit_pixel(body *bd, edit_span *e, int32_t x, int32_t y, bool solid, uint32
  * to the new centre of mass with the velocity the material there already had, awake. */
 void edit_update_solver_body(world *wd, body *bd);
 
+/* Erase a circle (world px) from bd, or from every body it touches when bd is NULL; paint one into bd with
+ * a weight 1..255. The edit calls' work on a world and body already looked up; failures name `fn`. */
+pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed);
+pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,
+                            int32_t *changed);
+
 /* A split found but not yet made: the pieces exist as bodies, the parent still holds their pixels. */
 typedef struct fracture_plan {
     int32_t *label;          /* island of each pixel of the frame, 1..count; 0 empty */
@@ -31,7 +37,7 @@ typedef struct fracture_plan {
 /* Find the 8-connected islands of a body just edited and make a body of each but the largest;
  * everything that can fail happens here, and a failure leaves the world as it was. Adds the events
  * the split will send to *events and reserves room for all of them. (fracture.c) */
-pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *events);
+pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, const char *fn, int32_t *events);
 
 /* Make the split: move the pieces' pixels out of the parent, set them moving, send the events. */
 void fracture_commit(world *wd, body *bd, fracture_plan *p);

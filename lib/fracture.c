@@ -63,7 +63,7 @@ static int32_t label_islands(const pp_raster *r, int32_t *label, int32_t *stack,
 
 /* Island k as a new body at rest, posed where it lies in the parent; it moves once the split is committed. */
 static pp_status make_child(world *wd, body *parent, const island *k, const uint8_t *mask, const uint8_t *weights,
-                            const uint8_t *sprite, pp_body *out)
+                            const uint8_t *sprite, const char *fn, pp_body *out)
 {
     const int32_t w = k->x1 - k->x0, h = k->y1 - k->y0;
     pp_body_def d = pp_body_def_default();
@@ -81,10 +81,11 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     d.bullet = parent->bullet, d.is_sensor = parent->is_sensor, d.one_way = parent->one_way;
     d.one_way_direction = (pp_vec2){(float)parent->one_way_dir.x, (float)parent->one_way_dir.y};
     d.user_data = parent->user_data;
-    pp_status st = pp_body_create(wd->handle, &d, out);
+    body *child = NULL;
+    pp_status st = body_make(wd, &d, BODY_ANY_SLOT, fn, &child);
     if (st)
         return st;
-    body *child = body_of(wd, *out);
+    *out = child->handle;
     /* The float position may sit a hair off; the pose is exact in double. */
     child->pos = pos;
     child->angle = parent->angle, child->cos_a = parent->cos_a, child->sin_a = parent->sin_a;
@@ -92,7 +93,7 @@ static pp_status make_child(world *wd, body *parent, const island *k, const uint
     if (child->type != PP_BODY_DYNAMIC || parent->gravity_scale == 1)
         return PP_OK;
     child->gravity_scale = parent->gravity_scale; /* a piece falls as its parent did */
-    return forces_list(wd, child, "a split"); /* on failure the plan's cancel unmakes the child */
+    return forces_list(wd, child, fn); /* on failure the plan's cancel unmakes the child */
 }
 
 /* The child moves as the parent's material where it lies: v + ω × r. */
@@ -139,7 +140,7 @@ static bool island_bitmaps(const body *bd, const fracture_plan *p, int32_t k, ui
     return true;
 }
 
-pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *events)
+pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, const char *fn, int32_t *events)
 {
     const pp_raster *r = &bd->raster;
     *p = (fracture_plan){.bx = r->x0, .by = r->y0, .bw = r->x1 - r->x0, .bh = r->y1 - r->y0};
@@ -151,7 +152,7 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
     if (p->count < 0) {
         p->count = 0;
         fracture_cancel(wd, p);
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to find the islands of a %lld-pixel body", (long long)area);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to find the islands of a %lld-pixel body", fn, (long long)area);
     }
     if (p->count < 2)
         return PP_OK;
@@ -159,7 +160,7 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
         p->keep = p->islands[k].pixels > p->islands[p->keep].pixels ? k : p->keep;
     if (!(p->children = pp_calloc((size_t)p->count, sizeof *p->children))) {
         fracture_cancel(wd, p);
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory to split a body into %d", (int)p->count);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to split a body into %d", fn, (int)p->count);
     }
     pp_status st = PP_OK;
     for (int32_t k = 0; k < p->count && !st; k++) {
@@ -167,9 +168,9 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
             continue;
         uint8_t *mask, *weights, *sprite;
         if (!island_bitmaps(bd, p, k, &mask, &weights, &sprite))
-            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d island",
+            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d island", fn,
                          (int)(p->islands[k].x1 - p->islands[k].x0), (int)(p->islands[k].y1 - p->islands[k].y0));
-        else if ((st = make_child(wd, bd, &p->islands[k], mask, weights, sprite, &p->children[k])) == PP_ERR_INVALID_ARGUMENT)
+        else if ((st = make_child(wd, bd, &p->islands[k], mask, weights, sprite, fn, &p->children[k])) == PP_ERR_INVALID_ARGUMENT)
             st = PP_OK; /* a massless island (all weights zero) is dust: it just goes */
         else if (st == PP_OK)
             ++*events;
@@ -178,7 +179,7 @@ pp_status fracture_prepare(world *wd, body *bd, fracture_plan *p, int32_t *event
         pp_free(sprite);
     }
     if (st == PP_OK) /* and one for the parent, which goes if the island it keeps is massless */
-        st = world_reserve_events(wd, ++*events);
+        st = world_reserve_events(wd, ++*events, fn);
     if (st)
         fracture_cancel(wd, p);
     return st;

@@ -53,7 +53,7 @@ static void add_joint_nodes(world *wd)
 {
     for (bool added = true; added;) {
         added = false;
-        for (int32_t i = 0; i < wd->joints.capacity; i++) {
+        for (int32_t i = 0; i < wd->joints.ids.capacity; i++) {
             const body *a, *b;
             if (!joint_movers(wd, wd->joints.items[i], &a, &b))
                 continue;
@@ -69,7 +69,7 @@ static void add_joint_nodes(world *wd)
 /* The substep's nodes into wd->nodes, in slot order for the awake set's part. */
 static pp_status collect_nodes(world *wd)
 {
-    if (wd->body_capacity > wd->node_mark_capacity) {
+    if (wd->body_ids.capacity > wd->node_mark_capacity) {
         const int32_t old = wd->node_mark_capacity;
         pp_status st = world_slot_array(wd, (void **)&wd->node_mark, &wd->node_mark_capacity, sizeof *wd->node_mark,
                                         "the islands");
@@ -93,7 +93,7 @@ static pp_status collect_nodes(world *wd)
         add_node(wd, body_of(wd, wd->contacts[k].a));
         add_node(wd, body_of(wd, wd->contacts[k].b));
     }
-    if (wd->joints.count > 0)
+    if (wd->joints.ids.live > 0)
         add_joint_nodes(wd);
     return PP_OK;
 }
@@ -121,7 +121,7 @@ static void set_spans(world *wd, substep_pairing pairing)
     int32_t *parent = wd->group, *flags = wd->group + 2 * wd->group_capacity;
     for (int32_t n = 0; n < wd->node_count; n++)
         flags[wd->nodes[n]] = 0;
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
         const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
@@ -196,7 +196,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     wd->substep_serial++;
     *out = (solver_islands){0};
     wd->node_count = 0;
-    if (wd->body_capacity == 0)
+    if (wd->body_ids.capacity == 0)
         return PP_OK;
     pp_status st = world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 3 * sizeof *wd->group,
                                     "the islands");
@@ -220,7 +220,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     for (int32_t k = 0; k < wd->contact_count; k++)
         join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
                     ROWS_PER_CONTACT);
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
         if (is_node(wd, a) || is_node(wd, b))
@@ -289,7 +289,7 @@ bool island_sleep(world *wd, double h)
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
     }
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const body *a, *b;
         if (joint_movers(wd, wd->joints.items[i], &a, &b) && a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
             wd->node_mark[a->index] == wd->node_pass)

@@ -33,7 +33,7 @@ joint *joint_find(const world *wd, pp_joint j)
 {
     const joint_table *t = &wd->joints;
     const uint32_t slot = handle_slot(j.id);
-    if (j.id == 0 || handle_tag(j.id) != wd->tag || slot >= (uint32_t)t->capacity || t->generations[slot] != handle_gen(j.id))
+    if (j.id == 0 || handle_tag(j.id) != wd->tag || !id_pool_current(&t->ids, slot, handle_gen(j.id)))
         return NULL;
     return t->items[slot];
 }
@@ -62,30 +62,14 @@ body *joint_body_b(const world *wd, const joint *jt) { return side_body(wd, jt->
 /* A slot for a new joint, growing the table; PP_ERR_OUT_OF_MEMORY or PP_ERR_LIMIT. */
 static pp_status alloc_slot(world *wd, uint32_t *slot)
 {
-    joint_table *t = &wd->joints;
-    if (t->free_count == 0) {
-        if (t->capacity >= PP_MAX_BODIES)
-            return pp_fail(PP_ERR_LIMIT, "pp_joint_create: a world holds at most %d joints", PP_MAX_BODIES);
-        const int32_t cap = t->capacity ? (t->capacity * 2 < PP_MAX_BODIES ? t->capacity * 2 : PP_MAX_BODIES) : 16;
-        joint **items = pp_realloc(t->items, (size_t)cap * sizeof *items);
-        if (items)
-            t->items = items;
-        uint32_t *gens = items ? pp_realloc(t->generations, (size_t)cap * sizeof *gens) : NULL;
-        if (gens)
-            t->generations = gens;
-        uint32_t *free_slots = gens ? pp_realloc(t->free_slots, (size_t)cap * sizeof *free_slots) : NULL;
-        if (!free_slots)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for %d joints", (int)cap);
-        t->free_slots = free_slots;
-        for (int32_t i = cap - 1; i >= t->capacity; i--) { /* lowest slot on top */
-            t->items[i] = NULL;
-            t->generations[i] = 1;
-            t->free_slots[t->free_count++] = (uint32_t)i;
-        }
-        t->capacity = cap;
+    switch (ID_POOL_TAKE(&wd->joints.ids, PP_MAX_BODIES, wd->joints.items, pp_realloc, slot)) {
+    case ID_POOL_TAKEN:
+        return PP_OK;
+    case ID_POOL_FULL:
+        return pp_fail(PP_ERR_LIMIT, "pp_joint_create: a world holds at most %d joints", PP_MAX_BODIES);
+    default:
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for %d joints", (int)wd->joints.ids.live + 1);
     }
-    *slot = t->free_slots[--t->free_count];
-    return PP_OK;
 }
 
 static void joint_free(world *wd, joint *jt)
@@ -98,9 +82,7 @@ static void joint_free(world *wd, joint *jt)
         b->joint_count--;
     solver_joint_destroy(&jt->sj);
     t->items[jt->index] = NULL;
-    t->generations[jt->index] = handle_next_gen(t->generations[jt->index]);
-    t->free_slots[t->free_count++] = jt->index;
-    t->count--;
+    id_pool_release(&t->ids, jt->index);
     pp_free(jt);
 }
 
@@ -347,20 +329,19 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
         return st;
     }
     if ((st = solver_joint_create(wd->solver, def->type, &jt->sj))) {
-        wd->joints.free_slots[wd->joints.free_count++] = slot;
+        id_pool_untake(&wd->joints.ids, slot);
         pp_free(jt);
         return st;
     }
     joint_table *t = &wd->joints;
     jt->index = slot;
-    jt->handle = (pp_joint){handle_make(wd->tag, slot, t->generations[slot])};
+    jt->handle = (pp_joint){handle_make(wd->tag, slot, t->ids.generations[slot])};
     jt->def = *def;
     jt->local_a = local_a, jt->local_b = local_b;
     jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);
     const dvec2 axis = dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y));
     jt->axis_local = a ? dv_unrot(axis, a->cos_a, a->sin_a) : axis;
     t->items[slot] = jt;
-    t->count++;
     if (a)
         a->joint_count++;
     if (b)
@@ -410,7 +391,7 @@ PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity
     if (st)
         return st;
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->joints.capacity; i++)
+    for (int32_t i = 0; i < wd->joints.ids.capacity; i++)
         if (wd->joints.items[i]) {
             if (n < capacity)
                 out[n] = wd->joints.items[i]->handle;
@@ -567,7 +548,7 @@ static bool joint_has(const joint *jt, const body *bd)
 
 void joint_body_removed(world *wd, body *bd)
 {
-    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.ids.capacity; i++) {
         joint *jt = wd->joints.items[i];
         if (jt && joint_has(jt, bd)) {
             wake_joint(wd, jt);
@@ -578,7 +559,7 @@ void joint_body_removed(world *wd, body *bd)
 
 void joint_body_changed(world *wd, const body *bd)
 {
-    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.ids.capacity; i++) {
         joint *jt = wd->joints.items[i];
         if (jt && joint_has(jt, bd))
             jt->dirty = true;
@@ -587,7 +568,7 @@ void joint_body_changed(world *wd, const body *bd)
 
 bool joint_needs_mover(const world *wd, const body *bd)
 {
-    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         if (!jt || !joint_has(jt, bd))
             continue;
@@ -602,7 +583,7 @@ bool joint_keeps_apart(const world *wd, const body *a, const body *b)
 {
     if (a->joint_count == 0 || b->joint_count == 0)
         return false;
-    for (int32_t i = 0; i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         if (jt && !jt->def.collide_connected && joint_has(jt, a) && joint_has(jt, b))
             return true;
@@ -640,7 +621,7 @@ static bool anchor_follows(world *wd, const body *bd, const fracture_plan *p, pp
 
 void joint_edit_done(world *wd, body *bd, const fracture_plan *p)
 {
-    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; bd->joint_count > 0 && i < wd->joints.ids.capacity; i++) {
         joint *jt = wd->joints.items[i];
         if (!jt || !joint_has(jt, bd))
             continue;
@@ -689,7 +670,7 @@ static void mouse_prepare(world *wd, joint *jt, double k)
 
 void joint_prepare(world *wd, double h)
 {
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         joint *jt = wd->joints.items[i];
         if (!jt)
             continue;
@@ -720,14 +701,14 @@ static bool over_break_force(const world *wd, const joint *jt)
 pp_status joint_step_done(world *wd)
 {
     int32_t n = 0;
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++)
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++)
         n += wd->joints.items[i] && over_break_force(wd, wd->joints.items[i]);
     if (n == 0)
         return PP_OK;
-    pp_status st = world_reserve_events(wd, n);
+    pp_status st = world_reserve_events(wd, n, "pp_world_step");
     if (st)
         return st;
-    for (int32_t i = 0; i < wd->joints.capacity; i++)
+    for (int32_t i = 0; i < wd->joints.ids.capacity; i++)
         if (wd->joints.items[i] && over_break_force(wd, wd->joints.items[i]))
             joint_break(wd, wd->joints.items[i]);
     return PP_OK;
@@ -782,7 +763,7 @@ pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
         solver_body_restore(&b->sb, &now_b);
     solver_joint_set_feedback(&jt->sj, feedback);
     t->items[jt->index] = jt;
-    t->count++;
+    id_pool_claim(&t->ids); /* joint_table_restore left its slot neither free nor live */
     if (a)
         a->joint_count++;
     if (b)
@@ -794,30 +775,22 @@ pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t ca
                               int32_t free_count)
 {
     joint_table *t = &wd->joints;
-    PP_ASSERT(t->capacity == 0 && free_count <= capacity);
+    PP_ASSERT(t->ids.capacity == 0 && free_count <= capacity);
     t->items = pp_calloc((size_t)capacity + 1, sizeof *t->items);
-    t->generations = pp_malloc(((size_t)capacity + 1) * sizeof *t->generations);
-    t->free_slots = pp_malloc(((size_t)capacity + 1) * sizeof *t->free_slots);
-    if (!t->items || !t->generations || !t->free_slots)
+    if (!t->items || !id_pool_restore(&t->ids, generations, capacity, free_slots, free_count, pp_realloc))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_load_snapshot: no memory for %d joint slots", (int)capacity);
-    if (capacity > 0) {
-        memcpy(t->generations, generations, (size_t)capacity * sizeof *generations);
-        memcpy(t->free_slots, free_slots, (size_t)free_count * sizeof *free_slots);
-    }
-    t->capacity = capacity, t->free_count = free_count;
     return PP_OK;
 }
 
 void joint_free_all(world *wd)
 {
     joint_table *t = &wd->joints;
-    for (int32_t i = 0; i < t->capacity; i++)
+    for (int32_t i = 0; i < t->ids.capacity; i++)
         if (t->items[i]) {
             solver_joint_destroy(&t->items[i]->sj);
             pp_free(t->items[i]);
         }
     pp_free(t->items);
-    pp_free(t->generations);
-    pp_free(t->free_slots);
+    id_pool_free(&t->ids, pp_free);
     *t = (joint_table){0};
 }

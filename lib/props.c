@@ -163,7 +163,7 @@ PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity)
                        gravity.x, gravity.y, PP_MAX_ACCELERATION);
     wd->def.gravity = gravity;
     solver_set_gravity(wd->solver, dv(gravity.x, gravity.y));
-    for (int32_t i = 0; i < wd->body_capacity; i++) /* gravity touches every body */
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) /* gravity touches every body */
         if (wd->bodies[i] && wd->bodies[i]->sb.body)
             awake_wake(wd, wd->bodies[i]);
     return PP_OK;
@@ -178,7 +178,7 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
     if (st)
         return st;
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         const body *bd = wd->bodies[i];
         if (!bd)
             continue;

@@ -9,26 +9,26 @@
 #include <stdlib.h>
 #include <string.h>
 
-pp_status raster_check_def(const pp_body_def *def)
+pp_status raster_check_def(const char *fn, const pp_body_def *def)
 {
     if (def->width <= 0 || def->height <= 0)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: width and height must be > 0, got %d × %d",
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: width and height must be > 0, got %d × %d", fn,
                        (int)def->width, (int)def->height);
     if (def->width > PP_MAX_BITMAP_SIDE || def->height > PP_MAX_BITMAP_SIDE)
-        return pp_fail(PP_ERR_LIMIT, "pp_body_create: width and height must be ≤ %d (PP_MAX_BITMAP_SIDE), got %d × %d",
+        return pp_fail(PP_ERR_LIMIT, "%s: width and height must be ≤ %d (PP_MAX_BITMAP_SIDE), got %d × %d", fn,
                        PP_MAX_BITMAP_SIDE, (int)def->width, (int)def->height);
     if ((int64_t)def->width * def->height > (int64_t)PP_MAX_BITMAP_AREA)
-        return pp_fail(PP_ERR_LIMIT, "pp_body_create: width × height = %lld is over PP_MAX_BITMAP_AREA (%lld)",
+        return pp_fail(PP_ERR_LIMIT, "%s: width × height = %lld is over PP_MAX_BITMAP_AREA (%lld)", fn,
                        (long long)def->width * def->height, (long long)PP_MAX_BITMAP_AREA);
     if (!def->rgba && !def->mask)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: the def has no bitmap (rgba and mask are both NULL)");
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the def has no bitmap (rgba and mask are both NULL)", fn);
     if (!def->mask && (def->alpha_threshold < 1 || def->alpha_threshold > 255))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_create: alpha_threshold must be 1..255, got %u",
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: alpha_threshold must be 1..255, got %u", fn,
                        (unsigned)def->alpha_threshold);
     return PP_OK;
 }
 
-pp_status raster_init(pp_raster *r, const pp_body_def *def)
+pp_status raster_init(const char *fn, pp_raster *r, const pp_body_def *def)
 {
     memset(r, 0, sizeof *r);
     const int32_t w = def->width, h = def->height;
@@ -44,13 +44,13 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     r->tile_count = pp_calloc((size_t)r->tiles_x * (size_t)r->tiles_y, sizeof *r->tile_count);
     if (!r->bits || !r->row_count || !r->col_count || !r->tile_count) {
         raster_free(r);
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d mask", (int)w, (int)h);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d mask", fn, (int)w, (int)h);
     }
     if (def->weights) {
         r->weights = pp_malloc((size_t)w * (size_t)h);
         if (!r->weights) {
             raster_free(r);
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_body_create: no memory for a %d × %d weight plane", (int)w, (int)h);
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d weight plane", fn, (int)w, (int)h);
         }
         memcpy(r->weights, def->weights, (size_t)w * (size_t)h);
     }
@@ -79,13 +79,13 @@ pp_status raster_init(pp_raster *r, const pp_body_def *def)
     return PP_OK;
 }
 
-pp_status raster_ensure_weights(pp_raster *r)
+pp_status raster_ensure_weights(const char *fn, pp_raster *r)
 {
     if (r->weights)
         return PP_OK;
     r->weights = pp_malloc((size_t)r->width * (size_t)r->height);
     if (!r->weights)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for a %d × %d weight plane", (int)r->width, (int)r->height);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d weight plane", fn, (int)r->width, (int)r->height);
     memset(r->weights, 255, (size_t)r->width * (size_t)r->height);
     return PP_OK;
 }

@@ -35,10 +35,10 @@ typedef struct pp_raster {
 } pp_raster;
 
 /* Validate a def's bitmap (sizes, limits, planes) without allocating. */
-pp_status raster_check_def(const pp_body_def *def);
+pp_status raster_check_def(const char *fn, const pp_body_def *def);
 
 /* Build the raster from a def's planes (rgba alpha, mask override, weights). */
-pp_status raster_init(pp_raster *r, const pp_body_def *def);
+pp_status raster_init(const char *fn, pp_raster *r, const pp_body_def *def);
 
 void raster_free(pp_raster *r);
 
@@ -50,7 +50,7 @@ int64_t raster_memory_bytes(const pp_raster *r);
 raster_state raster_rect_state(const pp_raster *r, int64_t x0, int64_t y0, int64_t x1, int64_t y1);
 
 /* Give the raster a weight plane (every pixel 255) before a write of another weight. */
-pp_status raster_ensure_weights(pp_raster *r);
+pp_status raster_ensure_weights(const char *fn, pp_raster *r);
 
 /* Set one pixel (the weight is stored only where there is a plane); bounds grow at once. */
 void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weight);

@@ -216,19 +216,19 @@ static int by_attach(const void *a, const void *b)
 static bool write_joints(const world *wd, cJSON *root)
 {
     const joint_table *t = &wd->joints;
-    if (t->capacity == 0)
+    if (t->ids.capacity == 0)
         return true;
     cJSON *gens = cJSON_CreateArray(), *free_slots = cJSON_CreateArray(), *arr = cJSON_CreateArray();
-    joint **live = pp_malloc(((size_t)t->count + 1) * sizeof *live);
+    joint **live = pp_malloc(((size_t)t->ids.live + 1) * sizeof *live);
     bool ok = gens && free_slots && arr && live;
     int32_t n = 0;
-    for (int32_t i = 0; ok && i < t->capacity; i++) {
-        ok = cJSON_AddItemToArray(gens, json_number(t->generations[i], false));
+    for (int32_t i = 0; ok && i < t->ids.capacity; i++) {
+        ok = cJSON_AddItemToArray(gens, json_number(t->ids.generations[i], false));
         if (t->items[i])
             live[n++] = t->items[i];
     }
-    for (int32_t i = 0; ok && i < t->free_count; i++)
-        ok = cJSON_AddItemToArray(free_slots, json_number(t->free_slots[i], false));
+    for (int32_t i = 0; ok && i < t->ids.free_count; i++)
+        ok = cJSON_AddItemToArray(free_slots, json_number(t->ids.free_slots[i], false));
     if (ok)
         qsort(live, (size_t)n, sizeof *live, by_attach);
     for (int32_t i = 0; ok && i < n; i++)
@@ -255,10 +255,10 @@ static bool write_slots(const world *wd, cJSON *root)
 {
     cJSON *gens = cJSON_CreateArray(), *free_slots = cJSON_CreateArray();
     bool ok = gens && free_slots;
-    for (int32_t i = 0; ok && i < wd->body_capacity; i++)
-        ok = cJSON_AddItemToArray(gens, json_number(wd->generations[i], false));
-    for (int32_t i = 0; ok && i < wd->free_count; i++)
-        ok = cJSON_AddItemToArray(free_slots, json_number(wd->free_slots[i], false));
+    for (int32_t i = 0; ok && i < wd->body_ids.capacity; i++)
+        ok = cJSON_AddItemToArray(gens, json_number(wd->body_ids.generations[i], false));
+    for (int32_t i = 0; ok && i < wd->body_ids.free_count; i++)
+        ok = cJSON_AddItemToArray(free_slots, json_number(wd->body_ids.free_slots[i], false));
     if (!ok) {
         cJSON_Delete(gens);
         cJSON_Delete(free_slots);
@@ -367,7 +367,7 @@ static bool write_held(const world *wd, cJSON *root)
 static pp_status check_savable(const world *wd)
 {
     static const char *fn = "pp_world_save_snapshot";
-    for (int32_t i = 0; i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         double v[JOINT_STATE_DOUBLES];
         for (int k = 0; jt && k < joint_state(jt, v); k++)
@@ -375,7 +375,7 @@ static pp_status check_savable(const world *wd)
                 return pp_fail(PP_ERR_LIMIT, "%s: joint %#llx holds %g, which a snapshot cannot; nothing was written",
                                fn, (unsigned long long)jt->handle.id, v[k]);
     }
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         const body *bd = wd->bodies[i];
         if (!bd)
             continue;
@@ -415,14 +415,14 @@ static pp_status write_world(const save_dir *dir, const world *wd, cJSON *root)
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
               write_edits_and_events(wd, root) && write_touching(wd, root) && write_held(wd, root) &&
               write_joints(wd, root);
-    body **live = ok ? pp_malloc(((size_t)wd->live_count + 1) * sizeof *live) : NULL;
+    body **live = ok ? pp_malloc(((size_t)wd->body_ids.live + 1) * sizeof *live) : NULL;
     cJSON *arr = live ? cJSON_CreateArray() : NULL;
     if (!live || !add(root, "bodies", arr)) {
         pp_free(live);
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     }
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i])
             live[n++] = wd->bodies[i];
     qsort(live, (size_t)n, sizeof *live, by_serial);
@@ -621,50 +621,40 @@ static pp_status read_int_array(const json_ctx *c, const cJSON *obj, const char 
     return PP_OK;
 }
 
-/* The slot tables as saved, with no body in them yet. */
+/* The slot table as saved, with no body in it yet: generations, and free slots that exist. */
 static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
 {
-    uint32_t *gens = NULL;
-    int32_t n = 0;
+    uint32_t *gens = NULL, *list = NULL;
+    int32_t n = 0, n_free = 0;
     pp_status st = read_int_array(c, root, "generations", 1, HANDLE_GEN_MAX, &gens, &n);
-    if (st) {
-        pp_free(gens);
-        return st;
-    }
-    body **bodies = pp_calloc((size_t)n + 1, sizeof *bodies);
-    uint32_t *free_slots = pp_calloc((size_t)n + 1, sizeof *free_slots);
-    if (!bodies || !free_slots) {
-        pp_free(gens), pp_free(bodies), pp_free(free_slots);
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)n);
-    }
-    wd->bodies = bodies, wd->generations = gens, wd->free_slots = free_slots;
-    wd->body_capacity = n, wd->free_count = 0;
-    return PP_OK;
+    if (!st)
+        st = read_int_array(c, root, "free_slots", 0, n - 1, &list, &n_free);
+    if (!st && (!(wd->bodies = pp_calloc((size_t)n + 1, sizeof *wd->bodies)) ||
+                !id_pool_restore(&wd->body_ids, gens, n, list, n_free, pp_realloc)))
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)n);
+    pp_free(gens);
+    pp_free(list);
+    return st;
 }
 
-/* The free list as saved: slots that exist, hold no body, once each (each marked as seen, so that a long
- * list is checked in one pass). */
-static pp_status restore_free_list(const json_ctx *c, const cJSON *root, world *wd)
+/* Each free slot holds no body and is listed once (each marked as seen, so that a long list is checked in
+ * one pass). */
+static pp_status check_free_list(const json_ctx *c, const world *wd)
 {
-    uint32_t *list = NULL;
-    int32_t n = 0;
-    pp_status st = read_int_array(c, root, "free_slots", 0, wd->body_capacity - 1, &list, &n);
-    uint8_t *seen = st == PP_OK ? pp_calloc((size_t)wd->body_capacity + 1, 1) : NULL;
-    if (st == PP_OK && !seen)
-        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)wd->body_capacity);
-    for (int32_t i = 0; st == PP_OK && i < n; i++) {
-        const bool twice = seen[list[i]];
-        seen[list[i]] = 1;
-        if (twice || wd->bodies[list[i]])
-            st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "[%d]: slot %u is %s", (int)i, (unsigned)list[i],
+    const id_pool *ids = &wd->body_ids;
+    uint8_t *seen = pp_calloc((size_t)ids->capacity + 1, 1);
+    if (!seen)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)ids->capacity);
+    pp_status st = PP_OK;
+    for (int32_t i = 0; st == PP_OK && i < ids->free_count; i++) {
+        const uint32_t slot = ids->free_slots[i];
+        const bool twice = seen[slot];
+        seen[slot] = 1;
+        if (twice || wd->bodies[slot])
+            st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "[%d]: slot %u is %s", (int)i, (unsigned)slot,
                            twice ? "listed twice" : "in use");
     }
-    if (st == PP_OK && n > 0)
-        memcpy(wd->free_slots, list, (size_t)n * sizeof *list);
-    if (st == PP_OK)
-        wd->free_count = n;
     pp_free(seen);
-    pp_free(list);
     return st;
 }
 
@@ -724,22 +714,18 @@ static pp_status restore_body(const json_ctx *c, const cJSON *obj, const char *w
         (st = read_required_int(c, obj, where, "serial", (int64_t)*serial, JSON_MAX_EXACT_INT, &ser)))
         return st;
     const uint32_t slot = handle_slot(id);
-    if (slot >= (uint32_t)wd->body_capacity || wd->generations[slot] != handle_gen(id) || wd->bodies[slot])
+    if (!id_pool_current(&wd->body_ids, slot, handle_gen(id)) || wd->bodies[slot])
         return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free slot of that generation");
     if ((st = parse_bitmap(c, obj, where, &bm))) {
         bitmap_free(&bm); /* parse_bitmap leaves what it loaded to the caller (a leak found by fuzz_snapshot) */
         return st;
     }
     d.width = bm.width, d.height = bm.height, d.rgba = bm.rgba, d.mask = bm.mask, d.weights = bm.weights;
-    wd->free_slots[wd->free_count++] = slot; /* pp_body_create takes the slot on top of the free list */
-    pp_body h;
-    st = pp_body_create(wd->handle, &d, &h);
+    body *bd = NULL;
+    st = body_make(wd, &d, slot, c->fn, &bd);
     bitmap_free(&bm);
-    if (st) {
-        wd->free_count--;
+    if (st)
         return json_fail_from_last(c, st, where, NULL);
-    }
-    body *bd = wd->bodies[slot];
     bd->serial = (uint64_t)ser;
     *serial = (uint64_t)ser + 1;
     return restore_state(c, obj, where, wd, bd);
@@ -810,7 +796,7 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
             ev.type = (pp_event_type)type;
             if (!type)
                 st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
-            else if (!(st = restore_event_contact(c, it, where, &ev)) && !(st = world_reserve_events(wd, 1)))
+            else if (!(st = restore_event_contact(c, it, where, &ev)) && !(st = world_reserve_events(wd, 1, c->fn)))
                 world_queue_event(wd, ev);
         }
     }
@@ -965,7 +951,7 @@ static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *
         return st;
     const joint_table *t = &wd->joints;
     const uint32_t slot = handle_slot(id);
-    if (slot >= (uint32_t)t->capacity || t->generations[slot] != handle_gen(id) || t->items[slot])
+    if (!id_pool_current(&t->ids, slot, handle_gen(id)) || t->items[slot])
         return json_fail(c, PP_ERR_FORMAT, where, "handle", "no free joint slot of that generation");
     if ((st = joint_check_def(wd, c->fn, &d)) ||
         (st = joint_check_anchors(c->fn, d.body_a.id ? body_of(wd, d.body_a) : NULL, dv(v[0], v[1]),
@@ -1037,7 +1023,7 @@ static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
     if ((st = read_double(c, root, "", "time", NUM_NONNEG, &wd->time)) ||
         (st = read_required_int(c, root, "", "solver_steps", 0, JSON_MAX_EXACT_INT, &steps)) ||
         (st = read_required_int(c, root, "", "next_serial", 0, JSON_MAX_EXACT_INT, &serial)) ||
-        (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = restore_free_list(c, root, wd)) ||
+        (st = restore_slots(c, root, wd)) || (st = restore_bodies(c, root, wd)) || (st = check_free_list(c, wd)) ||
         (st = restore_edits(c, root, wd)) || (st = restore_events(c, root, wd)) || (st = restore_touching(c, root, wd)) ||
         (st = restore_held(c, root, wd)) || (st = restore_joints(c, root, wd)))
         return st;

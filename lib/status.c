@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 static _Thread_local char last_error[512];
 /* The hook may be swapped on one thread while another world logs: fn and user are read and written
@@ -19,6 +20,15 @@ pp_status pp_fail(pp_status status, const char *fmt, ...)
     vsnprintf(last_error, sizeof last_error, fmt, ap);
     va_end(ap);
     return status;
+}
+
+pp_status pp_fail_in(const char *fn, pp_status status)
+{
+    if (strncmp(last_error, "pp_", 3) == 0)
+        return status;
+    char inner[sizeof last_error];
+    memcpy(inner, last_error, sizeof inner);
+    return pp_fail(status, "%s: %s", fn, inner);
 }
 
 pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity, const int32_t *count)

@@ -8,6 +8,10 @@
  * `return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be > 0, got %g", dt);`. */
 pp_status pp_fail(pp_status status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* The last failure's message put under the call the user made ("fn: ..."), for a part that does not know
+ * it (the broadphase, the narrowphase); a message that already names a call is kept. Returns status. */
+pp_status pp_fail_in(const char *fn, pp_status status);
+
 /* Check a caller-owned output buffer (out, capacity, count) as every list call takes it. */
 pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity, const int32_t *count);
 

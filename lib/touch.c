@@ -130,7 +130,7 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
         t.flags |= TOUCH_PASSING;
     *keep = !(t.flags & (TOUCH_SENSOR | TOUCH_PASSING));
     /* Room for the record and its event first: a failure changes nothing. */
-    pp_status st = world_reserve_events(wd, 1);
+    pp_status st = world_reserve_events(wd, 1, "pp_world_step");
     if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, wd->touch_next_count + 1))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs",
                                  (int)wd->touch_next_count + 1);
@@ -155,7 +155,7 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
 static bool untested(const world *wd, const touch *t)
 {
     const body *a = body_find(wd, (pp_body){t->a}), *b = body_find(wd, (pp_body){t->b});
-    PP_ASSERT(wd->proxy_capacity >= wd->body_capacity);
+    PP_ASSERT(wd->proxy_capacity >= wd->body_ids.capacity);
     return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
 }
 
@@ -221,7 +221,7 @@ pp_status touch_end(world *wd)
     /* Room for the worst case first (every old pair resting, or ended with an event). */
     const int32_t n = found + wd->touch_count;
     if (!st)
-        st = world_reserve_events(wd, wd->touch_count);
+        st = world_reserve_events(wd, wd->touch_count, "pp_world_step");
     if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, n) ||
         !ARRAY_RESERVE(wd->touching, wd->touch_capacity, found))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);

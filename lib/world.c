@@ -3,6 +3,7 @@
 #include "alloc.h"
 #include "awake.h"
 #include "continuous.h"
+#include "edit.h"
 #include "forces.h"
 #include "handle.h"
 #include "island.h"
@@ -16,17 +17,25 @@
 #include <string.h>
 #include <time.h>
 
-/* Worlds live in a process-wide table; a world id is (generation << 32) | (slot + 1) (handle.h). */
+/* Worlds live in a process-wide table of fixed size, its slots from an id pool; a world id is
+ * (generation << 32) | (slot + 1) (handle.h). Everything here is read and written under the lock. */
 static world *worlds[PP_MAX_WORLDS];
-static uint32_t world_generations[PP_MAX_WORLDS];
+static uint32_t world_generations[PP_MAX_WORLDS], world_free_slots[PP_MAX_WORLDS];
+static id_pool world_ids;
 static pthread_mutex_t worlds_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* Lock the table, setting its pool up on first use. */
+static void worlds_enter(void)
+{
+    pthread_mutex_lock(&worlds_lock);
+    if (!world_ids.generations)
+        id_pool_init_fixed(&world_ids, world_generations, world_free_slots, PP_MAX_WORLDS);
+}
 
 int32_t world_live_count(void)
 {
-    int32_t n = 0;
-    pthread_mutex_lock(&worlds_lock);
-    for (int32_t i = 0; i < PP_MAX_WORLDS; i++)
-        n += worlds[i] != NULL;
+    worlds_enter();
+    const int32_t n = world_ids.live;
     pthread_mutex_unlock(&worlds_lock);
     return n;
 }
@@ -42,8 +51,8 @@ world *world_lookup(pp_world w, const char *fn)
 {
     const uint32_t slot = world_id_slot(w.id), gen = world_id_gen(w.id);
     world *wd = NULL;
-    pthread_mutex_lock(&worlds_lock);
-    if (w.id != 0 && slot < PP_MAX_WORLDS && world_generations[slot] == gen)
+    worlds_enter();
+    if (w.id != 0 && id_pool_current(&world_ids, slot, gen))
         wd = worlds[slot];
     pthread_mutex_unlock(&worlds_lock);
     if (!wd)
@@ -56,7 +65,7 @@ uint64_t world_id_of_tag(uint32_t tag)
 {
     const uint32_t slot = tag_world_slot(tag);
     uint64_t id = 0;
-    pthread_mutex_lock(&worlds_lock);
+    worlds_enter();
     if (worlds[slot] && worlds[slot]->tag == tag)
         id = worlds[slot]->handle.id;
     pthread_mutex_unlock(&worlds_lock);
@@ -204,19 +213,15 @@ PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out)
         pp_free(wd);
         return st;
     }
-    pthread_mutex_lock(&worlds_lock);
+    worlds_enter();
     uint32_t slot = 0;
-    while (slot < PP_MAX_WORLDS && worlds[slot])
-        slot++;
-    if (slot == PP_MAX_WORLDS) {
+    if (!id_pool_take_free(&world_ids, &slot)) {
         pthread_mutex_unlock(&worlds_lock);
         solver_destroy(wd->solver);
         gpu_narrow_destroy(wd->gpu);
         pp_free(wd);
         return pp_fail(PP_ERR_LIMIT, "pp_world_create: already %d live worlds (PP_MAX_WORLDS)", PP_MAX_WORLDS);
     }
-    if (world_generations[slot] == 0)
-        world_generations[slot] = 1;
     worlds[slot] = wd;
     wd->slot = slot;
     wd->tag = world_tag(slot, world_generations[slot]);
@@ -234,14 +239,12 @@ PP_API pp_status pp_world_destroy(pp_world w)
     world *wd = world_lookup(w, "pp_world_destroy");
     if (!wd)
         return PP_ERR_INVALID_HANDLE;
-    pthread_mutex_lock(&worlds_lock);
+    worlds_enter();
     worlds[wd->slot] = NULL;
-    world_generations[wd->slot]++;
-    if (world_generations[wd->slot] == 0)
-        world_generations[wd->slot] = 1;
+    id_pool_release(&world_ids, wd->slot);
     pthread_mutex_unlock(&worlds_lock);
     joint_free_all(wd); /* before the bodies: ODE's joints go before what they attach */
-    for (int32_t i = 0; i < wd->body_capacity; i++)
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i])
             body_free(wd, wd->bodies[i]);
     solver_destroy(wd->solver);
@@ -264,8 +267,8 @@ PP_API pp_status pp_world_destroy(pp_world w)
     pp_free(wd->swept);
     pp_free(wd->awake_slots);
     pp_free(wd->bodies);
-    pp_free(wd->generations);
-    pp_free(wd->free_slots);
+    pp_free(wd->body_ids.generations);
+    pp_free(wd->body_ids.free_slots);
     pp_free(wd->contacts);
     pp_free(wd->edits);
     pp_free(wd->undo.bodies);
@@ -285,7 +288,7 @@ PP_API pp_status pp_world_destroy(pp_world w)
 
 pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
 {
-    if (!array_reserve(items, capacity, wd->body_capacity, per_slot))
+    if (!array_reserve(items, capacity, wd->body_ids.capacity, per_slot))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %s", what);
     return PP_OK;
 }
@@ -346,10 +349,14 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
     np_pair *pairs = first ? wd->pairs + first : wd->pairs;
     np_core *cores = first ? wd->cores + first : wd->cores;
+    pp_status st;
     if (*ran == PP_BACKEND_GPU)
-        return gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
-    const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
-    return workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
+        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
+    else {
+        const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
+        st = workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
+    }
+    return st ? pp_fail_in(fn, st) : PP_OK;
 }
 
 /* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells. */
@@ -448,11 +455,12 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     const double t0 = now_ms();
     pp_status st = carry_begin(wd, substep, dt);
     if (st || (st = awake_refresh(wd)))
-        return st;
+        return st ? pp_fail_in(fn, st) : st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
-    if (wd->awake_movers > 0)
-        st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_capacity, wd->awake_slots, wd->awake_count);
-    else
+    if (wd->awake_movers > 0 &&
+        (st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_ids.capacity, wd->awake_slots, wd->awake_count)))
+        return pp_fail_in(fn, st);
+    if (wd->awake_movers == 0)
         wd->broad.pair_count = 0;
     if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
         return st;
@@ -716,16 +724,15 @@ static pp_status apply_due_edits(world *wd, float dt)
 {
     while (wd->edit_count > 0 && wd->edits[0].edit.time < wd->time + 0.5 * dt) {
         const pp_timed_edit e = wd->edits[0].edit;
-        pp_status st;
-        if (e.type == PP_EDIT_PAINT_CIRCLE)
-            st = pp_body_paint_circle(wd->handle, e.body, e.center, e.radius, (uint8_t)e.weight, NULL);
-        else if (e.body.id == 0)
-            st = pp_world_erase_circle(wd->handle, e.center, e.radius, NULL);
-        else
-            st = pp_body_erase_circle(wd->handle, e.body, e.center, e.radius, NULL);
-        if (st == PP_ERR_INVALID_HANDLE)
+        body *bd = e.body.id ? body_find(wd, e.body) : NULL;
+        pp_status st = PP_OK;
+        if (e.body.id && !bd)
             pp_log(1, "physpix: a timed edit at t = %g s skipped: its body is gone", e.time);
-        else if (st)
+        else if (e.type == PP_EDIT_PAINT_CIRCLE)
+            st = edit_paint_circle(wd, bd, e.center, e.radius, (uint8_t)e.weight, "pp_world_step", NULL);
+        else
+            st = edit_erase_circle(wd, bd, e.center, e.radius, "pp_world_step", NULL);
+        if (st)
             return st;
         edits_pop(wd);
     }
@@ -751,13 +758,13 @@ static pp_status step_save(world *wd)
 {
     step_undo *u = &wd->undo;
     const int32_t saved = u->body_capacity;
-    if (!ARRAY_RESERVE(u->bodies, u->body_capacity, wd->body_capacity))
+    if (!ARRAY_RESERVE(u->bodies, u->body_capacity, wd->body_ids.capacity))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
-                       (int)wd->live_count);
+                       (int)wd->body_ids.live);
     memset(u->bodies + saved, 0, (size_t)(u->body_capacity - saved) * sizeof *u->bodies); /* step 0: never */
     if (!ARRAY_RESERVE(u->contacts, u->contact_capacity, wd->contact_count))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
-                       (int)wd->live_count);
+                       (int)wd->body_ids.live);
     u->step++;
     for (int32_t k = 0; k < wd->awake_count; k++) {
         const body *bd = wd->bodies[wd->awake_slots[k]];
@@ -801,7 +808,7 @@ static void save_contact_bodies(world *wd)
         save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
         save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
     }
-    for (int32_t i = 0; wd->joints.count > 0 && i < wd->joints.capacity; i++) {
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
         if (a)
@@ -815,9 +822,9 @@ static void save_contact_bodies(world *wd)
 static void step_restore(world *wd)
 {
     step_undo *u = &wd->undo;
-    PP_ASSERT(u->body_capacity >= wd->body_capacity && u->contact_count <= wd->contact_capacity &&
+    PP_ASSERT(u->body_capacity >= wd->body_ids.capacity && u->contact_count <= wd->contact_capacity &&
               u->event_count <= wd->event_count);
-    for (int32_t i = 0; i < wd->body_capacity; i++) {
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
         if (!bd || sv->step != u->step)
@@ -927,7 +934,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     wd->stats.narrowphase_ms = (float)t_narrow;
     wd->stats.solver_ms = (float)t_solver;
     wd->stats.total_ms = (float)(now_ms() - t_start);
-    wd->stats.bodies = wd->live_count;
+    wd->stats.bodies = wd->body_ids.live;
     wd->stats.awake_bodies = awake;
     wd->time += dt;
     return PP_OK;
@@ -963,7 +970,7 @@ PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity,
     if (st)
         return st;
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->body_capacity; i++)
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i]) {
             if (n < capacity)
                 out[n] = wd->bodies[i]->handle;
@@ -988,10 +995,10 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     return PP_OK;
 }
 
-pp_status world_reserve_events(world *wd, int32_t n)
+pp_status world_reserve_events(world *wd, int32_t n, const char *fn)
 {
     if (!ARRAY_RESERVE(wd->events, wd->event_capacity, wd->event_count + n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "no memory for %d events", (int)(wd->event_count + n));
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d events", fn, (int)(wd->event_count + n));
     return PP_OK;
 }
 

@@ -7,6 +7,7 @@
 #include "check.h"
 #include "crowd.h"
 #include "handle.h"
+#include "id_pool.h"
 #include "massprops.h"
 #include "math2d.h"
 #include "narrow_gpu.h"
@@ -94,10 +95,8 @@ typedef struct step_undo {
 
 /* The joints of a world (joint.c): a handle table as the bodies'. */
 typedef struct joint_table {
-    struct joint **items;    /* by slot; NULL where free */
-    uint32_t *generations;   /* by slot */
-    uint32_t *free_slots;
-    int32_t capacity, free_count, count;
+    struct joint **items;    /* by slot of ids; NULL where free */
+    id_pool ids;             /* the joints' slots and generations */
     uint64_t next_attach;    /* the next attach's order: ODE lists a body's joints newest attached first */
 } joint_table;
 
@@ -112,10 +111,8 @@ typedef struct world {
     uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
     pp_world handle;
     pp_world_def def;
-    body **bodies;           /* by slot; NULL where free */
-    uint32_t *generations;   /* by slot; bumped on destroy so old handles go stale */
-    uint32_t *free_slots;
-    int32_t body_capacity, free_count, live_count;
+    body **bodies;           /* by slot of body_ids; NULL where free */
+    id_pool body_ids;        /* the bodies' slots and generations */
     pp_solver *solver;
     pp_broadphase broad;
     pp_contact *contacts;    /* the last substep's contacts */
@@ -208,6 +205,12 @@ static inline body *body_of(const world *wd, pp_body b)
 /* Both lookups at once, as most body calls need them. */
 pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, body **bd);
 
+/* body_make's slot for a new body: the next the world's pool hands out. */
+#define BODY_ANY_SLOT (-1)
+/* Make a body from a def (not NULL) into want_slot (BODY_ANY_SLOT, or a snapshot's restored slot that holds
+ * nothing); failures name `fn`, the call the user made. */
+pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const char *fn, body **out);
+
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
 /* Give bd the ODE body its new type and fixed rotation ask for (none when static), keeping its pose and, where
@@ -229,7 +232,7 @@ dvec2 body_com_world(const body *bd);
 double body_round_radius(const body *bd);
 
 /* Room for n more events for pp_world_get_events, then queue each into it (checked by PP_ASSERT). */
-pp_status world_reserve_events(world *wd, int32_t n);
+pp_status world_reserve_events(world *wd, int32_t n, const char *fn);
 void world_queue_event(world *wd, pp_event ev);
 
 /* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */

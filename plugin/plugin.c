@@ -4,6 +4,7 @@
 #include "plugin.h"
 
 #include "handle.h" /* the library's id layout (lib/), for the body slot that indexes body_objects */
+#include "id_pool.h" /* the library's slot pool (lib/, header-only), for the object table */
 
 #include <pthread.h>
 #include <stdarg.h>
@@ -17,8 +18,8 @@ static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static pp_host_log_fn host_log;
 static void *host_user;
 static int level_reached = -1; /* highest initialised level, -1 before CORE */
-static plugin_object *objects;
-static int32_t object_capacity, free_head = -1;
+static plugin_object *objects; /* by slot of object_ids */
+static id_pool object_ids;
 static pp_plugin_class public_classes[CLASS_COUNT];
 static pp_plugin_method public_methods[CLASS_COUNT][96];
 
@@ -103,32 +104,21 @@ static void variant_clear(pp_variant *v)
 
 plugin_object *object_get(uint64_t id)
 {
-    const uint32_t slot = (uint32_t)(id & 0xffffffffu) - 1, gen = (uint32_t)(id >> 32);
-    if (id == 0 || slot >= (uint32_t)object_capacity || objects[slot].kind == OBJECT_FREE ||
-        objects[slot].generation != gen)
+    const uint32_t slot = world_id_slot(id), gen = world_id_gen(id);
+    if (id == 0 || !id_pool_current(&object_ids, slot, gen) || objects[slot].kind == OBJECT_FREE)
         return NULL;
     return &objects[slot];
 }
 
 uint64_t object_new(object_kind kind, plugin_object **out)
 {
-    if (free_head < 0) {
-        const int32_t n = object_capacity ? object_capacity * 2 : 64;
-        plugin_object *grown = realloc(objects, (size_t)n * sizeof *grown);
-        if (!grown)
-            return 0;
-        for (int32_t i = object_capacity; i < n; i++)
-            grown[i] = (plugin_object){.generation = 1, .next_free = i + 1 < n ? i + 1 : -1};
-        objects = grown;
-        free_head = object_capacity;
-        object_capacity = n;
-    }
-    const int32_t slot = free_head;
+    uint32_t slot = 0;
+    if (ID_POOL_TAKE(&object_ids, INT32_MAX, objects, realloc, &slot) != ID_POOL_TAKEN)
+        return 0;
     plugin_object *o = &objects[slot];
-    free_head = o->next_free;
-    *o = (plugin_object){.kind = kind, .generation = o->generation, .next_free = -1};
+    *o = (plugin_object){.kind = kind};
     *out = o;
-    return ((uint64_t)o->generation << 32) | (uint32_t)(slot + 1);
+    return world_id_make(slot, object_ids.generations[slot]);
 }
 
 static void world_cache_free(world_cache *c)
@@ -162,13 +152,9 @@ void object_free(uint64_t id)
         if (w && bslot < (uint32_t)w->cache->body_object_capacity && w->cache->body_objects[bslot] == id)
             w->cache->body_objects[bslot] = 0;
     }
-    const int32_t slot = (int32_t)(o - objects);
-    if (++o->generation == 0)
-        o->generation = 1;
     o->kind = OBJECT_FREE;
     o->cache = NULL;
-    o->next_free = free_head;
-    free_head = slot;
+    id_pool_release(&object_ids, (uint32_t)(o - objects));
 }
 
 uint64_t object_for_body(uint64_t world_object, pp_body body)
@@ -227,17 +213,16 @@ static void plugin_deinitialize(pp_plugin_level level)
     pthread_mutex_lock(&lock);
     if ((int)level == level_reached) {
         if (level == PP_PLUGIN_LEVEL_SCENE) { /* the host may not have destroyed everything */
-            for (int32_t i = 0; i < object_capacity; i++)
+            for (int32_t i = 0; i < object_ids.capacity; i++)
                 if (objects[i].kind == OBJECT_WORLD) {
                     pp_world_destroy(objects[i].world);
-                    object_free(((uint64_t)objects[i].generation << 32) | (uint32_t)(i + 1));
+                    object_free(world_id_make((uint32_t)i, object_ids.generations[i]));
                 }
         }
         if (level == PP_PLUGIN_LEVEL_CORE) {
             free(objects);
             objects = NULL;
-            object_capacity = 0;
-            free_head = -1;
+            id_pool_free(&object_ids, free);
         }
         level_reached = (int)level - 1;
     }

@@ -37,9 +37,7 @@ typedef struct world_cache {
 
 /* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */
 typedef struct plugin_object {
-    object_kind kind;
-    uint32_t generation;
-    int32_t next_free;
+    object_kind kind;      /* OBJECT_FREE in a free slot */
     pp_world world;        /* both kinds */
     pp_body body;          /* BODY */
     uint64_t world_object; /* the world object it belongs to (a world: itself) */

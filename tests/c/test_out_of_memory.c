@@ -555,6 +555,9 @@ static int64_t run_script(const script_ops *so, int64_t fail_at, uint64_t *hashe
             *failed_op = i;
             cr_assert_eq(st, PP_ERR_OUT_OF_MEMORY, "allocation %lld fails in %s, which returned %s (%s)",
                          (long long)fail_at, ops[i].name, pp_status_name(st), pp_last_error());
+            /* The message names the call the user made, wherever inside it the memory ran out. */
+            cr_assert(strncmp(pp_last_error(), "pp_", 3) == 0, "allocation %lld failing in %s: \"%s\" names no call",
+                      (long long)fail_at, ops[i].name, pp_last_error());
             /* A step applies its due timed edits first and keeps them: then the edit is the only change. */
             if (pending_edits(&s) == edits_before)
                 cr_assert_eq(script_hash(&s), before, "allocation %lld failing in %s changed the world",

@@ -72,7 +72,7 @@ static pp_raster raster_from(int w, int h, const uint8_t *mask) {
     pp_body_def d = pp_body_def_default();
     d.width = w, d.height = h, d.mask = mask;
     pp_raster r;
-    PP_OK_OR_FAIL(raster_init(&r, &d));
+    PP_OK_OR_FAIL(raster_init("test", &r, &d));
     return r;
 }
 
@@ -153,7 +153,7 @@ Test(tiles, memory_counts_the_mask_the_counts_and_the_weight_plane) {
     const int64_t mask_only = 2 * 8 * 40 + 4 * (100 + 40) + tiles;
     cr_assert_eq(sizeof *r.tile_count, 1);
     cr_assert_eq(raster_memory_bytes(&r), mask_only);
-    PP_OK_OR_FAIL(raster_ensure_weights(&r));
+    PP_OK_OR_FAIL(raster_ensure_weights("test", &r));
     cr_assert_eq(raster_memory_bytes(&r), mask_only + 100 * 40);
     raster_free(&r);
     free(m);
