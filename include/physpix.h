@@ -37,6 +37,8 @@ extern "C" {
 #define PP_API
 #endif
 
+/* ---- Base: version, limits, statuses, vectors, handles, errors, log hook, allocator ---- */
+
 /// Library major version (the soname carries it).
 #define PHYSPIX_VERSION_MAJOR 0
 /// Library minor version.
@@ -96,6 +98,65 @@ typedef enum pp_status {
     PP_STATUS_FORCE_U32 = 0x7fffffff
 } pp_status;
 
+/// A 2D vector in pixels (or pixels per second, per the call).
+typedef struct pp_vec2 {
+    float x; ///< x component, pixels
+    float y; ///< y component, pixels (down is positive)
+} pp_vec2;
+
+/// A world handle; id 0 is never valid.
+typedef struct pp_world {
+    uint64_t id; ///< slot index and generation; opaque
+} pp_world;
+
+/// A body handle; id 0 is never valid. It names its world: used with another, it is PP_ERR_INVALID_HANDLE.
+typedef struct pp_body {
+    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
+} pp_body;
+
+/// A joint handle; id 0 is never valid. It names its world, as a body's does.
+typedef struct pp_joint {
+    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
+} pp_joint;
+
+/// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
+typedef void (*pp_log_fn)(int level, const char *msg, void *user);
+
+/* Running out. pp_set_allocator routes every allocation PhysPix makes, libpng's included, through the
+ * host's functions (worker threads call them too). ODE and cJSON keep their own: ODE cannot report a failed
+ * allocation except in its step (PP_ERR_OUT_OF_MEMORY), and cJSON's hooks are process-wide, so setting them
+ * would change the host's own cJSON. Out of memory changes nothing: every call returns PP_ERR_OUT_OF_MEMORY
+ * and leaves the world as it was, and succeeds when retried. A step saves what it changes before changing
+ * it (144 bytes a body slot) and puts it back if any substep runs short; an edit makes a split's pieces
+ * before it commits anything. Timed edits due at a step apply first, each whole or not at all; one applied
+ * stays applied if the rest of the step fails, and one that failed stays queued. Worker threads never
+ * allocate: the calling thread grows their scratch first, so a failure is reported where it happened.
+ * Files are never half-written: a snapshot or image is written beside its target, flushed and renamed over
+ * it only when whole; a save that fails part way (disk full, a file-size limit) returns PP_ERR_IO and leaves
+ * the previous file as it was. A load that fails creates no world and leaves *out untouched. */
+
+/// The memory functions behind every allocation the library makes; sizes in bytes, never 0.
+typedef struct pp_allocator {
+    void *(*alloc)(uint64_t size, void *user);              ///< like malloc: NULL when out of memory
+    void *(*realloc)(void *ptr, uint64_t size, void *user); ///< like realloc: ptr from alloc or realloc
+    void (*free)(void *ptr, void *user);                    ///< like free; ptr is never NULL
+    void *user;                                             ///< passed back to every call
+} pp_allocator;
+
+/// Library version as MAJOR·10000 + MINOR·100 + PATCH.
+PP_API uint32_t pp_version(void);
+/// Static name of a status, e.g. "PP_ERR_LIMIT"; never NULL.
+PP_API const char *pp_status_name(pp_status status);
+/// Message of the last failure on the calling thread ("" if none); never NULL.
+PP_API const char *pp_last_error(void);
+/// Install a process-wide log hook (NULL removes it); called outside steps only.
+PP_API void pp_set_log_hook(pp_log_fn fn, void *user);
+/// Route every allocation the library makes (not ODE's or cJSON's) through a (NULL: back to malloc);
+/// only while no world exists, else PP_ERR_INVALID_ARGUMENT. The functions may be called from worker threads.
+PP_API pp_status pp_set_allocator(const pp_allocator *a);
+
+/* ---- World: settings, presets, create/destroy/step, stats, contacts, events, camera ---- */
+
 /// Which collision backend runs the narrowphase.
 typedef enum pp_backend {
     PP_BACKEND_AUTO = 0, ///< the GPU where it pays off, else the CPU
@@ -133,35 +194,6 @@ typedef enum pp_preset {
     PP_PRESET_ACCURATE = 3, ///< 4 substeps × 80 iterations: the stiffest stacks measured, for more solver time
     PP_PRESET_FORCE_U32 = 0x7fffffff
 } pp_preset;
-
-/// How a body moves.
-typedef enum pp_body_type {
-    PP_BODY_DYNAMIC = 0,   ///< moved by forces and contacts
-    PP_BODY_STATIC = 1,    ///< never moves; no mass, no ODE body
-    PP_BODY_KINEMATIC = 2, ///< moved only by its velocity; pushes dynamic bodies, is never pushed
-    PP_BODY_FORCE_U32 = 0x7fffffff
-} pp_body_type;
-
-/// A 2D vector in pixels (or pixels per second, per the call).
-typedef struct pp_vec2 {
-    float x; ///< x component, pixels
-    float y; ///< y component, pixels (down is positive)
-} pp_vec2;
-
-/// A world handle; id 0 is never valid.
-typedef struct pp_world {
-    uint64_t id; ///< slot index and generation; opaque
-} pp_world;
-
-/// A body handle; id 0 is never valid. It names its world: used with another, it is PP_ERR_INVALID_HANDLE.
-typedef struct pp_body {
-    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
-} pp_body;
-
-/// A joint handle; id 0 is never valid. It names its world, as a body's does.
-typedef struct pp_joint {
-    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
-} pp_joint;
 
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
  * a dynamic AABB tree of the solid pixels' world boxes, queried by the awake bodies only (static–static,
@@ -222,40 +254,42 @@ typedef struct pp_world_def {
                                     ///< by ODE's exact dWorldStep, larger ones by QuickStep; 0: none (default 128)
 } pp_world_def;
 
-/// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
-typedef struct pp_body_def {
-    uint32_t struct_size;     ///< sizeof(pp_body_def), set by pp_body_def_default
-    pp_body_type type;        ///< dynamic, static or kinematic (default DYNAMIC)
-    pp_vec2 position;         ///< world position of the pivot, px
-    float angle;              ///< rotation, radians (positive turns +x toward +y)
-    uint32_t custom_pivot;    ///< nonzero: use `pivot`; zero: the pivot is the bitmap centre
-    pp_vec2 pivot;            ///< pivot in bitmap coordinates (origin at the top-left corner), px
-    pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s
-    float angular_velocity;   ///< initial angular velocity, rad/s
-    float density;            ///< mass of one solid pixel of weight 255, mass units, > 0 (default 1)
-    float friction;           ///< Coulomb coefficient, ≥ 0 (default 0.6); pairs use sqrt(fa·fb)
-    float restitution;        ///< bounciness 0..1 (default 0); pairs use max(ra, rb)
-    float linear_damping;     ///< velocity decay, 1/s, ≥ 0 (default 0)
-    float angular_damping;    ///< angular velocity decay, 1/s, ≥ 0 (default 0)
-    uint32_t category_bits;   ///< the categories this body is in (default 1)
-    uint32_t mask_bits;       ///< the categories it collides with (default all)
-    uint32_t fixed_rotation;  ///< nonzero: the body never rotates
-    int32_t width;            ///< bitmap width, px, 1..PP_MAX_BITMAP_SIDE
-    int32_t height;           ///< bitmap height, px, 1..PP_MAX_BITMAP_SIDE
-    const uint8_t *rgba;      ///< optional sprite, width·height·4 bytes, rows top to bottom
-    const uint8_t *mask;      ///< optional collision mask, width·height bytes, non-zero is solid; overrides rgba
-    const uint8_t *weights;   ///< optional relative mass per pixel 0..255, width·height bytes
-    uint32_t alpha_threshold; ///< sprite alpha at or above which a pixel is solid, 1..255 (default 128)
-    uint32_t detach_islands;  ///< static bodies: nonzero makes islands cut loose by an edit fall as dynamic bodies (default 0)
-    uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
-    uint32_t bullet;          ///< nonzero: when fast, swept against every body it collides with, dynamic ones too,
-                              ///< even in a world without `continuous` (default 0)
-    uint32_t is_sensor;       ///< nonzero: overlaps are reported as PP_EVENT_SENSOR_BEGIN/END, nothing collides with it
-                              ///< and rays and queries skip it; static and kinematic sensors need no mass (default 0)
-    uint32_t one_way;         ///< nonzero: a one-way platform; a contact is kept only when the other body arrives from
-                              ///< the `one_way_direction` side, and then for as long as they touch (default 0)
-    pp_vec2 one_way_direction; ///< the side bodies may land from, in bitmap axes, any length > 0 (default (0, −1): up)
-} pp_body_def;
+/// Default world settings (the balanced preset).
+PP_API pp_world_def pp_world_def_default(void);
+/// The settings of a preset; an unknown preset gives struct_size 0, which pp_world_create refuses (PP_ERR_ABI).
+PP_API pp_world_def pp_world_def_preset(pp_preset preset);
+/// Create a world from a def.
+PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
+/// The settings the world runs with: its def, with zero counts replaced by their defaults.
+PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out);
+/// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
+PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
+/// Destroy a world and all its bodies; the handle becomes stale.
+PP_API pp_status pp_world_destroy(pp_world w);
+/// Advance the world by dt seconds (0 < dt ≤ 1), in `substeps` solver steps.
+PP_API pp_status pp_world_step(pp_world w, float dt);
+/// Simulated time since the world was created, s (the sum of the dt of every step).
+PP_API pp_status pp_world_get_time(pp_world w, double *seconds);
+
+/// What the last pp_world_step did and what it cost.
+typedef struct pp_step_stats {
+    float broadphase_ms;   ///< candidate-pair search, milliseconds (all substeps)
+    float narrowphase_ms;  ///< raster collision, milliseconds (all substeps)
+    float solver_ms;       ///< ODE, milliseconds (all substeps)
+    float total_ms;        ///< the whole step, milliseconds
+    int32_t bodies;        ///< live bodies
+    int32_t awake_bodies;  ///< dynamic or kinematic bodies not asleep
+    int32_t pairs;         ///< candidate pairs in the last substep (carried ones included)
+    int32_t contacts;      ///< contact points made in the last substep
+    int64_t pixels_tested; ///< raster samples tested (all substeps; a pair touching at the step's start once)
+    pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
+    uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
+    int32_t threads;       ///< most threads any CPU narrowphase batch of the step ran on, the calling one included
+                           ///< (1: it alone; 0: the narrowphase ran on the GPU or had no pairs)
+} pp_step_stats;
+
+/// Statistics of the last step.
+PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
 
 /* Contacts are those of the last substep. `a` is the pair's body in the lower slot. normal_impulse is read
  * back from ODE's joint feedback: a box resting on the ground has impulses summing to its weight × the
@@ -273,6 +307,9 @@ typedef struct pp_contact {
                           ///< mass·px/s, ≥ 0 (force = impulse ÷ substep); 0 from pp_world_collide
     uint32_t reserved;   ///< zero
 } pp_contact;
+
+/// Write up to capacity contacts of the last substep; count receives the total.
+PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
 
 /* Events queue inside the step and are read after it with pp_world_get_events, oldest first.
  * Splits and destruction: an edit that cuts a dynamic body (or a static one with detach_islands) into
@@ -326,70 +363,12 @@ typedef struct pp_event {
     pp_joint joint;       ///< JOINT_BROKEN: the joint, now stale; else zero
 } pp_event;
 
-/* Rays (pp_world_raycast) walk each body's pixel grid in the body's frame, an exact DDA over the pixel
- * squares [i, i+1) × [j, j+1) that jumps whole empty 8×8 tiles, and stop at the first solid pixel of the
- * nearest body. The normal is the mask's area gradient (the contact normal's estimator) over the solid
- * pixel centres within 8 px of where the ray enters the pixel; the point then moves along the ray (≤ 8 px)
- * onto the edge line that a 4 px window places across it. Where no straight edge fits the window (a body
- * or feature thinner than it, a crossing of lines) the point stays where the ray enters the pixel, and
- * with no usable gradient the normal is the axis of the face entered. A ray a few degrees off a staircase
- * edge meets a pixel that stands proud of the edge up to 0.7 / sin(angle) px early: that pixel is the hit.
- * Queries (pp_world_query_point, _aabb, _circle) name bodies in slot order and stop at a body's first
- * pixel; the circle query uses the rule of pp_world_erase_circle, so it names exactly the bodies that
- * erase would change. Rays and queries filter by category_bits & mask_bits, skip sensors, and see static,
- * kinematic and dynamic bodies alike. Accuracy and speed: tests/bench/README.md. */
-
-/// The nearest solid pixel a ray meets, from pp_world_raycast.
-typedef struct pp_raycast_hit {
-    pp_body body;     ///< the body hit
-    pp_vec2 point;    ///< world point on the surface, px: where the ray enters the first solid pixel's square, moved
-                      ///< along the ray (≤ 8 px) onto the edge line the mask around it shows; `from` at fraction 0
-    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes: the mask's area gradient in an 8 px
-                      ///< window; the ray's reverse when the ray starts inside a solid pixel, (0, 0) if from == to
-    float fraction;   ///< where along from → to the point lies, 0..1; 0 when from is in a solid pixel
-    uint32_t reserved; ///< zero
-} pp_raycast_hit;
-
-/// What the last pp_world_step did and what it cost.
-typedef struct pp_step_stats {
-    float broadphase_ms;   ///< candidate-pair search, milliseconds (all substeps)
-    float narrowphase_ms;  ///< raster collision, milliseconds (all substeps)
-    float solver_ms;       ///< ODE, milliseconds (all substeps)
-    float total_ms;        ///< the whole step, milliseconds
-    int32_t bodies;        ///< live bodies
-    int32_t awake_bodies;  ///< dynamic or kinematic bodies not asleep
-    int32_t pairs;         ///< candidate pairs in the last substep (carried ones included)
-    int32_t contacts;      ///< contact points made in the last substep
-    int64_t pixels_tested; ///< raster samples tested (all substeps; a pair touching at the step's start once)
-    pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
-    uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
-    int32_t threads;       ///< most threads any CPU narrowphase batch of the step ran on, the calling one included
-                           ///< (1: it alone; 0: the narrowphase ran on the GPU or had no pairs)
-} pp_step_stats;
-
-/// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
-typedef void (*pp_log_fn)(int level, const char *msg, void *user);
-
-/* Running out. pp_set_allocator routes every allocation PhysPix makes, libpng's included, through the
- * host's functions (worker threads call them too). ODE and cJSON keep their own: ODE cannot report a failed
- * allocation except in its step (PP_ERR_OUT_OF_MEMORY), and cJSON's hooks are process-wide, so setting them
- * would change the host's own cJSON. Out of memory changes nothing: every call returns PP_ERR_OUT_OF_MEMORY
- * and leaves the world as it was, and succeeds when retried. A step saves what it changes before changing
- * it (144 bytes a body slot) and puts it back if any substep runs short; an edit makes a split's pieces
- * before it commits anything. Timed edits due at a step apply first, each whole or not at all; one applied
- * stays applied if the rest of the step fails, and one that failed stays queued. Worker threads never
- * allocate: the calling thread grows their scratch first, so a failure is reported where it happened.
- * Files are never half-written: a snapshot or image is written beside its target, flushed and renamed over
- * it only when whole; a save that fails part way (disk full, a file-size limit) returns PP_ERR_IO and leaves
- * the previous file as it was. A load that fails creates no world and leaves *out untouched. */
-
-/// The memory functions behind every allocation the library makes; sizes in bytes, never 0.
-typedef struct pp_allocator {
-    void *(*alloc)(uint64_t size, void *user);              ///< like malloc: NULL when out of memory
-    void *(*realloc)(void *ptr, uint64_t size, void *user); ///< like realloc: ptr from alloc or realloc
-    void (*free)(void *ptr, void *user);                    ///< like free; ptr is never NULL
-    void *user;                                             ///< passed back to every call
-} pp_allocator;
+/// Write up to capacity events that happened since they were last read, oldest first, and forget those
+/// written; count receives how many were pending (capacity 0 only counts them).
+PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count);
+/// Switch CONTACT_BEGIN/END events on (nonzero) or off, as pp_world_def.contact_events; pairs already touching
+/// when they go on begin at the next substep.
+PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled);
 
 /// A renderer's view of a world: the world point at the image centre, the scale and the image size.
 typedef struct pp_camera {
@@ -399,98 +378,55 @@ typedef struct pp_camera {
     int32_t height; ///< image height, image px, 1..PP_MAX_BITMAP_SIDE (default 540)
 } pp_camera;
 
-/// What a timed edit does.
-typedef enum pp_edit_type {
-    PP_EDIT_ERASE_CIRCLE = 1, ///< erase pixels within the circle (one body, or every body when `body` is zero)
-    PP_EDIT_PAINT_CIRCLE = 2, ///< make pixels within the circle solid with `weight` (one body)
-    PP_EDIT_TYPE_FORCE_U32 = 0x7fffffff
-} pp_edit_type;
+/// The world's camera (a scene file's, or the default).
+PP_API pp_status pp_world_get_camera(pp_world w, pp_camera *out);
+/// Replace the world's camera.
+PP_API pp_status pp_world_set_camera(pp_world w, const pp_camera *camera);
 
-/// An edit the world applies by itself at the start of the step nearest `time` (the first starting after time − dt/2).
-typedef struct pp_timed_edit {
-    double time;       ///< world time at which it applies, s
-    pp_edit_type type; ///< erase or paint
-    uint32_t weight;   ///< PAINT: weight of the painted pixels, 1..255; ERASE: ignored
-    pp_body body;      ///< the body edited; zero for ERASE means every body
-    pp_vec2 center;    ///< world point, px
-    float radius;      ///< circle radius, px, ≥ 0
-    uint32_t reserved; ///< zero
-} pp_timed_edit;
+/* ---- Bodies: settings, creation, pose, velocity, mass, runtime properties, forces ---- */
 
-/// Cell flags written by pp_world_debug_collision.
-#define PP_CELL_A 1u        ///< the first body is solid in this cell
-#define PP_CELL_B 2u        ///< the second body is solid in this cell
-#define PP_CELL_CRITICAL 4u ///< an intersection cell with a neighbour outside the intersection
+/// How a body moves.
+typedef enum pp_body_type {
+    PP_BODY_DYNAMIC = 0,   ///< moved by forces and contacts
+    PP_BODY_STATIC = 1,    ///< never moves; no mass, no ODE body
+    PP_BODY_KINEMATIC = 2, ///< moved only by its velocity; pushes dynamic bodies, is never pushed
+    PP_BODY_FORCE_U32 = 0x7fffffff
+} pp_body_type;
 
-/// A pair's intersection raster on the narrowphase's sampling grid, for debug views (the poster's Figure 1c).
-typedef struct pp_collision_view {
-    int32_t width;          ///< grid width, cells
-    int32_t height;         ///< grid height, cells
-    pp_vec2 origin;         ///< world position of the centre of cell (0, 0), px
-    pp_vec2 step_x;         ///< world offset from a cell to its neighbour along the grid's x, px
-    pp_vec2 step_y;         ///< world offset from a cell to its neighbour along the grid's y, px
-    pp_vec2 normal;         ///< the pair's global normal from a to b, unit; zero when they do not touch
-    int32_t intersection;   ///< intersection cells
-    int32_t critical;       ///< critical cells
-} pp_collision_view;
-
-/// Library version as MAJOR·10000 + MINOR·100 + PATCH.
-PP_API uint32_t pp_version(void);
-/// Static name of a status, e.g. "PP_ERR_LIMIT"; never NULL.
-PP_API const char *pp_status_name(pp_status status);
-/// Message of the last failure on the calling thread ("" if none); never NULL.
-PP_API const char *pp_last_error(void);
-/// Install a process-wide log hook (NULL removes it); called outside steps only.
-PP_API void pp_set_log_hook(pp_log_fn fn, void *user);
-/// Route every allocation the library makes (not ODE's or cJSON's) through a (NULL: back to malloc);
-/// only while no world exists, else PP_ERR_INVALID_ARGUMENT. The functions may be called from worker threads.
-PP_API pp_status pp_set_allocator(const pp_allocator *a);
-
-/// Default world settings (the balanced preset).
-PP_API pp_world_def pp_world_def_default(void);
-/// The settings of a preset; an unknown preset gives struct_size 0, which pp_world_create refuses (PP_ERR_ABI).
-PP_API pp_world_def pp_world_def_preset(pp_preset preset);
-/// Create a world from a def.
-PP_API pp_status pp_world_create(const pp_world_def *def, pp_world *out);
-/// The settings the world runs with: its def, with zero counts replaced by their defaults.
-PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out);
-/// Switch CONTACT_BEGIN/END events on (nonzero) or off, as pp_world_def.contact_events; pairs already touching
-/// when they go on begin at the next substep.
-PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled);
-/// Destroy a world and all its bodies; the handle becomes stale.
-PP_API pp_status pp_world_destroy(pp_world w);
-/// Advance the world by dt seconds (0 < dt ≤ 1), in `substeps` solver steps.
-PP_API pp_status pp_world_step(pp_world w, float dt);
-/// Write up to capacity live body handles; count receives the total.
-PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count);
-/// Write up to capacity contacts of the last substep; count receives the total.
-PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
-/// Statistics of the last step.
-PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
-/// Write up to capacity events that happened since they were last read, oldest first, and forget those
-/// written; count receives how many were pending (capacity 0 only counts them).
-PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count);
-/// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
-PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
-/// Cast the segment from → to (world px) through the pixel grid of every body whose category_bits meet mask_bits
-/// (sensors are skipped); hit receives 1 and out the nearest solid pixel, or 0 and out zeroed. A ray starting inside
-/// a solid pixel hits that body at fraction 0; a zero-length ray (from == to) is such a point test.
-PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
-                                  int32_t *hit);
-/// Write up to capacity bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square
-/// contains the world point (px), in slot order; count receives the total.
-PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_bits, pp_body *out, int32_t capacity,
-                                      int32_t *count);
-/// As pp_world_query_point, for bodies with a solid pixel whose centre lies in the world box [lower, upper] (px).
-PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, uint32_t mask_bits, pp_body *out,
-                                     int32_t capacity, int32_t *count);
-/// As pp_world_query_point, for bodies with a solid pixel whose centre lies within radius (px, ≥ 0) of a world
-/// point (px): the bodies pp_world_erase_circle would change.
-PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius, uint32_t mask_bits, pp_body *out,
-                                       int32_t capacity, int32_t *count);
-/// Run the narrowphase on one pair at the current poses, without stepping; count receives the total.
-PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
-                                  int32_t *count);
+/// Settings of a body; fill from pp_body_def_default(). The library copies the bitmap planes.
+typedef struct pp_body_def {
+    uint32_t struct_size;     ///< sizeof(pp_body_def), set by pp_body_def_default
+    pp_body_type type;        ///< dynamic, static or kinematic (default DYNAMIC)
+    pp_vec2 position;         ///< world position of the pivot, px
+    float angle;              ///< rotation, radians (positive turns +x toward +y)
+    uint32_t custom_pivot;    ///< nonzero: use `pivot`; zero: the pivot is the bitmap centre
+    pp_vec2 pivot;            ///< pivot in bitmap coordinates (origin at the top-left corner), px
+    pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s
+    float angular_velocity;   ///< initial angular velocity, rad/s
+    float density;            ///< mass of one solid pixel of weight 255, mass units, > 0 (default 1)
+    float friction;           ///< Coulomb coefficient, ≥ 0 (default 0.6); pairs use sqrt(fa·fb)
+    float restitution;        ///< bounciness 0..1 (default 0); pairs use max(ra, rb)
+    float linear_damping;     ///< velocity decay, 1/s, ≥ 0 (default 0)
+    float angular_damping;    ///< angular velocity decay, 1/s, ≥ 0 (default 0)
+    uint32_t category_bits;   ///< the categories this body is in (default 1)
+    uint32_t mask_bits;       ///< the categories it collides with (default all)
+    uint32_t fixed_rotation;  ///< nonzero: the body never rotates
+    int32_t width;            ///< bitmap width, px, 1..PP_MAX_BITMAP_SIDE
+    int32_t height;           ///< bitmap height, px, 1..PP_MAX_BITMAP_SIDE
+    const uint8_t *rgba;      ///< optional sprite, width·height·4 bytes, rows top to bottom
+    const uint8_t *mask;      ///< optional collision mask, width·height bytes, non-zero is solid; overrides rgba
+    const uint8_t *weights;   ///< optional relative mass per pixel 0..255, width·height bytes
+    uint32_t alpha_threshold; ///< sprite alpha at or above which a pixel is solid, 1..255 (default 128)
+    uint32_t detach_islands;  ///< static bodies: nonzero makes islands cut loose by an edit fall as dynamic bodies (default 0)
+    uint64_t user_data;       ///< the host's value, returned by pp_body_get_user_data
+    uint32_t bullet;          ///< nonzero: when fast, swept against every body it collides with, dynamic ones too,
+                              ///< even in a world without `continuous` (default 0)
+    uint32_t is_sensor;       ///< nonzero: overlaps are reported as PP_EVENT_SENSOR_BEGIN/END, nothing collides with it
+                              ///< and rays and queries skip it; static and kinematic sensors need no mass (default 0)
+    uint32_t one_way;         ///< nonzero: a one-way platform; a contact is kept only when the other body arrives from
+                              ///< the `one_way_direction` side, and then for as long as they touch (default 0)
+    pp_vec2 one_way_direction; ///< the side bodies may land from, in bitmap axes, any length > 0 (default (0, −1): up)
+} pp_body_def;
 
 /// Default body settings: a dynamic body with no bitmap yet.
 PP_API pp_body_def pp_body_def_default(void);
@@ -498,18 +434,24 @@ PP_API pp_body_def pp_body_def_default(void);
 PP_API pp_status pp_body_create(pp_world w, const pp_body_def *def, pp_body *out);
 /// Destroy a body; its handle becomes stale.
 PP_API pp_status pp_body_destroy(pp_world w, pp_body b);
+/// Write up to capacity live body handles; count receives the total.
+PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count);
+/// Bitmap size of the body, px; either pointer may be NULL.
+PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t *height);
+/// The host's value given in the body def.
+PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
 /// World position of the body's pivot, px.
 PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out);
 /// Rotation of the body, radians.
 PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out);
+/// Pivot of the body in bitmap coordinates, px.
+PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out);
 /// Teleport the body: pivot to position (px), rotation to angle (radians); wakes it.
 PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, float angle);
 /// Velocity of the centre of mass (px/s) and angular velocity (rad/s); either pointer may be NULL.
 PP_API pp_status pp_body_get_velocity(pp_world w, pp_body b, pp_vec2 *linear, float *angular);
 /// Set the velocity of the centre of mass (px/s) and angular velocity (rad/s); wakes it.
 PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, float angular);
-/// Apply an impulse (mass·px/s) at a world point (px); wakes the body. Dynamic bodies only.
-PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point);
 /// Mass (mass units), centre of mass in bitmap coordinates (px) and inertia about it (mass·px²); any pointer may be NULL.
 PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia);
 /// Memory the body holds, bytes: its collision raster (1-bit mask, tile, row and column counts, and an 8-bit
@@ -517,6 +459,20 @@ PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *l
 PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_bytes, int64_t *sprite_bytes);
 /// Whether the body is awake (1) or asleep (0); static bodies are never awake.
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake);
+
+/// One body's state as pp_world_get_body_states reads it.
+typedef struct pp_body_state {
+    pp_body body;
+    pp_vec2 position;          ///< the pivot in the world, px
+    float angle;               ///< rotation, rad
+    pp_vec2 linear_velocity;   ///< of the centre of mass, px/s (0 for a static body)
+    float angular_velocity;    ///< rad/s
+    uint32_t awake;            ///< 1 awake, 0 asleep (a static body is never awake)
+} pp_body_state;
+
+/// Every live body's state in one call, in slot order (pp_world_get_bodies' order); count receives how many
+/// live bodies there are, even when capacity is short (then only capacity are written).
+PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_t capacity, int32_t *count);
 
 /* Runtime properties. A setter takes effect at the next step, keeps the pose, and wakes the body and the
  * bodies whose boxes meet its own (a sleeping crate on a ground whose friction changed notices it). What a
@@ -542,13 +498,6 @@ PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bit
 /// Wake a dynamic or kinematic body (awake 1) or put it to sleep now, its velocity zeroed (awake 0); an awake
 /// body touching it wakes it again at the next step. PP_ERR_INVALID_ARGUMENT for a static body.
 PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake);
-/// Apply a force (mass·px/s²) at a world point (px) through every substep of the next step; forces add up
-/// and are spent by the step. Wakes the body. Dynamic bodies only.
-PP_API pp_status pp_body_apply_force(pp_world w, pp_body b, pp_vec2 force, pp_vec2 world_point);
-/// Apply a torque (mass·px²/s², +x turning toward +y) through the next step, as pp_body_apply_force. Dynamic only.
-PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
-/// Change the angular velocity by impulse / inertia at once (mass·px²/s); wakes the body. Dynamic bodies only.
-PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impulse);
 /// Scale the world's gravity on this body (default 1; 0 floats, −1 rises); kept until set again. Dynamic only.
 PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale);
 /// The body's friction coefficient.
@@ -561,22 +510,20 @@ PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out);
 PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out);
 /// Whether the body's rotation is held (1) or free (0).
 PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out);
-/// Set the world's gravity, px/s² (finite, at most PP_MAX_ACCELERATION long); wakes every sleeping body.
-PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity);
+/// Type of the body (dynamic, static or kinematic).
+PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out);
 
-/// One body's state as pp_world_get_body_states reads it.
-typedef struct pp_body_state {
-    pp_body body;
-    pp_vec2 position;          ///< the pivot in the world, px
-    float angle;               ///< rotation, rad
-    pp_vec2 linear_velocity;   ///< of the centre of mass, px/s (0 for a static body)
-    float angular_velocity;    ///< rad/s
-    uint32_t awake;            ///< 1 awake, 0 asleep (a static body is never awake)
-} pp_body_state;
+/// Apply an impulse (mass·px/s) at a world point (px); wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point);
+/// Change the angular velocity by impulse / inertia at once (mass·px²/s); wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impulse);
+/// Apply a force (mass·px/s²) at a world point (px) through every substep of the next step; forces add up
+/// and are spent by the step. Wakes the body. Dynamic bodies only.
+PP_API pp_status pp_body_apply_force(pp_world w, pp_body b, pp_vec2 force, pp_vec2 world_point);
+/// Apply a torque (mass·px²/s², +x turning toward +y) through the next step, as pp_body_apply_force. Dynamic only.
+PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
 
-/// Every live body's state in one call, in slot order (pp_world_get_bodies' order); count receives how many
-/// live bodies there are, even when capacity is short (then only capacity are written).
-PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_t capacity, int32_t *count);
+/* ---- Joints: types, settings, creation, reactions, motors, limits ---- */
 
 /* Joints hold two bodies together through ODE's joints in the plane: REVOLUTE a hinge about z, PRISMATIC a
  * slider along an in-plane axis, DISTANCE ODE's distance ball (rigid, a rope between min_length and
@@ -653,6 +600,77 @@ PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp
 /// The host's value given in the joint's def.
 PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out);
 
+/* ---- Queries: rays, point/box/circle queries, pair collision, debug view ---- */
+
+/* Rays (pp_world_raycast) walk each body's pixel grid in the body's frame, an exact DDA over the pixel
+ * squares [i, i+1) × [j, j+1) that jumps whole empty 8×8 tiles, and stop at the first solid pixel of the
+ * nearest body. The normal is the mask's area gradient (the contact normal's estimator) over the solid
+ * pixel centres within 8 px of where the ray enters the pixel; the point then moves along the ray (≤ 8 px)
+ * onto the edge line that a 4 px window places across it. Where no straight edge fits the window (a body
+ * or feature thinner than it, a crossing of lines) the point stays where the ray enters the pixel, and
+ * with no usable gradient the normal is the axis of the face entered. A ray a few degrees off a staircase
+ * edge meets a pixel that stands proud of the edge up to 0.7 / sin(angle) px early: that pixel is the hit.
+ * Queries (pp_world_query_point, _aabb, _circle) name bodies in slot order and stop at a body's first
+ * pixel; the circle query uses the rule of pp_world_erase_circle, so it names exactly the bodies that
+ * erase would change. Rays and queries filter by category_bits & mask_bits, skip sensors, and see static,
+ * kinematic and dynamic bodies alike. Accuracy and speed: tests/bench/README.md. */
+
+/// The nearest solid pixel a ray meets, from pp_world_raycast.
+typedef struct pp_raycast_hit {
+    pp_body body;     ///< the body hit
+    pp_vec2 point;    ///< world point on the surface, px: where the ray enters the first solid pixel's square, moved
+                      ///< along the ray (≤ 8 px) onto the edge line the mask around it shows; `from` at fraction 0
+    pp_vec2 normal;   ///< unit surface normal there, out of the body, world axes: the mask's area gradient in an 8 px
+                      ///< window; the ray's reverse when the ray starts inside a solid pixel, (0, 0) if from == to
+    float fraction;   ///< where along from → to the point lies, 0..1; 0 when from is in a solid pixel
+    uint32_t reserved; ///< zero
+} pp_raycast_hit;
+
+/// Cast the segment from → to (world px) through the pixel grid of every body whose category_bits meet mask_bits
+/// (sensors are skipped); hit receives 1 and out the nearest solid pixel, or 0 and out zeroed. A ray starting inside
+/// a solid pixel hits that body at fraction 0; a zero-length ray (from == to) is such a point test.
+PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
+                                  int32_t *hit);
+/// Write up to capacity bodies (category_bits meeting mask_bits, sensors skipped) with a solid pixel whose square
+/// contains the world point (px), in slot order; count receives the total.
+PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_bits, pp_body *out, int32_t capacity,
+                                      int32_t *count);
+/// As pp_world_query_point, for bodies with a solid pixel whose centre lies in the world box [lower, upper] (px).
+PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, uint32_t mask_bits, pp_body *out,
+                                     int32_t capacity, int32_t *count);
+/// As pp_world_query_point, for bodies with a solid pixel whose centre lies within radius (px, ≥ 0) of a world
+/// point (px): the bodies pp_world_erase_circle would change.
+PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius, uint32_t mask_bits, pp_body *out,
+                                       int32_t capacity, int32_t *count);
+
+/// Cell flags written by pp_world_debug_collision.
+#define PP_CELL_A 1u        ///< the first body is solid in this cell
+#define PP_CELL_B 2u        ///< the second body is solid in this cell
+#define PP_CELL_CRITICAL 4u ///< an intersection cell with a neighbour outside the intersection
+
+/// A pair's intersection raster on the narrowphase's sampling grid, for debug views (the poster's Figure 1c).
+typedef struct pp_collision_view {
+    int32_t width;          ///< grid width, cells
+    int32_t height;         ///< grid height, cells
+    pp_vec2 origin;         ///< world position of the centre of cell (0, 0), px
+    pp_vec2 step_x;         ///< world offset from a cell to its neighbour along the grid's x, px
+    pp_vec2 step_y;         ///< world offset from a cell to its neighbour along the grid's y, px
+    pp_vec2 normal;         ///< the pair's global normal from a to b, unit; zero when they do not touch
+    int32_t intersection;   ///< intersection cells
+    int32_t critical;       ///< critical cells
+} pp_collision_view;
+
+/// Run the narrowphase on one pair at the current poses, without stepping; count receives the total.
+PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *out, int32_t capacity,
+                                  int32_t *count);
+/// Run the narrowphase on a pair and write its sampled grid: cells (PP_CELL_* flags) and, when local_normals is
+/// not NULL, each critical cell's 3×3-kernel normal in world axes (zero elsewhere); capacity in cells.
+/// The view is filled even when capacity is short (then PP_ERR_INVALID_ARGUMENT and nothing written).
+PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint8_t *cells, pp_vec2 *local_normals,
+                                          int64_t capacity, pp_collision_view *view);
+
+/* ---- Edits: erase, paint, write and read pixels, timed edits ---- */
+
 /* Edits change pixels between steps, and the next step sees them. The mass sums and the solid bounds follow
  * from the changed pixels alone; the pivot stays put and the body moves to its new centre of mass with the
  * velocity its material had; bodies around the edit wake. A dynamic body cut into several 8-connected
@@ -662,6 +680,8 @@ PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out);
 
 /// Erase the body's pixels whose centres lie within radius (px) of a world point (px); changed receives how many (may be NULL).
 PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, int32_t *changed);
+/// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
+PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
 /// Make solid, with weight 1..255, the pixels whose centres lie within radius (px) of a world point (px); changed receives how many changed.
 PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
                                       int32_t *changed);
@@ -671,10 +691,34 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
                                       const uint8_t *mask, const uint8_t *weights);
 /// Copy the collision mask, one byte per pixel (1 solid, 0 empty), rows top to bottom; capacity in bytes ≥ width·height.
 PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
-/// Bitmap size of the body, px; either pointer may be NULL.
-PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t *height);
-/// The host's value given in the body def.
-PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out);
+/// Copy the body's look as RGBA8 rows: the sprite where solid, transparent where not; without a sprite, solid
+/// pixels are opaque gray of their weight. Capacity in bytes ≥ width·height·4.
+PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
+
+/// What a timed edit does.
+typedef enum pp_edit_type {
+    PP_EDIT_ERASE_CIRCLE = 1, ///< erase pixels within the circle (one body, or every body when `body` is zero)
+    PP_EDIT_PAINT_CIRCLE = 2, ///< make pixels within the circle solid with `weight` (one body)
+    PP_EDIT_TYPE_FORCE_U32 = 0x7fffffff
+} pp_edit_type;
+
+/// An edit the world applies by itself at the start of the step nearest `time` (the first starting after time − dt/2).
+typedef struct pp_timed_edit {
+    double time;       ///< world time at which it applies, s
+    pp_edit_type type; ///< erase or paint
+    uint32_t weight;   ///< PAINT: weight of the painted pixels, 1..255; ERASE: ignored
+    pp_body body;      ///< the body edited; zero for ERASE means every body
+    pp_vec2 center;    ///< world point, px
+    float radius;      ///< circle radius, px, ≥ 0
+    uint32_t reserved; ///< zero
+} pp_timed_edit;
+
+/// Schedule an edit at a world time, s; edits due at once apply at the start of the next step, in time order.
+PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit);
+/// Write up to capacity edits still pending, in the order they will apply; count receives the total.
+PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, int32_t capacity, int32_t *count);
+
+/* ---- Files: PNG images, scene files, snapshots ---- */
 
 /* PNG in and out, through libpng. Loading accepts gray, gray+alpha, RGB, RGBA and palette images of 1–16 bits,
  * all converted to RGBA8. A header declaring more than the bitmap limits gets PP_ERR_LIMIT before anything is
@@ -689,30 +733,6 @@ PP_API pp_status pp_image_load(const char *path, uint8_t *out_rgba, int64_t capa
 
 /// Encode RGBA8 rows (top to bottom, width·4 bytes apart) as a PNG file; sizes up to the bitmap limits.
 PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t width, int32_t height);
-
-/// Pivot of the body in bitmap coordinates, px.
-PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out);
-/// Type of the body (dynamic, static or kinematic).
-PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out);
-/// Copy the body's look as RGBA8 rows: the sprite where solid, transparent where not; without a sprite, solid
-/// pixels are opaque gray of their weight. Capacity in bytes ≥ width·height·4.
-PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
-
-/// Simulated time since the world was created, s (the sum of the dt of every step).
-PP_API pp_status pp_world_get_time(pp_world w, double *seconds);
-/// The world's camera (a scene file's, or the default).
-PP_API pp_status pp_world_get_camera(pp_world w, pp_camera *out);
-/// Replace the world's camera.
-PP_API pp_status pp_world_set_camera(pp_world w, const pp_camera *camera);
-/// Schedule an edit at a world time, s; edits due at once apply at the start of the next step, in time order.
-PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit);
-/// Write up to capacity edits still pending, in the order they will apply; count receives the total.
-PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, int32_t capacity, int32_t *count);
-/// Run the narrowphase on a pair and write its sampled grid: cells (PP_CELL_* flags) and, when local_normals is
-/// not NULL, each critical cell's 3×3-kernel normal in world axes (zero elsewhere); capacity in cells.
-/// The view is filled even when capacity is short (then PP_ERR_INVALID_ARGUMENT and nothing written).
-PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint8_t *cells, pp_vec2 *local_normals,
-                                          int64_t capacity, pp_collision_view *view);
 
 /* Scene files. One JSON object; every key is optional and takes the default of pp_world_def_default(),
  * pp_body_def_default() or the default camera, but each body needs a bitmap. Keys are case-sensitive; an
