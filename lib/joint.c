@@ -60,15 +60,15 @@ body *joint_body_a(const world *wd, const joint *jt) { return side_body(wd, jt->
 body *joint_body_b(const world *wd, const joint *jt) { return side_body(wd, jt->def.body_b); }
 
 /* A slot for a new joint, growing the table; PP_ERR_OUT_OF_MEMORY or PP_ERR_LIMIT. */
-static pp_status alloc_slot(world *wd, uint32_t *slot)
+static pp_status alloc_slot(world *wd, const char *fn, uint32_t *slot)
 {
     switch (ID_POOL_TAKE(&wd->joints.ids, PP_MAX_BODIES, wd->joints.items, pp_realloc, slot)) {
     case ID_POOL_TAKEN:
         return PP_OK;
     case ID_POOL_FULL:
-        return pp_fail(PP_ERR_LIMIT, "pp_joint_create: a world holds at most %d joints", PP_MAX_BODIES);
+        return pp_fail(PP_ERR_LIMIT, "%s: a world holds at most %d joints", fn, PP_MAX_BODIES);
     default:
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for %d joints", (int)wd->joints.ids.live + 1);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d joints", fn, (int)wd->joints.ids.live + 1);
     }
 }
 
@@ -306,6 +306,15 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
         return PP_ERR_INVALID_HANDLE;
     if (!def || !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s is NULL", fn, def ? "out" : "def");
+    joint *jt = NULL;
+    pp_status st = joint_make(wd, def, fn, &jt);
+    if (!st)
+        *out = jt->handle;
+    return st;
+}
+
+pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint **out)
+{
     if (def->struct_size != sizeof *def)
         return pp_fail(PP_ERR_ABI, "%s: def.struct_size is %u, this library's pp_joint_def is %u bytes (use "
                        "pp_joint_def_default)", fn, (unsigned)def->struct_size, (unsigned)sizeof *def);
@@ -324,11 +333,11 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
     if (!jt)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the joint", fn);
     uint32_t slot = 0;
-    if ((st = alloc_slot(wd, &slot))) {
+    if ((st = alloc_slot(wd, fn, &slot))) {
         pp_free(jt);
         return st;
     }
-    if ((st = solver_joint_create(wd->solver, def->type, &jt->sj))) {
+    if ((st = solver_joint_create(wd->solver, def->type, fn, &jt->sj))) {
         id_pool_untake(&wd->joints.ids, slot);
         pp_free(jt);
         return st;
@@ -358,7 +367,7 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
         awake_wake(wd, a);
     if (b && b->sb.body)
         awake_wake(wd, b);
-    *out = jt->handle;
+    *out = jt;
     return PP_OK;
 }
 
@@ -750,7 +759,7 @@ pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
     if (!attach_plausible(wd, jt))
         return pp_fail(PP_ERR_FORMAT, "pp_world_load_snapshot: joint %#llx was attached far from its bodies or along "
                        "no axis", (unsigned long long)jt->handle.id);
-    pp_status st = solver_joint_create(wd->solver, jt->def.type, &jt->sj);
+    pp_status st = solver_joint_create(wd->solver, jt->def.type, "pp_world_load_snapshot", &jt->sj);
     if (st)
         return st;
     solver_exact_state now_a, now_b;

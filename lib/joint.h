@@ -37,6 +37,8 @@ pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d);
  * bitmap grown by 4096 px or its size on each side. */
 pp_status joint_check_anchors(const char *fn, const body *a, dvec2 local_a, const body *b, dvec2 local_b);
 
+/* Make a joint from a def (not NULL): checked, attached, its bodies woken; failures name `fn`. */
+pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint **out);
 /* A body being removed takes its joints with it, without events (pp_body_destroy: the host asked). */
 void joint_body_removed(world *wd, body *bd);
 /* A body's ODE body was moved to a new centre of mass, remade or given a new mass: its joints attach

@@ -1,8 +1,12 @@
 /* JSON scenes: a world's settings, camera, bodies with PNG bitmaps, joints and timed edits naming bodies.
  * The reading itself is scene_json.c's; every complaint names the JSON path of the value at fault. */
 #include "alloc.h"
+#include "camera.h"
+#include "joint.h"
 #include "scene_json.h"
 #include "status.h"
+#include "timed_edits.h"
+#include "world.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,8 +14,8 @@
 
 static const char *const body_extra_keys[] = {"name", "sprite", "mask", "weights", "box", NULL};
 
-/* One body: its settings, its bitmap, made in world w. */
-static pp_status parse_body(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, pp_body *out)
+/* One body: its settings, its bitmap, made in the world. */
+static pp_status parse_body(const json_ctx *c, const cJSON *obj, const char *where, world *wd, pp_body *out)
 {
     if (!cJSON_IsObject(obj))
         return json_fail(c, PP_ERR_FORMAT, where, NULL, "expected an object");
@@ -24,8 +28,11 @@ static pp_status parse_body(const json_ctx *c, const cJSON *obj, const char *whe
     if (st == PP_OK && (st = parse_bitmap(c, obj, where, &b)) == PP_OK) {
         d.width = b.width, d.height = b.height;
         d.rgba = b.rgba, d.mask = b.mask, d.weights = b.weights;
-        if ((st = pp_body_create(w, &d, out)))
+        body *bd = NULL;
+        if ((st = body_make(wd, &d, BODY_ANY_SLOT, c->fn, &bd)))
             st = json_fail_from_last(c, st, where, NULL);
+        else
+            *out = bd->handle;
     }
     bitmap_free(&b);
     return st;
@@ -62,7 +69,7 @@ static int32_t *name_entry(const body_names *bn, const char *name)
 
 static int32_t find_body(const body_names *bn, const char *name) { return *name_entry(bn, name) - 1; }
 
-static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, pp_world w, body_names *bn)
+static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, world *wd, body_names *bn)
 {
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
     size_t size = 2;
@@ -78,7 +85,7 @@ static pp_status parse_bodies(const json_ctx *c, const cJSON *arr, pp_world w, b
     for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
         char where[32];
         snprintf(where, sizeof where, "bodies[%d]", (int)i);
-        pp_status st = parse_body(c, it, where, w, &bn->bodies[i]);
+        pp_status st = parse_body(c, it, where, wd, &bn->bodies[i]);
         if (st)
             return st;
         const cJSON *name = cJSON_GetObjectItemCaseSensitive(it, "name");
@@ -135,40 +142,40 @@ static pp_status read_joint_body(const json_ctx *c, const cJSON *obj, const char
 }
 
 /* One joint: "type" (required), bodies by name, the pp_joint_def fields. */
-static pp_status parse_joint(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
+static pp_status parse_joint(const json_ctx *c, const cJSON *obj, const char *where, world *wd, const body_names *bn)
 {
     static const char *const extra[] = {"type", "body_a", "body_b", NULL};
     pp_joint_def d;
-    pp_joint j;
+    joint *jt;
     pp_status st;
     if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
         (st = read_joint_body(c, obj, where, "body_a", bn, &d.body_a)) ||
         (st = read_joint_body(c, obj, where, "body_b", bn, &d.body_b)))
         return st;
-    if ((st = pp_joint_create(w, &d, &j)))
+    if ((st = joint_make(wd, &d, c->fn, &jt)))
         return json_fail_from_last(c, st, where, NULL);
     return PP_OK;
 }
 
-/* One timed edit, scheduled in w. */
-static pp_status add_edit(const json_ctx *c, const cJSON *obj, const char *where, pp_world w, const body_names *bn)
+/* One timed edit, scheduled in the world. */
+static pp_status add_edit(const json_ctx *c, const cJSON *obj, const char *where, world *wd, const body_names *bn)
 {
     pp_timed_edit e;
     pp_status st = parse_edit(c, obj, where, bn, &e);
-    if (st == PP_OK && (st = pp_world_schedule_edit(w, &e)))
+    if (st == PP_OK && (st = timed_edits_schedule(wd, &e, c->fn)))
         st = json_fail_from_last(c, st, where, NULL);
     return st;
 }
 
 /* Each item of the array section `key` by `one`, named "<key>[i]" in messages. */
-static pp_status parse_each(const json_ctx *c, const cJSON *arr, const char *key, pp_world w, const body_names *bn,
-                            pp_status (*one)(const json_ctx *, const cJSON *, const char *, pp_world, const body_names *))
+static pp_status parse_each(const json_ctx *c, const cJSON *arr, const char *key, world *wd, const body_names *bn,
+                            pp_status (*one)(const json_ctx *, const cJSON *, const char *, world *, const body_names *))
 {
     int32_t i = 0;
     for (const cJSON *it = arr ? arr->child : NULL; it; it = it->next, i++) {
         char where[32];
         snprintf(where, sizeof where, "%s[%d]", key, (int)i);
-        pp_status st = one(c, it, where, w, bn);
+        pp_status st = one(c, it, where, wd, bn);
         if (st)
             return st;
     }
@@ -192,25 +199,24 @@ static pp_status build_scene(const json_ctx *c, const cJSON *root, pp_world *out
     pp_world_def d = pp_world_def_default();
     if (wobj && (st = parse_world_def(c, wobj, "world", &d)))
         return st;
-    pp_world w;
-    if ((st = pp_world_create(&d, &w)))
+    world *wd = NULL;
+    if ((st = world_make(&d, c->fn, &wd)))
         return json_fail_from_last(c, st, "world", NULL);
-    pp_camera cam;
+    pp_camera cam = camera_of(wd);
     body_names bn = {0};
-    if (cobj && (st = pp_world_get_camera(w, &cam)) == PP_OK && (st = parse_camera(c, cobj, "camera", &cam)) == PP_OK &&
-        (st = pp_world_set_camera(w, &cam)))
+    if (cobj && (st = parse_camera(c, cobj, "camera", &cam)) == PP_OK && (st = camera_set(wd, &cam, c->fn)))
         st = json_fail_from_last(c, st, "camera", NULL);
-    if (st == PP_OK && (st = parse_bodies(c, bodies, w, &bn)) == PP_OK &&
-        (st = parse_each(c, joints, "joints", w, &bn, parse_joint)) == PP_OK)
-        st = parse_each(c, edits, "edits", w, &bn, add_edit);
+    if (st == PP_OK && (st = parse_bodies(c, bodies, wd, &bn)) == PP_OK &&
+        (st = parse_each(c, joints, "joints", wd, &bn, parse_joint)) == PP_OK)
+        st = parse_each(c, edits, "edits", wd, &bn, add_edit);
     pp_free(bn.names);
     pp_free(bn.bodies);
     pp_free(bn.table);
     if (st) {
-        pp_world_destroy(w);
+        world_free(wd);
         return st;
     }
-    *out = w;
+    *out = wd->handle;
     return PP_OK;
 }
 

@@ -4,6 +4,7 @@
  * creation order, which ODE's body list follows), so a loaded world steps on as the saved one would. */
 #define _GNU_SOURCE /* renameat2 */
 #include "alloc.h"
+#include "camera.h"
 #include "forces.h"
 #include "files.h"
 #include "handle.h"
@@ -270,9 +271,9 @@ static bool write_slots(const world *wd, cJSON *root)
 static bool write_edits_and_events(const world *wd, cJSON *root)
 {
     cJSON *edits = cJSON_CreateArray(), *events = cJSON_CreateArray();
-    timed_edit *order = world_edits_in_order(wd);
+    timed_edit *order = timed_edits_in_order(&wd->edits);
     bool ok = edits && events && order;
-    for (int32_t i = 0; ok && i < wd->edit_count; i++) {
+    for (int32_t i = 0; ok && i < wd->edits.count; i++) {
         /* An edit whose body is gone would only be skipped when due, and pp_world_schedule_edit refuses its
          * handle on load: saving it made a snapshot that could not be loaded (found by fuzz_api). */
         if (order[i].edit.body.id != 0 && !body_find(wd, order[i].edit.body))
@@ -286,8 +287,8 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
              (ed.body.id == 0 || add(e, "body", json_handle(handle_saved(ed.body.id))));
     }
     pp_free(order);
-    for (int32_t i = 0; ok && i < wd->event_count; i++) {
-        const pp_event *ev = &wd->events[i];
+    for (int32_t i = 0; ok && i < wd->events.count; i++) {
+        const pp_event *ev = &wd->events.items[i];
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(events, e) && add(e, "type", cJSON_CreateString(event_names[ev->type])) &&
              add(e, "body", json_handle(handle_saved(ev->body.id))) &&
@@ -390,8 +391,8 @@ static pp_status check_savable(const world *wd)
                                "was written", fn, (unsigned long long)bd->handle.id,
                                k < 5 ? "pose" : k < 11 ? "solver state" : "sleep timer", v[k]);
     }
-    for (int32_t i = 0; i < wd->event_count; i++) {
-        const pp_event *e = &wd->events[i];
+    for (int32_t i = 0; i < wd->events.count; i++) {
+        const pp_event *e = &wd->events.items[i];
         const float v[] = {e->point.x, e->point.y, e->normal.x, e->normal.y, e->approach_speed};
         for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
             if (!isfinite(v[k]))
@@ -407,9 +408,10 @@ static pp_status check_savable(const world *wd)
 static pp_status write_world(const save_dir *dir, const world *wd, cJSON *root)
 {
     static const char *fn = "pp_world_save_snapshot";
+    const pp_camera cam = camera_of(wd);
     bool ok = add(root, "format", cJSON_CreateString(SNAPSHOT_FORMAT)) &&
               add(root, "version", json_number(SNAPSHOT_VERSION, false)) &&
-              add(root, "world", world_def_to_json(&wd->def)) && add(root, "camera", camera_to_json(&wd->camera)) &&
+              add(root, "world", world_def_to_json(&wd->def)) && add(root, "camera", camera_to_json(&cam)) &&
               add(root, "time", json_number(wd->time, false)) &&
               add(root, "solver_steps", json_number((double)solver_get_steps(wd->solver), false)) &&
               add(root, "next_serial", json_number((double)wd->next_serial, false)) && write_slots(wd, root) &&
@@ -757,7 +759,7 @@ static pp_status restore_edits(const json_ctx *c, const cJSON *root, world *wd)
         pp_timed_edit e = {0};
         if (!(st = check_keys(c, it, where, edit_fields, extra)) && !(st = read_fields(c, it, where, edit_fields, &e)) &&
             !(st = read_body_handle(c, it, where, "body", true, wd, &e.body.id)) &&
-            (st = pp_world_schedule_edit(wd->handle, &e)))
+            (st = timed_edits_schedule(wd, &e, c->fn)))
             st = json_fail_from_last(c, st, where, NULL);
     }
     return st;
@@ -1009,16 +1011,15 @@ static pp_status restore_joints(const json_ctx *c, const cJSON *root, world *wd)
 }
 
 /* The world's own state: settings, camera, clock, solver steps, slots, bodies, edits, events. */
-static pp_status restore_world(const json_ctx *c, const cJSON *root, pp_world w)
+static pp_status restore_world(const json_ctx *c, const cJSON *root, world *wd)
 {
-    world *wd = world_lookup(w, c->fn);
-    pp_camera cam = wd->camera;
+    pp_camera cam = camera_of(wd);
     int64_t steps = 0, serial = 0;
     const cJSON *cobj;
     pp_status st = read_section(c, root, "", "camera", false, &cobj);
     if (st || (cobj && (st = parse_camera(c, cobj, "camera", &cam))))
         return st;
-    if ((st = pp_world_set_camera(w, &cam)))
+    if ((st = camera_set(wd, &cam, c->fn)))
         return json_fail_from_last(c, st, "camera", NULL);
     if ((st = read_double(c, root, "", "time", NUM_NONNEG, &wd->time)) ||
         (st = read_required_int(c, root, "", "solver_steps", 0, JSON_MAX_EXACT_INT, &steps)) ||
@@ -1055,14 +1056,14 @@ static pp_status build_snapshot(const json_ctx *c, const cJSON *root, pp_world *
     pp_world_def d = pp_world_def_default();
     if (wobj && (st = parse_world_def(c, wobj, "world", &d)))
         return st;
-    pp_world w;
-    if ((st = pp_world_create(&d, &w)))
+    world *wd = NULL;
+    if ((st = world_make(&d, c->fn, &wd)))
         return json_fail_from_last(c, st, "world", NULL);
-    if ((st = restore_world(c, root, w))) {
-        pp_world_destroy(w);
+    if ((st = restore_world(c, root, wd))) {
+        world_free(wd);
         return st;
     }
-    *out = w;
+    *out = wd->handle;
     return PP_OK;
 }
 

@@ -56,14 +56,14 @@ static pp_status ode_ready(void)
     return PP_OK;
 }
 
-pp_status solver_create(const pp_world_def *def, pp_solver **out)
+pp_status solver_create(const pp_world_def *def, const char *fn, pp_solver **out)
 {
     pp_status st = ode_ready();
     if (st)
-        return st;
+        return pp_fail_in(fn, st);
     pp_solver *s = pp_calloc(1, sizeof *s);
     if (!s)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_create: no memory for the solver");
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the solver", fn);
     s->ppm = def->pixels_per_meter;
     s->inv_ppm = 1.0 / def->pixels_per_meter;
     s->erp = def->contact_erp;
@@ -278,11 +278,11 @@ void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
 
 /* ---- joints ---- */
 
-pp_status solver_joint_create(pp_solver *s, pp_joint_type type, solver_joint *out)
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, const char *fn, solver_joint *out)
 {
     dJointFeedback *fb = pp_calloc(1, sizeof *fb);
     if (!fb)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_joint_create: no memory for the joint");
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the joint", fn);
     dJointID j;
     switch (type) {
     case PP_JOINT_REVOLUTE: j = dJointCreateHinge(s->world, 0); break;

@@ -49,7 +49,7 @@ typedef struct solver_contact {
     double closing_speed;      /* px/s the pair may approach along the normal this substep (≥ 0) */
 } solver_contact;
 
-pp_status solver_create(const pp_world_def *def, pp_solver **out);
+pp_status solver_create(const pp_world_def *def, const char *fn, pp_solver **out);
 void solver_destroy(pp_solver *s);
 
 pp_status solver_body_create(pp_solver *s, const solver_body_desc *desc, solver_body *out);
@@ -91,7 +91,7 @@ typedef struct solver_joint_frame {
 } solver_joint_frame;
 
 /* An ODE joint of the type (hinge, slider, distance ball, fixed, ball), attached to nothing yet. */
-pp_status solver_joint_create(pp_solver *s, pp_joint_type type, solver_joint *out);
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, const char *fn, solver_joint *out);
 void solver_joint_destroy(solver_joint *sj);
 /* Attach to the frame's bodies with its anchors and axis, as they are now; a joint between two bodies
  * without ODE bodies is disabled. */

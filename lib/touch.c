@@ -175,7 +175,7 @@ static void merge(const touch *x, int32_t nx, const touch *y, int32_t ny, touch 
 static pp_status wake_resting(world *wd)
 {
     const int32_t n = wd->touch_count + wd->resting_count;
-    pp_status st = world_save_touching(wd, true);
+    pp_status st = step_save_touching(wd, true);
     if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, n))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
     merge(wd->touching, wd->touch_count, wd->resting, wd->resting_count, wd->resting_next);
@@ -191,7 +191,7 @@ static pp_status wake_resting(world *wd)
 static pp_status put_to_rest(world *wd, const touch *pairs, int32_t n)
 {
     const int32_t total = wd->resting_count + n;
-    pp_status st = world_save_touching(wd, true);
+    pp_status st = step_save_touching(wd, true);
     if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, total))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d resting pairs", (int)total);
     merge(wd->resting, wd->resting_count, pairs, n, wd->resting_next);
@@ -211,7 +211,7 @@ pp_status touch_end(world *wd)
         (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone && !wd->resting_stale))
         return PP_OK;
     touch_sort(wd->touch_next, found);
-    pp_status st = world_save_touching(wd, false);
+    pp_status st = step_save_touching(wd, false);
     /* Resting pairs are tested again when a body woke or went, or one was found (a sleeper an awake body roused). */
     bool review = wd->resting_stale || wd->touch_body_gone;
     for (int32_t i = 0; !review && i < found; i++)

@@ -6,6 +6,7 @@
 #include "carry.h"
 #include "check.h"
 #include "crowd.h"
+#include "events.h"
 #include "handle.h"
 #include "id_pool.h"
 #include "massprops.h"
@@ -14,6 +15,8 @@
 #include "narrowphase.h"
 #include "raster.h"
 #include "solver_ode.h"
+#include "step_undo.h"
+#include "timed_edits.h"
 #include "touch.h"
 #include "workers.h"
 
@@ -60,39 +63,6 @@ typedef struct continuous_pose {
     double angle;            /* rad */
 } continuous_pose;
 
-/* A pending timed edit and when it was scheduled: among equal times, the earlier scheduled applies first. */
-typedef struct timed_edit {
-    pp_timed_edit edit;
-    uint64_t serial;
-} timed_edit;
-
-/* A movable body's part of what a step changes, saved so that a step that fails can be undone. */
-typedef struct step_saved_body {
-    uint64_t step;            /* the step that saved it: a body is saved at most once a step */
-    solver_exact_state ode;
-    dvec2 pos;
-    double angle, cos_a, sin_a, slow_time;
-    pp_aabb aabb;
-} step_saved_body;
-
-/* Everything pp_world_step changes after its timed edits, saved before it changes any of it. */
-typedef struct step_undo {
-    step_saved_body *bodies;  /* by slot: awake movable bodies, and sleepers once a contact may wake them */
-    int32_t body_capacity;
-    uint64_t step;            /* counts steps, so a saved entry is known as this step's */
-    pp_contact *contacts;
-    int32_t contact_count, contact_capacity;
-    pp_step_stats stats;
-    uint64_t solver_steps;
-    touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
-    int32_t touch_count, touch_capacity; /* swapped back, not copied, so a restore cannot fail */
-    bool touch_saved;         /* touching holds this step's saved pairs */
-    touch *resting;           /* the same for the resting pairs */
-    int32_t resting_count, resting_capacity;
-    bool resting_saved;
-    int32_t event_count;      /* events queued before the step */
-} step_undo;
-
 /* The joints of a world (joint.c): a handle table as the bodies'. */
 typedef struct joint_table {
     struct joint **items;    /* by slot of ids; NULL where free */
@@ -131,15 +101,10 @@ typedef struct world {
     np_workers *workers;     /* NULL until a batch needs more than one thread */
     gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
     bool gpu_tried;          /* AUTO tried to bring the GPU up */
-    pp_event *events;        /* since the host last read them, oldest first */
-    int32_t event_count, event_capacity;
+    event_queue events;      /* since the host last read them (events.c) */
     pp_step_stats stats;
     double time;             /* simulated s, the sum of every step's dt */
-    pp_camera camera;
-    timed_edit *edits;       /* pending timed edits: a binary heap on (time, serial), the next to apply first */
-    int32_t edit_count, edit_capacity;
-    uint64_t edit_serial;    /* the next scheduled edit's serial */
-    bool edits_in_order;     /* the heap is sorted, as pp_world_get_scheduled_edits lists it */
+    timed_edits edits;       /* pending timed edits (timed_edits.c) */
     uint64_t next_serial;    /* the next body's creation serial */
     continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
     int32_t sweep_capacity;
@@ -170,7 +135,7 @@ typedef struct world {
     int32_t resting_next_capacity;
     bool touch_body_gone;    /* a body was removed since the last touch_end: its pairs end there */
     bool resting_stale;      /* a body entered the awake set since the last touch_end: resting pairs are reviewed */
-    step_undo undo;
+    step_undo undo;          /* the step transaction (step_undo.c) */
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
     int32_t *forced;         /* slots of the bodies with a force, torque or gravity scale (forces.c) */
@@ -185,6 +150,10 @@ static inline int32_t world_group_root(int32_t *parent, int32_t i)
         i = parent[i] = parent[parent[i]];
     return i;
 }
+
+/* Make a world from a def (not NULL), failures naming `fn`; world_free takes it and everything in it. */
+pp_status world_make(const pp_world_def *def, const char *fn, world **out);
+void world_free(world *wd);
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
@@ -230,17 +199,6 @@ dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
 /* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
 double body_round_radius(const body *bd);
-
-/* Room for n more events for pp_world_get_events, then queue each into it (checked by PP_ASSERT). */
-pp_status world_reserve_events(world *wd, int32_t n, const char *fn);
-void world_queue_event(world *wd, pp_event ev);
-
-/* The pending timed edits in the order they apply, a copy the caller frees; NULL when out of memory. */
-timed_edit *world_edits_in_order(const world *wd);
-
-/* Save the touching (resting: the resting) pairs for the step's undo, once a step, before touch_end first
- * changes them. */
-pp_status world_save_touching(world *wd, bool resting);
 
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);

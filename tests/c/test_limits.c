@@ -235,7 +235,7 @@ Test(limits, a_snapshot_refuses_a_number_it_cannot_hold_and_keeps_the_older_one)
     solver_body_set_velocity(wd->solver, &bd->sb, dv(1e300, 0), 0); /* finite, but the loader takes ±FLT_MAX */
     EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_LIMIT, "solver state");
     solver_body_set_velocity(wd->solver, &bd->sb, dv(0, 0), 0);
-    PP_OK_OR_FAIL(world_reserve_events(wd, 1));
+    PP_OK_OR_FAIL(world_reserve_events(wd, 1, "test"));
     world_queue_event(wd, (pp_event){.type = PP_EVENT_CONTACT_BEGIN, .body = box, .point = {NAN, 0}});
     EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_LIMIT, "event");
 

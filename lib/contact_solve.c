@@ -1,0 +1,119 @@
+/* Contacts into solver rows: each contact's bounce, its closing and friction-anchor target speeds, and the
+ * order its joints are handed to ODE in. */
+#include "contact_solve.h"
+#include "handle.h"
+#include "touch.h"
+#include "world.h"
+
+#include <math.h>
+
+static double inv_mass(const body *bd)
+{
+    return bd->type == PP_BODY_DYNAMIC && bd->mass.mass > 0 ? 1.0 / bd->mass.mass : 0.0;
+}
+
+/* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
+ * pair's friction anchor (touch.c); Coulomb's bound still caps the force, so a sliding body slides.
+ * Only QuickStep's stacks slip unasked (their solve stops short); an exact or lone-body solve does not. */
+static double anchor_speed(const world *wd, const body *a, const body *b, const touch *t, const pp_contact *c,
+                           double h)
+{
+    if (wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_QUICK_STACK)
+        return 0;
+    if (!t || handle_slot(t->a) != a->index)
+        return 0;
+    const dvec2 slip = touch_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
+    const double along = dv_dot(slip, dv(-c->normal.y, c->normal.x));
+    const double v = wd->def.contact_erp * along / h, cap = wd->def.max_correction_speed;
+    return fmax(-cap, fmin(cap, v));
+}
+
+/* How fast the pair's points meet along the contact normal, px/s (> 0: approaching). */
+static double approach_speed(const world *wd, const body *a, const body *b, const pp_contact *c)
+{
+    const dvec2 p = dv(c->point.x, c->point.y), n = dv(c->normal.x, c->normal.y);
+    return -dv_dot(dv_sub(body_point_velocity(wd, b, p), body_point_velocity(wd, a, p)), n);
+}
+
+/* The contact is found a substep late, up to a substep's travel deep, and a bounce of e·v from there
+ * would rise e²·depth short. The coefficient handed to ODE instead gives the speed that, against the
+ * pair's gravity along the normal, reaches the slop depth at e times the speed the bodies met with:
+ * v_out² = e²·v² + 2·g·d·(1 − e²), d the depth past contact_slop. Never more than the approach speed. */
+static double bounce_for(const world *wd, const body *a, const body *b, const pp_contact *c, double e)
+{
+    if (e <= 0)
+        return 0;
+    const dvec2 n = dv(c->normal.x, c->normal.y);
+    const double closing = approach_speed(wd, a, b, c);
+    if (!(closing > wd->def.bounce_threshold))
+        return e; /* ODE bounces nothing this slow */
+    const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
+    const dvec2 ga = a->type == PP_BODY_DYNAMIC ? g : dv(0, 0), gb = b->type == PP_BODY_DYNAMIC ? g : dv(0, 0);
+    const double g_closing = -dv_dot(dv_sub(gb, ga), n), d = fmax(0.0, c->depth - wd->def.contact_slop);
+    const double v2 = e * e * closing * closing + 2.0 * fmax(0.0, g_closing) * d * (1.0 - e * e);
+    return fmin(fmax(e, sqrt(v2) / closing), fmax(e, 1.0));
+}
+
+/* ODE's surface layer leaves a contact shallower than contact_slop where it is, and QuickStep's unfinished
+ * solve lets a pile creep down through that band for seconds (a 10-row pyramid sank 0.65 px in the minute
+ * after its first second at 4 × 80). On a QuickStep stack the pair closes that gap at the contact_erp rate,
+ * as the depth past it is pushed out, so the pile settles in a few steps. Not where a light body carries one
+ * over 4 times its mass (QuickStep's weak solve let a 1:10:100:1000 chain fall through the gap), not on an
+ * exact island (it holds where it is), and not on a bounce (it keeps its own speed). */
+enum { CLOSING_MASS_RATIO = 4 };
+
+static double closing_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double h, double e)
+{
+    const body *mover = a->sb.body ? a : b;
+    const double gap = wd->def.contact_slop - c->depth, ia = inv_mass(a), ib = inv_mass(b);
+    if (!(gap > 0) || wd->island_kind[mover->index] != ISLAND_QUICK_STACK)
+        return 0;
+    if ((ia > 0 && ib > 0 && fmax(ia, ib) > CLOSING_MASS_RATIO * fmin(ia, ib)) ||
+        (e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold))
+        return 0;
+    return wd->def.contact_erp * gap / h;
+}
+
+int contact_span(const world *wd, const pp_contact *c)
+{
+    const body *a = body_of(wd, c->a);
+    return wd->island_span[(a->sb.body ? a : body_of(wd, c->b))->index];
+}
+
+/* The joints of the contacts whose island advances `span` substeps of h / span s, in order or reversed. */
+static void add_span_joints(world *wd, int span, double h, bool reversed)
+{
+    const touch *t = NULL; /* the last pair's, found once for its points (they come together) */
+    uint64_t ta = 0, tb = 0;
+    for (int32_t k = 0; k < wd->contact_count; k++) {
+        const int32_t i = reversed ? wd->contact_count - 1 - k : k;
+        const pp_contact *c = &wd->contacts[i];
+        if (contact_span(wd, c) != span)
+            continue;
+        const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
+        if (c->a.id != ta || c->b.id != tb)
+            t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id;
+        const double e = fmax(a->restitution, b->restitution);
+        const solver_contact sc = {
+            a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
+            dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
+            sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, e),
+            anchor_speed(wd, a, b, t, c, h), closing_speed(wd, a, b, c, h, e),
+        };
+        solver_add_contact(wd->solver, &sc, i);
+    }
+}
+
+/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
+ * pairs each have two points leans toward the point solved first. The order flips every time an island
+ * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
+ * by its parity, those solved every other substep (SPAN_TWO, at every second count) by the next bit. No
+ * contact joins two islands, so each span's contacts go in their own order. */
+void contact_joints_add(world *wd, const solver_islands *is, double substep)
+{
+    const uint64_t steps = solver_get_steps(wd->solver);
+    if (is->exact_count + is->quick_count > 0)
+        add_span_joints(wd, SPAN_ONE, substep, steps & 1);
+    if (is->quick_two_count > 0)
+        add_span_joints(wd, SPAN_TWO, 2 * substep, steps >> 1 & 1);
+}

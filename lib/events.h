@@ -1,0 +1,23 @@
+/* The event queue: what steps and edits report, read by the host with pp_world_get_events (events.c). */
+#ifndef PP_EVENTS_H
+#define PP_EVENTS_H
+
+#include "physpix.h"
+
+#include <stdint.h>
+
+typedef struct world world;
+
+/* Events since the host last read them, oldest first. */
+typedef struct event_queue {
+    pp_event *items;
+    int32_t count, capacity;
+} event_queue;
+
+/* Room for n more events, so that the n world_queue_event calls after it cannot fail; failures name fn. */
+pp_status world_reserve_events(world *wd, int32_t n, const char *fn);
+/* Queue an event into room reserved (checked by PP_ASSERT). */
+void world_queue_event(world *wd, pp_event ev);
+void events_free(event_queue *q);
+
+#endif

@@ -1,0 +1,360 @@
+/* The step loop: timed edits, then `substeps` passes of broadphase → narrowphase per pair → contact
+ * joints → ODE step, the poses read back; all of it undone if any part fails (step_undo.c). */
+#include "alloc.h"
+#include "awake.h"
+#include "contact_solve.h"
+#include "continuous.h"
+#include "forces.h"
+#include "island.h"
+#include "joint.h"
+#include "status.h"
+#include "step_undo.h"
+#include "timed_edits.h"
+#include "world.h"
+
+#include <float.h>
+#include <math.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static pp_status push_contact(world *wd, const pp_contact *c)
+{
+    if (!ARRAY_RESERVE(wd->contacts, wd->contact_capacity, wd->contact_count + 1))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts", (int)wd->contact_count + 1);
+    wd->contacts[wd->contact_count++] = *c;
+    return PP_OK;
+}
+
+pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
+{
+    if (n <= wd->pair_capacity)
+        return PP_OK;
+    int32_t pairs = wd->pair_capacity, cores = pairs, bodies = pairs; /* the three grow alike */
+    if (!ARRAY_RESERVE(wd->pairs, pairs, n) || !ARRAY_RESERVE(wd->cores, cores, n) ||
+        !array_reserve((void **)&wd->pair_bodies, &bodies, n, 2 * sizeof *wd->pair_bodies))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)n);
+    wd->pair_capacity = pairs;
+    return PP_OK;
+}
+
+/* AUTO sends a batch to a hardware GPU from this many sampled cells on. Not yet a measured
+ * hardware crossover: the smallest GPU batch (one 16² pair) takes 0.43 ms on llvmpipe in make bench,
+ * the CPU's time for about 20,000 cells at its measured ~22 ns a cell. A software rasteriser
+ * (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
+#define GPU_AUTO_MIN_CELLS 20000
+
+static pp_backend choose_backend(world *wd, int64_t cells)
+{
+    if (wd->def.backend != PP_BACKEND_AUTO)
+        return wd->def.backend;
+    if (cells < GPU_AUTO_MIN_CELLS)
+        return PP_BACKEND_CPU;
+    if (!wd->gpu_tried) {
+        wd->gpu_tried = true;
+        if (gpu_narrow_create("pp_world_step", &wd->gpu) == PP_OK && gpu_narrow_is_software(wd->gpu))
+            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: the GPU context is a software rasteriser");
+        else if (!wd->gpu)
+            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: %s", pp_last_error());
+    }
+    return wd->gpu && !gpu_narrow_is_software(wd->gpu) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+}
+
+pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
+                          int32_t *threads)
+{
+    const np_settings set = world_np_settings(wd);
+    *ran = choose_backend(wd, cells);
+    *threads = 0;
+    /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
+    np_pair *pairs = first ? wd->pairs + first : wd->pairs;
+    np_core *cores = first ? wd->cores + first : wd->cores;
+    pp_status st;
+    if (*ran == PP_BACKEND_GPU)
+        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
+    else {
+        const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
+        st = workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
+    }
+    return st ? pp_fail_in(fn, st) : PP_OK;
+}
+
+/* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells. */
+static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
+{
+    const np_settings set = world_np_settings(wd);
+    for (int32_t p = 0; p < wd->broad.pair_count; p++) {
+        if (!crowd_wants(wd, p, pass))
+            continue;
+        pp_status st = pass ? world_reserve_pairs(wd, "pp_world_step", *n + 1) : PP_OK;
+        if (st)
+            return st;
+        const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
+        if (joint_keeps_apart(wd, wd->bodies[ia], wd->bodies[ib]) || carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
+            continue;
+        const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
+        PP_ASSERT(*n < wd->pair_capacity);
+        if (!np_pair_setup(&set, &va, &vb, &wd->pairs[*n]))
+            continue;
+        *cells += np_pair_cells(&wd->pairs[*n]);
+        wd->pair_bodies[2 * *n] = ia, wd->pair_bodies[2 * *n + 1] = ib;
+        ++*n;
+        if (pass)
+            crowd_set_up(wd, p);
+    }
+    return PP_OK;
+}
+
+/* Set up and run the cores of the substep's pairs: one batch, or crowd.c's two passes, the second after
+ * the first has proved which bodies are crowded. *n pairs set up, the first pass's *first of them. */
+static pp_status collide_pairs(world *wd, int32_t *n, int32_t *first, int64_t *cells)
+{
+    const int first_pass = wd->crowd.split ? 1 : 0, last_pass = wd->crowd.split ? 2 : 0;
+    for (int pass = first_pass; pass <= last_pass; pass++) {
+        const int32_t from = *n;
+        const int64_t cells_from = *cells;
+        pp_status st = set_up_pairs(wd, pass, n, cells);
+        /* An empty second pass, or a later substep's when every pair is carried, leaves the stats of the one before. */
+        int32_t threads = 0;
+        if (!st && (*n > from || (pass == 0 && !wd->carry.active))) {
+            st = world_run_cores(wd, "pp_world_step", from, *n - from, *cells - cells_from, &wd->stats.backend,
+                                 &threads);
+            wd->stats.threads = threads > wd->stats.threads ? threads : wd->stats.threads;
+        }
+        if (st)
+            return st;
+        if (pass == 1)
+            crowd_prove(wd, *first = *n);
+    }
+    return PP_OK;
+}
+
+/* Relative angular speed above which a round body rolls (see touch_round), rad/s: a disc of radius 16 px
+ * rolls it at 8 px/s; a resting one sways at hundredths of it. */
+#define ROLLING_RATE 0.5
+
+static double angular_speed(const world *wd, const body *bd)
+{
+    if (!bd->sb.body)
+        return 0;
+    dvec2 v;
+    double w;
+    solver_body_get_velocity(wd->solver, &bd->sb, &v, &w);
+    return w;
+}
+
+/* A round body that rolls touches where a circle would: at one point on the line from its centre of mass
+ * along the normal. The ends of its patch would be a flat foot on the pixel polygon's flat runs, and a
+ * point off that line would kick it over each corner of the polygon (it lost a fifth to a half of its
+ * acceleration on a slope). The point keeps the patch's deepest depth. Slower than ROLLING_RATE it keeps
+ * the patch's ends and comes to rest, as a pixel polygon does, rather than rock in a hollow for ever. */
+static void touch_round(const world *wd, const body *a, const body *b, np_result *r)
+{
+    const double ra = body_round_radius(a), rb = body_round_radius(b);
+    if ((ra == 0 && rb == 0) || fabs(angular_speed(wd, a) - angular_speed(wd, b)) <= ROLLING_RATE)
+        return;
+    const body *disc = rb > 0 ? b : a;
+    pp_contact *c = &r->contacts[0];
+    float depth = c->depth;
+    for (int32_t k = 1; k < r->count; k++)
+        depth = fmaxf(depth, r->contacts[k].depth);
+    const dvec2 n = dv(c->normal.x, c->normal.y); /* from a to b */
+    const dvec2 toward_other = disc == b ? dv_scale(n, -1.0) : n;
+    const dvec2 p = dv_add(body_com_world(disc), dv_scale(toward_other, (disc == b ? rb : ra) - 0.5 * depth));
+    c->point = (pp_vec2){(float)p.x, (float)p.y};
+    c->depth = depth;
+    r->count = 1;
+}
+
+/* Broadphase and narrowphase at the current poses of `substep`; fills wd->contacts. At a step's first
+ * substep every pair is collided but the held ones, and resting pairs' contacts are carried through the later
+ * ones, as are a pair's whose bodies sat a substep out into the next (carry.h). */
+static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_broad, double *t_narrow)
+{
+    static const char *fn = "pp_world_step";
+    const double t0 = now_ms();
+    pp_status st = carry_begin(wd, substep, dt);
+    if (st || (st = awake_refresh(wd)))
+        return st ? pp_fail_in(fn, st) : st;
+    /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
+    if (wd->awake_movers > 0 &&
+        (st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_ids.capacity, wd->awake_slots, wd->awake_count)))
+        return pp_fail_in(fn, st);
+    if (wd->awake_movers == 0)
+        wd->broad.pair_count = 0;
+    if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
+        return st;
+    const double t1 = now_ms();
+
+    /* Set every pair up and run the cores as one batch (or, with crowded bodies, in crowd.c's two
+     * passes), then turn them into contacts in the broadphase's order. */
+    const np_settings set = world_np_settings(wd);
+    int32_t n = 0, first = 0;
+    int64_t cells = 0;
+    const int32_t *order = NULL;
+    if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
+        return st;
+    wd->contact_count = 0;
+    touch_begin(wd);
+    for (int32_t i = 0; i < n; i++) {
+        const int32_t k = order ? order[i] : i;
+        const body *a = wd->bodies[wd->pair_bodies[2 * k]], *b = wd->bodies[wd->pair_bodies[2 * k + 1]];
+        const np_body va = body_np_view(a), vb = body_np_view(b);
+        np_result r;
+        np_pair_finish(&set, &va, &vb, &wd->pairs[k], &wd->cores[k], &r);
+        if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
+            touch_round(wd, a, b, &r);
+        bool keep = true;
+        if (r.count > 0 && (st = touch_pair(wd, a, b, &r, &keep)))
+            return st;
+        for (int32_t c = 0; keep && c < r.count; c++) {
+            r.contacts[c].a = a->handle;
+            r.contacts[c].b = b->handle;
+            if ((st = push_contact(wd, &r.contacts[c])))
+                return st;
+        }
+    }
+    carry_strike(wd);
+    if ((st = carry_push(wd)) || (st = touch_end(wd)) || (st = crowd_limit_contacts(wd)))
+        return st;
+    wd->stats.pixels_tested += cells;
+    wd->stats.pairs = wd->broad.pair_count;
+    wd->stats.contacts = wd->contact_count;
+    *t_broad += t1 - t0;
+    *t_narrow += now_ms() - t1;
+    return PP_OK;
+}
+
+static bool within_float(double x) { return fabs(x) <= FLT_MAX; } /* false for NaN too */
+
+/* Hold a body under the motion limits (physpix.h), as Box2D clamps speed: the direction is kept. A speed
+ * under them is left bit for bit as it is. */
+static void clamp_speed(world *wd, body *bd, solver_body_state *s)
+{
+    const double max_v = PP_MAX_SPEED, max_w = PP_MAX_ANGULAR_SPEED;
+    if (!(dv_dot(s->velocity, s->velocity) > max_v * max_v || fabs(s->angular_velocity) > max_w))
+        return;
+    const double speed = hypot(s->velocity.x, s->velocity.y);
+    if (speed > max_v)
+        s->velocity = dv_scale(s->velocity, max_v / speed);
+    s->angular_velocity = fmax(-max_w, fmin(max_w, s->angular_velocity));
+    solver_body_set_velocity(wd->solver, &bd->sb, s->velocity, s->angular_velocity);
+}
+
+/* Read every awake body back from ODE into the cached pose (a sleeper's pose has not moved, nor has one
+ * that sat the substep out), its speed clamped. PP_ERR_LIMIT for a pose or velocity past a float even so;
+ * the caller undoes the step. */
+static pp_status sync_bodies(world *wd)
+{
+    for (int32_t k = 0; k < wd->awake_count; k++) {
+        body *bd = wd->bodies[wd->awake_slots[k]];
+        if (!awake_mover(bd) || wd->island_span[bd->index] == SPAN_SKIP)
+            continue;
+        solver_body_flatten(&bd->sb);
+        solver_body_state s;
+        solver_body_get_state(wd->solver, &bd->sb, &s);
+        clamp_speed(wd, bd, &s);
+        const double c = cos(s.angle), sn = sin(s.angle);
+        /* pivot = com − R(angle)·(com_local − pivot) */
+        const dvec2 pos = dv_sub(s.com_world, dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), c, sn));
+        if (!within_float(pos.x) || !within_float(pos.y) || !isfinite(s.angle) || !within_float(s.velocity.x) ||
+            !within_float(s.velocity.y) || !isfinite(s.angular_velocity))
+            return pp_fail(PP_ERR_LIMIT,
+                           "pp_world_step: body %#llx would reach (%g, %g) px, %g rad, moving (%g, %g) px/s, %g rad/s: "
+                           "past what a float holds; the step is undone", (unsigned long long)bd->handle.id, pos.x,
+                           pos.y, s.angle, s.velocity.x, s.velocity.y, s.angular_velocity);
+        bd->angle = s.angle, bd->cos_a = c, bd->sin_a = sn;
+        bd->pos = pos;
+        body_update_pose_cache(bd);
+    }
+    return PP_OK;
+}
+
+/* The substeps of one step; on failure the caller undoes them. */
+static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_narrow, double *t_solver)
+{
+    const double h = (double)dt / wd->def.substeps;
+    bool still = false; /* nothing moved, woke or slept in the substep before: its contacts stand */
+    for (int32_t k = 0; k < wd->def.substeps; k++) {
+        pp_status st = still ? PP_OK : find_contacts(wd, k, dt, t_broad, t_narrow);
+        if (st)
+            return st;
+        const double t0 = now_ms();
+        if ((st = continuous_begin(wd)))
+            return st;
+        if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
+            return st;
+        solver_islands islands; /* before the joints: a failure must leave ODE none */
+        const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
+        if ((st = island_plan(wd, pairing, &islands)) ||
+            ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
+            return st;
+        step_save_contact_bodies(wd);
+        contact_joints_add(wd, &islands, h);
+        joint_prepare(wd, h);
+        forces_apply(wd);
+        forces_damp(wd, h);
+        if (!solver_step(wd->solver, h, &islands))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+        still = islands.exact_count + islands.quick_count + islands.quick_two_count == 0;
+        island_list_woken(wd);
+        for (int32_t c = 0; c < wd->contact_count; c++) {
+            pp_contact *ct = &wd->contacts[c];
+            /* Over one substep, whatever the span: force × h, as the header has it. */
+            ct->normal_impulse = contact_span(wd, ct) > 0
+                                     ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h)
+                                     : 0;
+        }
+        if ((st = sync_bodies(wd)))
+            return st;
+        if ((st = continuous_end(wd)))
+            return st;
+        still &= !island_sleep(wd, h);
+        *t_solver += now_ms() - t0;
+    }
+    carry_end_step(wd);
+    return PP_OK;
+}
+
+/* Timed edits due now are applied first, each whole or not at all, and stay applied; then the step
+ * runs whole or, if memory runs out, not at all. */
+PP_API pp_status pp_world_step(pp_world w, float dt)
+{
+    world *wd = world_lookup(w, "pp_world_step");
+    if (!wd)
+        return PP_ERR_INVALID_HANDLE;
+    if (!isfinite(dt) || !(dt > 0) || dt > 1)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be finite and in (0, 1] s, got %g", dt);
+    const double t_start = now_ms();
+    double t_broad = 0, t_narrow = 0, t_solver = 0;
+    pp_status st = timed_edits_apply_due(wd, dt);
+    if (st || (st = step_save(wd)))
+        return st;
+    wd->stats.pixels_tested = 0;
+    wd->stats.swept_stops = 0;
+    wd->stats.threads = 0;
+    if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
+        step_restore(wd);
+        forces_step_undone(wd);
+        return st;
+    }
+    forces_step_done(wd);
+    if ((st = joint_step_done(wd)))
+        pp_log(1, "physpix: joints past their break force stay until a step has room for their events");
+    int32_t awake = 0;
+    for (int32_t k = 0; k < wd->awake_count; k++)
+        awake += awake_mover(wd->bodies[wd->awake_slots[k]]);
+    wd->stats.broadphase_ms = (float)t_broad;
+    wd->stats.narrowphase_ms = (float)t_narrow;
+    wd->stats.solver_ms = (float)t_solver;
+    wd->stats.total_ms = (float)(now_ms() - t_start);
+    wd->stats.bodies = wd->body_ids.live;
+    wd->stats.awake_bodies = awake;
+    wd->time += dt;
+    return PP_OK;
+}

@@ -1,0 +1,57 @@
+/* The step transaction: everything pp_world_step changes after its timed edits is saved before it changes
+ * any of it, and put back if the step fails, so that a step runs whole or not at all (step_undo.c). This
+ * file is the one place that knows what a failed step puts back; a sanitizer build (PP_CHECKS) checks that
+ * the world's fingerprint after step_restore is the one step_save saw. */
+#ifndef PP_STEP_UNDO_H
+#define PP_STEP_UNDO_H
+
+#include "math2d.h"
+#include "physpix.h"
+#include "solver_ode.h"
+#include "touch.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+typedef struct world world;
+typedef struct body body;
+
+/* A movable body's part of what a step changes. */
+typedef struct step_saved_body {
+    uint64_t step;            /* the step that saved it: a body is saved at most once a step */
+    solver_exact_state ode;
+    dvec2 pos;
+    double angle, cos_a, sin_a, slow_time;
+    pp_aabb aabb;
+} step_saved_body;
+
+typedef struct step_undo {
+    step_saved_body *bodies;  /* by slot: awake movable bodies, and sleepers once a contact may wake them */
+    int32_t body_capacity;
+    uint64_t step;            /* counts steps, so a saved entry is known as this step's */
+    pp_contact *contacts;
+    int32_t contact_count, contact_capacity;
+    pp_step_stats stats;
+    uint64_t solver_steps;
+    touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
+    int32_t touch_count, touch_capacity; /* swapped back, not copied, so a restore cannot fail */
+    bool touch_saved;         /* touching holds this step's saved pairs */
+    touch *resting;           /* the same for the resting pairs */
+    int32_t resting_count, resting_capacity;
+    bool resting_saved;
+    int32_t event_count;      /* events queued before the step */
+    uint64_t fingerprint;     /* PP_CHECKS: the world's state at step_save */
+} step_undo;
+
+/* Save what the step may change. It allocates first and changes nothing, so a failure here is harmless. */
+pp_status step_save(world *wd);
+/* Before the solver runs: every body a contact joint or a joint may wake is saved (a sleeper changes only
+ * then). */
+void step_save_contact_bodies(world *wd);
+/* Save the touching (resting: the resting) pairs, once a step, before touch_end first changes them. */
+pp_status step_save_touching(world *wd, bool resting);
+/* Put back what the step saved; cannot fail. */
+void step_restore(world *wd);
+void step_undo_free(step_undo *u);
+
+#endif
