@@ -63,6 +63,15 @@ pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, b
     return *bd ? PP_OK : PP_ERR_INVALID_HANDLE;
 }
 
+body *body_lookup_out(pp_world w, pp_body b, const char *fn, const void *out, const char *out_name, world **wd,
+                      pp_status *st)
+{
+    body *bd = NULL;
+    if (!(*st = world_body_lookup(w, b, fn, wd, &bd)) && !out)
+        *st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s is NULL", fn, out_name);
+    return *st ? NULL : bd;
+}
+
 void body_update_pose_cache(body *bd)
 {
     const pp_raster *r = &bd->raster;
@@ -358,12 +367,10 @@ PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
 PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_position", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_position", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_position: out is NULL");
     *out = (pp_vec2){(float)bd->pos.x, (float)bd->pos.y};
     return PP_OK;
 }
@@ -371,12 +378,10 @@ PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out)
 PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_angle", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_angle", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_angle: out is NULL");
     *out = (float)bd->angle;
     return PP_OK;
 }
@@ -498,12 +503,10 @@ PP_API pp_status pp_body_get_memory(pp_world w, pp_body b, int64_t *collision_by
 PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_is_awake", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_is_awake", awake, "awake", &wd, &st);
+    if (!bd)
         return st;
-    if (!awake)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_is_awake: awake is NULL");
     *awake = bd->sb.body ? solver_body_is_awake(&bd->sb) : 0;
     return PP_OK;
 }
@@ -511,12 +514,10 @@ PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
 PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_user_data", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_user_data", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_user_data: out is NULL");
     *out = bd->user_data;
     return PP_OK;
 }
@@ -524,12 +525,10 @@ PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
 PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_pivot", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_pivot", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_pivot: out is NULL");
     *out = (pp_vec2){(float)bd->pivot.x, (float)bd->pivot.y};
     return PP_OK;
 }
@@ -537,12 +536,10 @@ PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out)
 PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_type", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_type", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_type: out is NULL");
     *out = bd->type;
     return PP_OK;
 }

@@ -325,12 +325,10 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
 {
     static const char *fn = "pp_body_write_pixels";
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, fn, mask, "mask", &wd, &st);
+    if (!bd)
         return st;
-    if (!mask)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: mask is NULL", fn);
     if (width <= 0 || height <= 0)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: width and height must be > 0, got %d × %d", fn, (int)width,
                        (int)height);

@@ -31,11 +31,9 @@ void events_free(event_queue *q)
 
 PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_events");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_events", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_events", out, capacity, count);
-    if (st)
         return st;
     event_queue *q = &wd->events;
     const int32_t n = q->count < capacity ? q->count : capacity;

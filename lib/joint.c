@@ -393,11 +393,9 @@ PP_API pp_status pp_joint_destroy(pp_world w, pp_joint j)
 
 PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_joints");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_joints", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_joints", out, capacity, count);
-    if (st)
         return st;
     int32_t n = 0;
     for (int32_t i = 0; i < wd->joints.ids.capacity; i++)

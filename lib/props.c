@@ -171,11 +171,9 @@ PP_API pp_status pp_world_set_gravity(pp_world w, pp_vec2 gravity)
 
 PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_body_states");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_body_states", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_body_states", out, capacity, count);
-    if (st)
         return st;
     int32_t n = 0;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
@@ -204,12 +202,10 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
 static pp_status get_float(pp_world w, pp_body b, const char *fn, float *out, double (*of)(const body *))
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, fn, out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out is NULL", fn);
     *out = (float)of(bd);
     return PP_OK;
 }
@@ -242,12 +238,10 @@ PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out)
 PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out)
 {
     world *wd;
-    body *bd;
-    pp_status st = world_body_lookup(w, b, "pp_body_get_fixed_rotation", &wd, &bd);
-    if (st)
+    pp_status st;
+    body *bd = body_lookup_out(w, b, "pp_body_get_fixed_rotation", out, "out", &wd, &st);
+    if (!bd)
         return st;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_get_fixed_rotation: out is NULL");
     *out = bd->fixed_rotation;
     return PP_OK;
 }

@@ -126,21 +126,18 @@ void timed_edits_free(timed_edits *q)
 
 PP_API pp_status pp_world_schedule_edit(pp_world w, const pp_timed_edit *edit)
 {
-    world *wd = world_lookup(w, "pp_world_schedule_edit");
+    pp_status st;
+    world *wd = world_lookup_out(w, "pp_world_schedule_edit", edit, "edit", &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    if (!edit)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_schedule_edit: edit is NULL");
+        return st;
     return timed_edits_schedule(wd, edit, "pp_world_schedule_edit");
 }
 
 PP_API pp_status pp_world_get_scheduled_edits(pp_world w, pp_timed_edit *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_scheduled_edits");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_scheduled_edits", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_scheduled_edits", out, capacity, count);
-    if (st)
         return st;
     timed_edits *q = &wd->edits;
     const int32_t n = q->count < capacity ? q->count : capacity;

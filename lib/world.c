@@ -48,6 +48,21 @@ world *world_lookup(pp_world w, const char *fn)
     return wd;
 }
 
+world *world_lookup_list(pp_world w, const char *fn, const void *out, int32_t capacity, const int32_t *count,
+                         pp_status *st)
+{
+    world *wd = world_lookup(w, fn);
+    *st = wd ? pp_check_out_buffer(fn, out, capacity, count) : PP_ERR_INVALID_HANDLE;
+    return *st ? NULL : wd;
+}
+
+world *world_lookup_out(pp_world w, const char *fn, const void *out, const char *out_name, pp_status *st)
+{
+    world *wd = world_lookup(w, fn);
+    *st = !wd ? PP_ERR_INVALID_HANDLE : !out ? pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s is NULL", fn, out_name) : PP_OK;
+    return *st ? NULL : wd;
+}
+
 uint64_t world_id_of_tag(uint32_t tag)
 {
     const uint32_t slot = tag_world_slot(tag);
@@ -279,22 +294,19 @@ pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t pe
 
 PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
 {
-    world *wd = world_lookup(w, "pp_world_get_def");
+    pp_status st;
+    world *wd = world_lookup_out(w, "pp_world_get_def", out, "out", &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_def: out is NULL");
+        return st;
     *out = wd->def;
     return PP_OK;
 }
 
 PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_bodies");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_bodies", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_bodies", out, capacity, count);
-    if (st)
         return st;
     int32_t n = 0;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++)
@@ -309,11 +321,9 @@ PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity,
 
 PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count)
 {
-    world *wd = world_lookup(w, "pp_world_get_contacts");
+    pp_status st;
+    world *wd = world_lookup_list(w, "pp_world_get_contacts", out, capacity, count, &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    pp_status st = pp_check_out_buffer("pp_world_get_contacts", out, capacity, count);
-    if (st)
         return st;
     const int32_t n = wd->contact_count < capacity ? wd->contact_count : capacity;
     if (n > 0)
@@ -324,22 +334,20 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
 
 PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out)
 {
-    world *wd = world_lookup(w, "pp_world_get_stats");
+    pp_status st;
+    world *wd = world_lookup_out(w, "pp_world_get_stats", out, "out", &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    if (!out)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_stats: out is NULL");
+        return st;
     *out = wd->stats;
     return PP_OK;
 }
 
 PP_API pp_status pp_world_get_time(pp_world w, double *seconds)
 {
-    world *wd = world_lookup(w, "pp_world_get_time");
+    pp_status st;
+    world *wd = world_lookup_out(w, "pp_world_get_time", seconds, "seconds", &st);
     if (!wd)
-        return PP_ERR_INVALID_HANDLE;
-    if (!seconds)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_get_time: seconds is NULL");
+        return st;
     *seconds = wd->time;
     return PP_OK;
 }

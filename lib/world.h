@@ -157,6 +157,11 @@ void world_free(world *wd);
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* The lookup of a call that lists into (out, capacity, count), checked as every list call takes them, or
+ * that writes one result through `out` (named out_name in messages); NULL with *st the failure. */
+world *world_lookup_list(pp_world w, const char *fn, const void *out, int32_t capacity, const int32_t *count,
+                         pp_status *st);
+world *world_lookup_out(pp_world w, const char *fn, const void *out, const char *out_name, pp_status *st);
 /* The id of the live world whose bodies carry this tag, or 0 (for a message naming a body's world). */
 uint64_t world_id_of_tag(uint32_t tag);
 body *body_lookup(world *wd, pp_body b, const char *fn);
@@ -179,6 +184,11 @@ pp_status world_body_lookup(pp_world w, pp_body b, const char *fn, world **wd, b
 /* Make a body from a def (not NULL) into want_slot (BODY_ANY_SLOT, or a snapshot's restored slot that holds
  * nothing); failures name `fn`, the call the user made. */
 pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const char *fn, body **out);
+
+/* The lookup of a body call that writes one result through `out` (named out_name in messages), both
+ * checked; NULL with *st the failure. */
+body *body_lookup_out(pp_world w, pp_body b, const char *fn, const void *out, const char *out_name, world **wd,
+                      pp_status *st);
 
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
