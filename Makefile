@@ -28,18 +28,27 @@ DEPS += libbox2d-dev libchipmunk-dev
 PYTHON ?= python3
 
 WARN     := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wno-unused-parameter
-PP_CFLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Ilib
-LIBCFLAGS := $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
+# lib/ in layers, lowest first: core (allocator, statuses, handles), collide (rasters, broadphase, narrowphase
+# and its backends), then dynamics (world, bodies, joints, islands, the solver), edit (pixel edits, splits, timed
+# edits), query (rays, region queries, pair collide) and io (scenes, snapshots, images, the camera).
+LIB_DIRS  := core collide dynamics edit query io
+PP_BASE   := -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude
+PP_CFLAGS := $(PP_BASE) $(LIB_DIRS:%=-Ilib/%)
+LIBOPT    := -O2 -g -fPIC -fvisibility=hidden -DPHYSPIX_BUILD
+LIBCFLAGS := $(PP_CFLAGS) $(LIBOPT)
+# A library object sees the headers of its own layer and the layers below it only, so core and collide
+# cannot reach up into the world: $(call layer_inc,DIR).
+layer_inc = $(if $(filter core,$(1)),-Ilib/core,$(if $(filter collide,$(1)),-Ilib/core -Ilib/collide,$(LIB_DIRS:%=-Ilib/%)))
 LIBS     := -lode -lpng -lcjson -lm -lpthread -ldl
 # The user's flags come after ours, so `make CFLAGS=-O0` wins; LDFLAGS go before the libraries.
 USER_CFLAGS = $(CPPFLAGS) $(CFLAGS)
-# Each library object lists the headers it includes (build/*/*.d), so a header change rebuilds only those.
+# Each library object lists the headers it includes (build/*/*/*.d), so a header change rebuilds only those.
 DEPFLAGS := -MMD -MP
 SANFLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
-# The sanitizer build also checks the internal invariants (PP_ASSERT, lib/check.h).
+# The sanitizer build also checks the internal invariants (PP_ASSERT, lib/core/check.h).
 SANFLAGS += -DPP_CHECKS
 
-LIB_SRC  := $(wildcard lib/*.c)
+LIB_SRC  := $(foreach d,$(LIB_DIRS),$(wildcard lib/$(d)/*.c))
 GLSL_SRC := $(wildcard glsl/*.comp)
 GLSL_GEN := $(BUILD)/gen/glsl_sources.c
 LIB_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/glsl_sources.o
@@ -79,11 +88,13 @@ lib: $(SHARED)
 print-version:
 	@echo $(VERSION)
 
-$(BUILD)/obj/%.o: lib/%.c | $(BUILD)/obj
-	$(CC) $(LIBCFLAGS) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
+$(BUILD)/obj/%.o: lib/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PP_BASE) $(call layer_inc,$(*D)) $(LIBOPT) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
 
-$(BUILD)/san/%.o: lib/%.c | $(BUILD)/san
-	$(CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
+$(BUILD)/san/%.o: lib/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PP_BASE) $(call layer_inc,$(*D)) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) $(DEPFLAGS) $(USER_CFLAGS) -c $< -o $@
 
 # Each compute shader is glsl/common.glsl followed by its .comp, embedded as a C string.
 $(GLSL_GEN): glsl/common.glsl $(GLSL_SRC) | $(BUILD)/gen
@@ -99,10 +110,10 @@ $(GLSL_GEN): glsl/common.glsl $(GLSL_SRC) | $(BUILD)/gen
 	  echo 'const int gpu_shader_source_count = (int)(sizeof gpu_shader_sources / sizeof gpu_shader_sources[0]);'; \
 	} > $@
 
-$(BUILD)/obj/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/obj
+$(BUILD)/obj/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h | $(BUILD)/obj
 	$(CC) $(LIBCFLAGS) $(USER_CFLAGS) -c $< -o $@
 
-$(BUILD)/san/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/san
+$(BUILD)/san/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h | $(BUILD)/san
 	$(CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(SANFLAGS) $(USER_CFLAGS) -c $< -o $@
 
 $(SHARED): $(LIB_OBJ)
@@ -111,7 +122,7 @@ $(SHARED): $(LIB_OBJ)
 	ln -sf $(SONAME) $(BUILD)/libphyspix.so
 
 # The engine plugin: the class table over the C ABI, finding libphyspix.so.0 beside itself.
-$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/def_fields.h lib/handle.h lib/id_pool.h \
+$(PLUGIN): $(PLUGIN_SRC) plugin/plugin.h plugin/classes_gen.h plugin/api/def_fields.h lib/core/handle.h lib/core/id_pool.h \
   include/physpix_plugin.h $(SHARED)
 	$(CC) $(LIBCFLAGS) -Iplugin $(USER_CFLAGS) -shared -Wl,--no-undefined -o $@ $(PLUGIN_SRC) $(LDFLAGS) \
 	  -L$(BUILD) -l:$(SONAME) -Wl,-rpath,'$$ORIGIN' -lcjson -lm -lpthread
@@ -366,4 +377,4 @@ install: all
 clean:
 	rm -rf $(BUILD) plugin/python/build plugin/python/physpix.egg-info
 
--include $(wildcard $(BUILD)/obj/*.d $(BUILD)/san/*.d $(BUILD)/tsan/*.d $(FUZZ_DIR)/obj/*.d)
+-include $(wildcard $(BUILD)/obj/*/*.d $(BUILD)/san/*/*.d $(BUILD)/tsan/*/*.d $(FUZZ_DIR)/obj/*/*.d)

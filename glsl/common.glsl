@@ -1,10 +1,10 @@
 #version 310 es
-// Shared by every narrowphase pass (prepended at build time). The C twin is lib/narrow_cpu.c;
+// Shared by every narrowphase pass (prepended at build time). The C twin is lib/collide/narrow_cpu.c;
 // every decision is integer so both give the same bits.
 precision highp float;
 precision highp int;
 
-// One pair, 24 ints (lib/narrow_gpu.c gpu_pair).
+// One pair, 24 ints (lib/collide/narrow_gpu.c gpu_pair).
 struct Pair {
     ivec4 ra;   // reference mask: first word, width, height, 32-bit words per row
     ivec4 rb;   // other mask, likewise

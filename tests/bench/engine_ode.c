@@ -1,5 +1,5 @@
 /* The analytic baseline: the same scene with ODE's own boxes (dCreateBox in a hash space,
- * dSpaceCollide, contact joints), set up the way PhysPix sets ODE up (lib/solver_ode.c):
+ * dSpaceCollide, contact joints), set up the way PhysPix sets ODE up (lib/dynamics/solver_ode.c):
  * px/ppm → m, a plane-2D joint per body flattened after each solve, QuickStep seeded before
  * each solve, contact ERP, contact CFM scaled by the pair's inverse masses, surface layer,
  * Approx1 friction, substeps and auto-disable. */

@@ -1,4 +1,4 @@
-/* Contacts carried through a step's substeps (lib/carry.h): the raster narrowphase runs once a step for
+/* Contacts carried through a step's substeps (lib/dynamics/carry.h): the raster narrowphase runs once a step for
  * pairs that touch at its start, and the later substeps move their contacts with the bodies. */
 #include <criterion/criterion.h>
 #include <math.h>

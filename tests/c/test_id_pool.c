@@ -1,4 +1,4 @@
-/* The one slot pool behind every handle kind (lib/id_pool.h, header-only): the order slots come out in,
+/* The one slot pool behind every handle kind (lib/core/id_pool.h, header-only): the order slots come out in,
  * generations that make old handles stale, the exact undo of a take, a full pool and a failed growth. */
 #include "helpers.h"
 

@@ -7,7 +7,7 @@
 PP_TEST_SUITE(raycast);
 
 #define ALL_BITS 0xffffffffu
-#define WINDOW_R 8.0 /* the normal window's radius, px (lib/raycast.c RAY_WINDOW) */
+#define WINDOW_R 8.0 /* the normal window's radius, px (lib/query/raycast.c RAY_WINDOW) */
 
 /* A small deterministic generator (PCG-style LCG), uniform in [0, 1). */
 static double rnd(uint64_t *s)

@@ -1,4 +1,4 @@
-/* QuickStep stacks solve every other substep with twice its time step (lib/island.h): what the bodies of
+/* QuickStep stacks solve every other substep with twice its time step (lib/dynamics/island.h): what the bodies of
  * such a pile feel per step (weight, forces, contact impulses) is what they would feel solved every substep,
  * its pairs are collided once a step, and a snapshot continues it exactly. */
 #include <criterion/criterion.h>

@@ -21,10 +21,11 @@ VALGRIND_FLAGS := --tool=memcheck --leak-check=full --show-leak-kinds=definite,i
 $(BUILD)/tsan:
 	mkdir -p $@
 
-$(BUILD)/tsan/%.o: lib/%.c | $(BUILD)/tsan
+$(BUILD)/tsan/%.o: lib/%.c
+	@mkdir -p $(@D)
 	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) $(DEPFLAGS) -c $< -o $@
 
-$(BUILD)/tsan/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h | $(BUILD)/tsan
+$(BUILD)/tsan/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h | $(BUILD)/tsan
 	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
 
 $(TSAN_BIN): tests/deep/tsan_worlds.c $(TSAN_OBJ) include/physpix.h

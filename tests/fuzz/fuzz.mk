@@ -32,7 +32,7 @@ $(FUZZ_DIR)/obj/%.o: lib/%.c
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link $(DEPFLAGS) -c $< -o $@
 
-$(FUZZ_DIR)/obj/glsl_sources.o: $(GLSL_GEN) lib/gpu_context.h
+$(FUZZ_DIR)/obj/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link -c $< -o $@
 
