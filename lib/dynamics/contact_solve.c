@@ -80,16 +80,16 @@ int contact_span(const world *wd, const pp_contact *c)
     return wd->island_span[(a->sb.body ? a : body_of(wd, c->b))->index];
 }
 
-/* The joints of the contacts whose island advances `span` substeps of h / span s, in order or reversed. */
-static void add_span_joints(world *wd, int span, double h, bool reversed)
+void contact_joints_add(world *wd, double h)
 {
     const touch *t = NULL; /* the last pair's, found once for its points (they come together) */
     uint64_t ta = 0, tb = 0;
-    for (int32_t k = 0; k < wd->contact_count; k++) {
-        const int32_t i = reversed ? wd->contact_count - 1 - k : k;
+    for (int32_t i = 0; i < wd->contact_count; i++) {
         const pp_contact *c = &wd->contacts[i];
-        if (contact_span(wd, c) != span)
+        const int span = contact_span(wd, c);
+        if (span == SPAN_SKIP)
             continue;
+        const double hs = span * h; /* the time step of the contact's island */
         const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         if (c->a.id != ta || c->b.id != tb)
             t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id;
@@ -98,22 +98,8 @@ static void add_span_joints(world *wd, int span, double h, bool reversed)
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
             sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, e),
-            anchor_speed(wd, a, b, t, c, h), closing_speed(wd, a, b, c, h, e),
+            anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, hs, e), span == SPAN_TWO,
         };
         solver_add_contact(wd->solver, &sc, i);
     }
-}
-
-/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
- * pairs each have two points leans toward the point solved first. The order flips every time an island
- * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
- * by its parity, those solved every other substep (SPAN_TWO, at every second count) by the next bit. No
- * contact joins two islands, so each span's contacts go in their own order. */
-void contact_joints_add(world *wd, const solver_islands *is, double substep)
-{
-    const uint64_t steps = solver_get_steps(wd->solver);
-    if (is->exact_count + is->quick_count > 0)
-        add_span_joints(wd, SPAN_ONE, substep, steps & 1);
-    if (is->quick_two_count > 0)
-        add_span_joints(wd, SPAN_TWO, 2 * substep, steps >> 1 & 1);
 }

@@ -6,8 +6,9 @@
 
 typedef struct world world;
 
-/* Add the substep's contact joints, h seconds a substep, for the islands the plan solves (island.c). */
-void contact_joints_add(world *wd, const solver_islands *is, double h);
+/* Hand the solver the substep's contacts, h seconds a substep, in the world's contact order: each whose island
+ * advances this substep (island.c), with its bounce and target speeds for its island's time step. */
+void contact_joints_add(world *wd, double h);
 /* The substeps of time a contact's island advances in this one (SPAN_*, world.h). */
 int contact_span(const world *wd, const pp_contact *c);
 

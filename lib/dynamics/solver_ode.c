@@ -13,6 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+typedef struct pending_contact {
+    solver_contact c;
+    int32_t k;                    /* its feedback slot */
+} pending_contact;
+
 struct pp_solver {
     dWorldID world;
     dJointGroupID contacts;
@@ -21,6 +26,8 @@ struct pp_solver {
     uint64_t steps;               /* seeds QuickStep's constraint shuffle */
     dJointFeedback *feedback;     /* by contact: the forces ODE's step applied */
     int32_t feedback_capacity;
+    pending_contact *pending;     /* the next step's contacts, in the world's order */
+    int32_t pending_count, pending_capacity;
 };
 
 static pthread_once_t ode_once = PTHREAD_ONCE_INIT;
@@ -90,6 +97,7 @@ void solver_destroy(pp_solver *s)
     dJointGroupDestroy(s->contacts);
     dWorldDestroy(s->world);
     pp_free(s->feedback);
+    pp_free(s->pending);
     pp_free(s);
 }
 
@@ -221,9 +229,9 @@ void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_bod
     out->awake = dBodyIsEnabled(b) != 0;
 }
 
-pp_status solver_reserve_feedback(pp_solver *s, int32_t n)
+pp_status solver_reserve_contacts(pp_solver *s, int32_t n)
 {
-    if (!ARRAY_RESERVE(s->feedback, s->feedback_capacity, n))
+    if (!ARRAY_RESERVE(s->feedback, s->feedback_capacity, n) || !ARRAY_RESERVE(s->pending, s->pending_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contact impulses", (int)n);
     if (n > 0) /* a joint ODE leaves out of its step (all its bodies asleep) applied nothing */
         memset(s->feedback, 0, (size_t)n * sizeof *s->feedback);
@@ -239,7 +247,12 @@ double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, doubl
 
 void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
 {
-    PP_ASSERT(k >= 0 && k < s->feedback_capacity); /* solver_reserve_feedback first */
+    PP_ASSERT(k >= 0 && k < s->feedback_capacity && s->pending_count < s->pending_capacity); /* reserved first */
+    s->pending[s->pending_count++] = (pending_contact){*c, k};
+}
+
+static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)
+{
     dContact ct = {0};
     /* One friction row, along the in-plane tangent: ODE's second direction would be z, where nothing moves. */
     ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM | dContactMu2 | dContactFDir1;
@@ -504,8 +517,27 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
     return ok;
 }
 
+/* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
+ * pairs each have two points leans toward the point solved first. The order flips every time an island
+ * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
+ * by its parity, those solved every other substep (`twice`, at every second count) by the next bit. No
+ * contact joins two islands, so each kind's contacts go in their own order. */
+static void attach_contacts(pp_solver *s, const solver_islands *is)
+{
+    const bool stepped[2] = {is->exact_count + is->quick_count > 0, is->quick_two_count > 0};
+    const bool reversed[2] = {(s->steps & 1) != 0, (s->steps >> 1 & 1) != 0};
+    for (int twice = 0; twice < 2; twice++)
+        for (int32_t n = 0; stepped[twice] && n < s->pending_count; n++) {
+            const pending_contact *p = &s->pending[reversed[twice] ? s->pending_count - 1 - n : n];
+            if (p->c.twice == (twice == 1))
+                attach_contact(s, &p->c, p->k);
+        }
+    s->pending_count = 0;
+}
+
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
+    attach_contacts(s, islands);
     if (islands->exact_count + islands->quick_count + islands->quick_two_count == 0) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
         dJointGroupEmpty(s->contacts);

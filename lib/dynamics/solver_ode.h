@@ -47,6 +47,7 @@ typedef struct solver_contact {
     double friction, restitution;
     double tangent_speed;      /* px/s the friction row drives a's point past b's along (−normal.y, normal.x) */
     double closing_speed;      /* px/s the pair may approach along the normal this substep (≥ 0) */
+    bool twice;                /* its island advances 2·h this substep (it sat the one before out) */
 } solver_contact;
 
 pp_status solver_create(const pp_world_def *def, const char *fn, pp_solver **out);
@@ -115,9 +116,9 @@ void solver_joint_set_feedback(const solver_joint *sj, const double in[6]);
 /* The force (mass·px/s²) and torque (mass·px²/s²) the last substep applied to body_b. */
 void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque);
 
-/* Room for n contacts' impulses in the next step, zeroed; call before adding their joints. */
-pp_status solver_reserve_feedback(pp_solver *s, int32_t n);
-/* Add a contact joint for the next step; its impulse is read back as contact k. */
+/* Room for n contacts in the next step and their impulses, zeroed; call before adding them. */
+pp_status solver_reserve_contacts(pp_solver *s, int32_t n);
+/* A contact for the next step, its impulse read back as contact k. The solver orders its rows itself. */
 void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k);
 /* Impulse the last step of h s applied at contact k along the unit normal, mass·px/s (≥ 0). */
 double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h);

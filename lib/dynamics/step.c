@@ -287,7 +287,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         const double t0 = now_ms();
         if ((st = continuous_begin(wd)))
             return st;
-        if ((st = solver_reserve_feedback(wd->solver, wd->contact_count)))
+        if ((st = solver_reserve_contacts(wd->solver, wd->contact_count)))
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
         const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
@@ -295,7 +295,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
             return st;
         step_save_contact_bodies(wd);
-        contact_joints_add(wd, &islands, h);
+        contact_joints_add(wd, h);
         joint_prepare(wd, h);
         forces_apply(wd);
         forces_damp(wd, h);
