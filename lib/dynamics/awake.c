@@ -8,7 +8,7 @@
 
 pp_status awake_reserve(world *wd, int32_t n, const char *fn)
 {
-    if (!ARRAY_RESERVE(wd->awake_slots, wd->awake_capacity, n))
+    if (!ARRAY_RESERVE(wd->awake.slots, wd->awake.capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d awake bodies", fn, (int)n);
     return PP_OK;
 }
@@ -17,12 +17,12 @@ void awake_add(world *wd, body *bd)
 {
     if (bd->awake_at >= 0)
         return;
-    PP_ASSERT(wd->awake_count < wd->awake_capacity); /* awake_reserve at creation */
+    PP_ASSERT(wd->awake.count < wd->awake.capacity); /* awake_reserve at creation */
     wd->resting_stale = true; /* it may be in a resting pair (touch.c) */
-    const int32_t n = wd->awake_count++;
-    wd->awake_slots[n] = (int32_t)bd->index;
+    const int32_t n = wd->awake.count++;
+    wd->awake.slots[n] = (int32_t)bd->index;
     bd->awake_at = n;
-    wd->awake_sorted = wd->awake_sorted && (n == 0 || wd->awake_slots[n - 1] < (int32_t)bd->index);
+    wd->awake.sorted = wd->awake.sorted && (n == 0 || wd->awake.slots[n - 1] < (int32_t)bd->index);
 }
 
 void awake_wake(world *wd, body *bd)
@@ -33,25 +33,25 @@ void awake_wake(world *wd, body *bd)
 
 void awake_forget(world *wd, body *bd)
 {
-    if (bd->index < (uint32_t)wd->proxy_capacity)
-        wd->proxies[bd->index].live = false;
+    if (bd->index < (uint32_t)wd->awake.proxy_capacity)
+        wd->awake.proxies[bd->index].live = false;
     broadphase_remove(&wd->broad, bd->index);
     const int32_t at = bd->awake_at;
     if (at < 0)
         return;
-    const int32_t last = wd->awake_slots[--wd->awake_count];
-    if (at < wd->awake_count) {
-        wd->awake_slots[at] = last;
+    const int32_t last = wd->awake.slots[--wd->awake.count];
+    if (at < wd->awake.count) {
+        wd->awake.slots[at] = last;
         wd->bodies[last]->awake_at = at;
-        wd->awake_sorted = false;
+        wd->awake.sorted = false;
     }
     bd->awake_at = -1;
 }
 
 void awake_rebuild(world *wd)
 {
-    wd->awake_count = 0;
-    wd->awake_sorted = true;
+    wd->awake.count = 0;
+    wd->awake.sorted = true;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++)
         if (wd->bodies[i])
             wd->bodies[i]->awake_at = -1;
@@ -76,35 +76,35 @@ static bp_proxy proxy_of(const body *bd)
 
 pp_status awake_refresh(world *wd)
 {
-    const int32_t had = wd->proxy_capacity;
-    if (!ARRAY_RESERVE(wd->proxies, wd->proxy_capacity, wd->body_ids.capacity))
+    const int32_t had = wd->awake.proxy_capacity;
+    if (!ARRAY_RESERVE(wd->awake.proxies, wd->awake.proxy_capacity, wd->body_ids.capacity))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
-    for (int32_t i = had; i < wd->proxy_capacity; i++) /* new slots hold no body until one is listed */
-        wd->proxies[i] = (bp_proxy){.live = false};
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        const int32_t i = wd->awake_slots[k];
-        wd->proxies[i] = proxy_of(wd->bodies[i]);
-        pp_status st = broadphase_update(&wd->broad, &wd->proxies[i], (uint32_t)i, wd->body_ids.capacity);
+    for (int32_t i = had; i < wd->awake.proxy_capacity; i++) /* new slots hold no body until one is listed */
+        wd->awake.proxies[i] = (bp_proxy){.live = false};
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        const int32_t i = wd->awake.slots[k];
+        wd->awake.proxies[i] = proxy_of(wd->bodies[i]);
+        pp_status st = broadphase_update(&wd->broad, &wd->awake.proxies[i], (uint32_t)i, wd->body_ids.capacity);
         if (st)
             return st;
     }
     int32_t kept = 0, movers = 0;
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        const int32_t i = wd->awake_slots[k];
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        const int32_t i = wd->awake.slots[k];
         body *bd = wd->bodies[i];
-        movers += wd->proxies[i].awake;
+        movers += wd->awake.proxies[i].awake;
         if (awake_mover(bd))
-            wd->awake_slots[kept++] = i;
+            wd->awake.slots[kept++] = i;
         else
             bd->awake_at = -1;
     }
-    wd->awake_count = kept;
-    wd->awake_movers = movers;
-    if (!wd->awake_sorted && kept > 1)
-        qsort(wd->awake_slots, (size_t)kept, sizeof *wd->awake_slots, slot_order);
+    wd->awake.count = kept;
+    wd->awake.movers = movers;
+    if (!wd->awake.sorted && kept > 1)
+        qsort(wd->awake.slots, (size_t)kept, sizeof *wd->awake.slots, slot_order);
     for (int32_t k = 0; k < kept; k++)
-        wd->bodies[wd->awake_slots[k]]->awake_at = k;
-    wd->awake_sorted = true;
+        wd->bodies[wd->awake.slots[k]]->awake_at = k;
+    wd->awake.sorted = true;
     return PP_OK;
 }
 
@@ -131,9 +131,9 @@ void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd
 {
     box_visit v = {wd, box, visit, user, false};
     broadphase_query(&wd->broad, box, visit_leaf, &v);
-    const int32_t n = wd->awake_count; /* bodies a visit lists were visited from the tree */
+    const int32_t n = wd->awake.count; /* bodies a visit lists were visited from the tree */
     for (int32_t k = 0; k < n && !v.stopped; k++) {
-        body *bd = wd->bodies[wd->awake_slots[k]];
+        body *bd = wd->bodies[wd->awake.slots[k]];
         if (aabb_overlap(&bd->aabb, &box) && !visit(wd, bd, user))
             return;
     }
@@ -179,3 +179,10 @@ static bool wake_movable(world *wd, body *bd, void *user)
 }
 
 void awake_wake_in_box(world *wd, pp_aabb box) { awake_each_in_box(wd, box, wake_movable, NULL); }
+
+void awake_free(awake_set *a)
+{
+    pp_free(a->slots);
+    pp_free(a->proxies);
+    *a = (awake_set){0};
+}

@@ -38,6 +38,8 @@ void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd
 pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n);
 
 /* Whether a listed body is an awake movable body (the set may still hold one that fell asleep this substep). */
+void awake_free(awake_set *a);
+
 static inline bool awake_mover(const body *bd) { return bd->sb.body && solver_body_is_awake(&bd->sb); }
 
 #endif

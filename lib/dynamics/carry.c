@@ -76,7 +76,7 @@ static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c-
  * make no contacts. */
 static bool sits_out(const world *wd, const body *bd)
 {
-    return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->substep_serial);
+    return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->islands.substep_serial);
 }
 
 /* The pair carried for these slots among the first n sorted keys, or NULL. (A loop, not bsearch: it runs for
@@ -168,7 +168,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
             continue;
         }
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
-        const bool slow = k == 0 && wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
+        const bool slow = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
         const bool still =
             !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));

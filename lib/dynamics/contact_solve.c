@@ -18,7 +18,7 @@ static double inv_mass(const body *bd)
 static double anchor_speed(const world *wd, const body *a, const body *b, const touch *t, const pp_contact *c,
                            double h)
 {
-    if (wd->island_kind[(a->sb.body ? a : b)->index] != ISLAND_QUICK_STACK)
+    if (wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_QUICK_STACK)
         return 0;
     if (!t || handle_slot(t->a) != a->index)
         return 0;
@@ -66,7 +66,7 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
 {
     const body *mover = a->sb.body ? a : b;
     const double gap = wd->def.contact_slop - c->depth, ia = inv_mass(a), ib = inv_mass(b);
-    if (!(gap > 0) || wd->island_kind[mover->index] != ISLAND_QUICK_STACK)
+    if (!(gap > 0) || wd->islands.kind[mover->index] != ISLAND_QUICK_STACK)
         return 0;
     if ((ia > 0 && ib > 0 && fmax(ia, ib) > CLOSING_MASS_RATIO * fmin(ia, ib)) ||
         (e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold))
@@ -77,7 +77,7 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
 int contact_span(const world *wd, const pp_contact *c)
 {
     const body *a = body_of(wd, c->a);
-    return wd->island_span[(a->sb.body ? a : body_of(wd, c->b))->index];
+    return wd->islands.span[(a->sb.body ? a : body_of(wd, c->b))->index];
 }
 
 void contact_joints_add(world *wd, double h)

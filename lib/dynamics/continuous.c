@@ -97,18 +97,18 @@ static bool sweeps(const world *wd, const body *bd)
 
 pp_status continuous_begin(world *wd)
 {
-    pp_status st = world_slot_array(wd, (void **)&wd->sweep_from, &wd->sweep_capacity, sizeof *wd->sweep_from,
+    pp_status st = world_slot_array(wd, (void **)&wd->sweeps.from, &wd->sweeps.from_capacity, sizeof *wd->sweeps.from,
                                     "continuous collision");
-    if (st || (st = world_slot_array(wd, (void **)&wd->swept, &wd->swept_capacity, sizeof *wd->swept,
+    if (st || (st = world_slot_array(wd, (void **)&wd->sweeps.slots, &wd->sweeps.capacity, sizeof *wd->sweeps.slots,
                                      "continuous collision")))
         return st;
-    wd->swept_count = 0;
-    for (int32_t k = 0; k < wd->awake_count; k++) { /* in slot order: a bullet sees earlier sweeps' poses */
-        const int32_t i = wd->awake_slots[k];
+    wd->sweeps.count = 0;
+    for (int32_t k = 0; k < wd->awake.count; k++) { /* in slot order: a bullet sees earlier sweeps' poses */
+        const int32_t i = wd->awake.slots[k];
         const body *bd = wd->bodies[i];
         if (sweeps(wd, bd)) {
-            wd->sweep_from[i] = (continuous_pose){body_com_world(bd), bd->angle};
-            wd->swept[wd->swept_count++] = i;
+            wd->sweeps.from[i] = (continuous_pose){body_com_world(bd), bd->angle};
+            wd->sweeps.slots[wd->sweeps.count++] = i;
         }
     }
     return PP_OK;
@@ -177,10 +177,17 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
 pp_status continuous_end(world *wd)
 {
     pp_status st = PP_OK;
-    for (int32_t k = 0; k < wd->swept_count && !st; k++) {
-        const int32_t i = wd->swept[k];
+    for (int32_t k = 0; k < wd->sweeps.count && !st; k++) {
+        const int32_t i = wd->sweeps.slots[k];
         if (solver_body_is_awake(&wd->bodies[i]->sb))
-            st = sweep_body(wd, wd->bodies[i], &wd->sweep_from[i]);
+            st = sweep_body(wd, wd->bodies[i], &wd->sweeps.from[i]);
     }
     return st;
+}
+
+void continuous_free(sweep_set *s)
+{
+    pp_free(s->from);
+    pp_free(s->slots);
+    *s = (sweep_set){0};
 }

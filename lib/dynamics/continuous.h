@@ -12,4 +12,6 @@ pp_status continuous_begin(world *wd);
  * for the bodies near a path: PP_ERR_OUT_OF_MEMORY (the step is undone). */
 pp_status continuous_end(world *wd);
 
+void continuous_free(sweep_set *s);
+
 #endif

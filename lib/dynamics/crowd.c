@@ -97,7 +97,7 @@ static bool among_best(const world *wd, uint32_t slot, int32_t i)
 
 static float box_overlap(const world *wd, const bp_pair *pair)
 {
-    const pp_aabb *p = &wd->proxies[pair->a].box, *q = &wd->proxies[pair->b].box;
+    const pp_aabb *p = &wd->awake.proxies[pair->a].box, *q = &wd->awake.proxies[pair->b].box;
     const double w = (p->x1 < q->x1 ? p->x1 : q->x1) - (p->x0 > q->x0 ? p->x0 : q->x0);
     const double h = (p->y1 < q->y1 ? p->y1 : q->y1) - (p->y0 > q->y0 ? p->y0 : q->y0);
     return w > 0 && h > 0 ? (float)(w * h) : 0.0f;
@@ -182,17 +182,17 @@ void crowd_prove(world *wd, int32_t n)
 {
     crowd_slot *slots = wd->crowd.slots;
     for (int32_t p = 0; p < 2 * n; p++)
-        reset_slot(wd, (uint32_t)wd->pair_bodies[p]);
+        reset_slot(wd, (uint32_t)wd->batch.bodies[p]);
     for (int32_t p = 0; p < n; p++) {
-        if (wd->cores[p].count == 0)
+        if (wd->batch.cores[p].count == 0)
             continue;
-        const int64_t pixels = wd->cores[p].count * wd->pairs[p].s * wd->pairs[p].s;
-        crowd_slot *a = &slots[wd->pair_bodies[2 * p]], *b = &slots[wd->pair_bodies[2 * p + 1]];
+        const int64_t pixels = wd->batch.cores[p].count * wd->batch.pairs[p].s * wd->batch.pairs[p].s;
+        crowd_slot *a = &slots[wd->batch.bodies[2 * p]], *b = &slots[wd->batch.bodies[2 * p + 1]];
         a->pairs++, b->pairs++;
         a->overlap += pixels, b->overlap += pixels;
     }
     for (int32_t p = 0; p < 2 * n; p++)
-        slots[wd->pair_bodies[p]].proven = crowded(wd, (uint32_t)wd->pair_bodies[p]);
+        slots[wd->batch.bodies[p]].proven = crowded(wd, (uint32_t)wd->batch.bodies[p]);
 }
 
 pp_status crowd_order(world *wd, int32_t first, int32_t n, const int32_t **order)

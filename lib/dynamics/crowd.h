@@ -53,10 +53,10 @@ bool crowd_wants(const struct world *wd, int32_t k, int pass);
 /* Record that candidate pair k was set up (after the pairs set up before it). */
 void crowd_set_up(struct world *wd, int32_t k);
 
-/* After the first pass's cores, wd->cores[0, n): mark the bodies they prove crowded. */
+/* After the first pass's cores, wd->batch.cores[0, n): mark the bodies they prove crowded. */
 void crowd_prove(struct world *wd, int32_t n);
 
-/* The set-up pairs in candidate order, the first pass's being wd->pairs[0, first) and the second's
+/* The set-up pairs in candidate order, the first pass's being wd->batch.pairs[0, first) and the second's
  * [first, n), as indices into wd->pairs. */
 pp_status crowd_order(struct world *wd, int32_t first, int32_t n, const int32_t **order);
 

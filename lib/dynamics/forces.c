@@ -14,10 +14,10 @@ pp_status forces_list(world *wd, body *bd, const char *fn)
 {
     if (bd->forced)
         return PP_OK;
-    if (!ARRAY_RESERVE(wd->forced, wd->forced_capacity, wd->forced_count + 1))
+    if (!ARRAY_RESERVE(wd->forced.slots, wd->forced.capacity, wd->forced.count + 1))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to list %d bodies under forces", fn,
-                       (int)wd->forced_count + 1);
-    wd->forced[wd->forced_count++] = (int32_t)bd->index;
+                       (int)wd->forced.count + 1);
+    wd->forced.slots[wd->forced.count++] = (int32_t)bd->index;
     bd->forced = true;
     return PP_OK;
 }
@@ -27,19 +27,19 @@ void forces_forget(world *wd, body *bd)
     if (!bd->forced)
         return;
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->forced_count; i++)
-        if (wd->forced[i] != (int32_t)bd->index)
-            wd->forced[n++] = wd->forced[i];
-    wd->forced_count = n;
+    for (int32_t i = 0; i < wd->forced.count; i++)
+        if (wd->forced.slots[i] != (int32_t)bd->index)
+            wd->forced.slots[n++] = wd->forced.slots[i];
+    wd->forced.count = n;
     bd->forced = false;
 }
 
 void forces_apply(world *wd)
 {
     const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
-    for (int32_t i = 0; i < wd->forced_count; i++) {
-        const body *bd = wd->bodies[wd->forced[i]];
-        if (!solver_body_is_awake(&bd->sb) || wd->island_span[bd->index] == SPAN_SKIP)
+    for (int32_t i = 0; i < wd->forced.count; i++) {
+        const body *bd = wd->bodies[wd->forced.slots[i]];
+        if (!solver_body_is_awake(&bd->sb) || wd->islands.span[bd->index] == SPAN_SKIP)
             continue; /* ODE keeps the sum of a body it does not step: it would get every substep's at once */
         const dvec2 f = dv_add(bd->force, dv_scale(g, (bd->gravity_scale - 1) * bd->mass.mass));
         solver_body_add_force(wd->solver, &bd->sb, f, bd->fixed_rotation ? 0.0 : bd->torque);
@@ -48,8 +48,8 @@ void forces_apply(world *wd)
 
 void forces_damp(world *wd, double h)
 {
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        const body *bd = wd->bodies[wd->awake_slots[k]];
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        const body *bd = wd->bodies[wd->awake.slots[k]];
         if (bd->type != PP_BODY_DYNAMIC || (bd->linear_damping == 0 && bd->angular_damping == 0) ||
             !solver_body_is_awake(&bd->sb))
             continue;
@@ -63,21 +63,21 @@ void forces_damp(world *wd, double h)
 void forces_step_done(world *wd)
 {
     int32_t n = 0;
-    for (int32_t i = 0; i < wd->forced_count; i++) {
-        body *bd = wd->bodies[wd->forced[i]];
+    for (int32_t i = 0; i < wd->forced.count; i++) {
+        body *bd = wd->bodies[wd->forced.slots[i]];
         bd->force = dv(0, 0), bd->torque = 0;
         if (bd->gravity_scale != 1)
-            wd->forced[n++] = wd->forced[i];
+            wd->forced.slots[n++] = wd->forced.slots[i];
         else
             bd->forced = false;
     }
-    wd->forced_count = n;
+    wd->forced.count = n;
 }
 
 void forces_step_undone(world *wd)
 {
-    for (int32_t i = 0; i < wd->forced_count; i++)
-        solver_body_clear_force(&wd->bodies[wd->forced[i]]->sb);
+    for (int32_t i = 0; i < wd->forced.count; i++)
+        solver_body_clear_force(&wd->bodies[wd->forced.slots[i]]->sb);
 }
 
 /* The body a force call acts on: dynamic, listed, awake. */
@@ -165,4 +165,10 @@ PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impu
     solver_body_set_velocity(wd->solver, &bd->sb, s.velocity, wz);
     awake_wake(wd, bd);
     return PP_OK;
+}
+
+void forces_free(forced_list *f)
+{
+    pp_free(f->slots);
+    *f = (forced_list){0};
 }

@@ -7,6 +7,7 @@
 
 struct world;
 struct body;
+struct forced_list;
 
 /* Before each solver step of a substep: hand every listed awake body its force, torque and the part of
  * gravity its scale adds or takes away. */
@@ -23,5 +24,6 @@ void forces_step_undone(struct world *wd);
 void forces_forget(struct world *wd, struct body *bd);
 /* List a body (a snapshot's, with its force, torque or scale already set); PP_ERR_OUT_OF_MEMORY. */
 pp_status forces_list(struct world *wd, struct body *bd, const char *fn);
+void forces_free(struct forced_list *f);
 
 #endif

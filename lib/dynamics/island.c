@@ -6,6 +6,7 @@
  * either way, as it always was.
  * Both passes visit only the substep's nodes: the awake set's movable bodies and the contacts' movable
  * bodies (a sleeper touched by an awake body). A sleeping island is never visited. */
+#include "alloc.h"
 #include "island.h"
 #include "awake.h"
 #include "joint.h"
@@ -28,17 +29,17 @@ static bool within_reach(const world *wd, const body *bd)
 
 static bool is_node(const world *wd, const body *bd)
 {
-    return bd && bd->sb.body && wd->node_mark[bd->index] == wd->node_pass;
+    return bd && bd->sb.body && wd->islands.node_mark[bd->index] == wd->islands.node_pass;
 }
 
 /* Make a movable body a node of this pass (once): its own root, value 0. */
 static void add_node(world *wd, const body *bd)
 {
     const int32_t i = (int32_t)bd->index;
-    if (!bd->sb.body || wd->node_mark[i] == wd->node_pass)
+    if (!bd->sb.body || wd->islands.node_mark[i] == wd->islands.node_pass)
         return;
-    wd->node_mark[i] = wd->node_pass;
-    wd->nodes[wd->node_count++] = i;
+    wd->islands.node_mark[i] = wd->islands.node_pass;
+    wd->islands.nodes[wd->islands.node_count++] = i;
 }
 
 /* Both bodies of a joint with an ODE body on each side, or false. */
@@ -51,13 +52,14 @@ static bool joint_movers(const world *wd, const joint *jt, const body **a, const
 /* Joined bodies solve and sleep together: a node's joint partners are nodes too, along whole chains. */
 static void add_joint_nodes(world *wd)
 {
+    island_set *is = &wd->islands;
     for (bool added = true; added;) {
         added = false;
         for (int32_t i = 0; i < wd->joints.ids.capacity; i++) {
             const body *a, *b;
             if (!joint_movers(wd, wd->joints.items[i], &a, &b))
                 continue;
-            const bool na = wd->node_mark[a->index] == wd->node_pass, nb = wd->node_mark[b->index] == wd->node_pass;
+            const bool na = is->node_mark[a->index] == is->node_pass, nb = is->node_mark[b->index] == is->node_pass;
             if (na != nb) {
                 add_node(wd, na ? b : a);
                 added = true;
@@ -66,29 +68,30 @@ static void add_joint_nodes(world *wd)
     }
 }
 
-/* The substep's nodes into wd->nodes, in slot order for the awake set's part. */
+/* The substep's nodes into wd->islands.nodes, in slot order for the awake set's part. */
 static pp_status collect_nodes(world *wd)
 {
-    if (wd->body_ids.capacity > wd->node_mark_capacity) {
-        const int32_t old = wd->node_mark_capacity;
-        pp_status st = world_slot_array(wd, (void **)&wd->node_mark, &wd->node_mark_capacity, sizeof *wd->node_mark,
+    island_set *is = &wd->islands;
+    if (wd->body_ids.capacity > is->node_mark_capacity) {
+        const int32_t old = is->node_mark_capacity;
+        pp_status st = world_slot_array(wd, (void **)&is->node_mark, &is->node_mark_capacity, sizeof *is->node_mark,
                                         "the islands");
         if (st)
             return st;
-        for (int32_t i = old; i < wd->node_mark_capacity; i++)
-            wd->node_mark[i] = 0;
+        for (int32_t i = old; i < is->node_mark_capacity; i++)
+            is->node_mark[i] = 0;
     }
-    pp_status st = world_slot_array(wd, (void **)&wd->nodes, &wd->node_capacity, sizeof *wd->nodes, "the islands");
+    pp_status st = world_slot_array(wd, (void **)&is->nodes, &is->node_capacity, sizeof *is->nodes, "the islands");
     if (st)
         return st;
-    if (++wd->node_pass == 0) { /* wrapped: no mark may look current */
-        for (int32_t i = 0; i < wd->node_mark_capacity; i++)
-            wd->node_mark[i] = 0;
-        wd->node_pass = 1;
+    if (++is->node_pass == 0) { /* wrapped: no mark may look current */
+        for (int32_t i = 0; i < is->node_mark_capacity; i++)
+            is->node_mark[i] = 0;
+        is->node_pass = 1;
     }
-    wd->node_count = 0;
-    for (int32_t k = 0; k < wd->awake_count; k++)
-        add_node(wd, wd->bodies[wd->awake_slots[k]]);
+    is->node_count = 0;
+    for (int32_t k = 0; k < wd->awake.count; k++)
+        add_node(wd, wd->bodies[wd->awake.slots[k]]);
     for (int32_t k = 0; k < wd->contact_count; k++) {
         add_node(wd, body_of(wd, wd->contacts[k].a));
         add_node(wd, body_of(wd, wd->contacts[k].b));
@@ -118,9 +121,9 @@ static void join_island(int32_t *parent, int32_t *rows, int32_t *dynamic, const 
  * (rare: a merge in between) solves one substep, and its late bodies stay one substep late. */
 static void set_spans(world *wd, substep_pairing pairing)
 {
-    int32_t *parent = wd->group, *flags = wd->group + 2 * wd->group_capacity;
-    for (int32_t n = 0; n < wd->node_count; n++)
-        flags[wd->nodes[n]] = 0;
+    int32_t *parent = wd->islands.group, *flags = wd->islands.group + 2 * wd->islands.group_capacity;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        flags[wd->islands.nodes[n]] = 0;
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
@@ -134,24 +137,24 @@ static void set_spans(world *wd, substep_pairing pairing)
             fmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * fmin(a->mass.mass, b->mass.mass))
             flags[world_group_root(parent, (int32_t)a->index)] |= ROOT_EVERY_SUBSTEP;
     }
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const body *bd = wd->bodies[wd->nodes[n]];
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const body *bd = wd->bodies[wd->islands.nodes[n]];
         if (awake_mover(bd))
-            flags[world_group_root(parent, wd->nodes[n])] |=
-                bd->sat_out + 1 == wd->substep_serial ? ROOT_BEHIND : ROOT_CURRENT;
+            flags[world_group_root(parent, wd->islands.nodes[n])] |=
+                bd->sat_out + 1 == wd->islands.substep_serial ? ROOT_BEHIND : ROOT_CURRENT;
     }
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int32_t i = wd->nodes[n], f = flags[world_group_root(parent, i)];
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n], f = flags[world_group_root(parent, i)];
         uint8_t span = SPAN_ONE;
-        if (wd->island_kind[i] == ISLAND_QUICK_STACK) {
+        if (wd->islands.kind[i] == ISLAND_QUICK_STACK) {
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
             else if (pairing == PAIR_SECOND && f == ROOT_BEHIND)
                 span = SPAN_TWO;
         }
-        wd->island_span[i] = span;
+        wd->islands.span[i] = span;
         if (span == SPAN_SKIP)
-            wd->bodies[i]->sat_out = wd->substep_serial;
+            wd->bodies[i]->sat_out = wd->islands.substep_serial;
     }
 }
 
@@ -160,58 +163,58 @@ static void set_spans(world *wd, substep_pairing pairing)
 static int list_of(world *wd, int32_t i)
 {
     const body *bd = wd->bodies[i];
-    if (wd->group[wd->group_capacity + world_group_root(wd->group, i)] >= 0)
+    if (wd->islands.group[wd->islands.group_capacity + world_group_root(wd->islands.group, i)] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
-    if (wd->island_kind[i] == ISLAND_EXACT)
+    if (wd->islands.kind[i] == ISLAND_EXACT)
         return 0;
     if (!awake_mover(bd))
         return -1;
-    return wd->island_span[i] == SPAN_ONE ? 1 : wd->island_span[i] == SPAN_TWO ? 2 : 3;
+    return wd->islands.span[i] == SPAN_ONE ? 1 : wd->islands.span[i] == SPAN_TWO ? 2 : 3;
 }
 
-/* The stepped islands' bodies for solver_step, one list after another in wd->island_bodies, each in node
+/* The stepped islands' bodies for solver_step, one list after another in wd->islands.bodies, each in node
  * order: every body of the exact islands (ODE wakes their sleepers), then QuickStep's awake bodies over h,
  * over 2·h, and those sitting out. */
 static void list_islands(world *wd, solver_islands *out)
 {
     int32_t counts[4] = {0}, filled[4] = {0};
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int which = list_of(wd, wd->nodes[n]);
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int which = list_of(wd, wd->islands.nodes[n]);
         if (which >= 0)
             counts[which]++;
     }
-    solver_body **start[4] = {wd->island_bodies};
+    solver_body **start[4] = {wd->islands.bodies};
     for (int w = 1; w < 4; w++)
         start[w] = start[w - 1] + counts[w - 1];
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int which = list_of(wd, wd->nodes[n]);
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int which = list_of(wd, wd->islands.nodes[n]);
         if (which >= 0)
-            start[which][filled[which]++] = &wd->bodies[wd->nodes[n]]->sb;
+            start[which][filled[which]++] = &wd->bodies[wd->islands.nodes[n]]->sb;
     }
     *out = (solver_islands){start[0], counts[0], start[1], counts[1], start[2], counts[2], start[3], counts[3]};
 }
 
 pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
 {
-    wd->substep_serial++;
+    wd->islands.substep_serial++;
     *out = (solver_islands){0};
-    wd->node_count = 0;
+    wd->islands.node_count = 0;
     if (wd->body_ids.capacity == 0)
         return PP_OK;
-    pp_status st = world_slot_array(wd, (void **)&wd->group, &wd->group_capacity, 3 * sizeof *wd->group,
-                                    "the islands");
-    if (st || (st = world_slot_array(wd, (void **)&wd->island_bodies, &wd->island_capacity,
-                                     sizeof *wd->island_bodies, "the islands")) ||
-        (st = world_slot_array(wd, (void **)&wd->island_kind, &wd->island_kind_capacity, 1, "the islands")) ||
-        (st = world_slot_array(wd, (void **)&wd->island_span, &wd->island_span_capacity, 1, "the islands")) ||
+    island_set *isl = &wd->islands;
+    static const char *what = "the islands";
+    pp_status st = world_slot_array(wd, (void **)&isl->group, &isl->group_capacity, 3 * sizeof *isl->group, what);
+    if (st || (st = world_slot_array(wd, (void **)&isl->bodies, &isl->bodies_capacity, sizeof *isl->bodies, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->kind, &isl->kind_capacity, 1, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->span, &isl->span_capacity, 1, what)) ||
         (st = collect_nodes(wd)))
         return st;
     /* Per root: the island's rows (the group array's second third) and its dynamic bodies. */
-    int32_t *parent = wd->group, *rows = wd->group + wd->group_capacity;
-    int32_t *dynamic = (int32_t *)wd->island_bodies; /* scratch until the lists are written */
-    PP_ASSERT(sizeof *wd->island_bodies >= sizeof *dynamic);
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int32_t i = wd->nodes[n];
+    int32_t *parent = wd->islands.group, *rows = wd->islands.group + wd->islands.group_capacity;
+    int32_t *dynamic = (int32_t *)wd->islands.bodies; /* scratch until the lists are written */
+    PP_ASSERT(sizeof *wd->islands.bodies >= sizeof *dynamic);
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n];
         const body *bd = wd->bodies[i];
         parent[i] = i;
         rows[i] = bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
@@ -229,22 +232,22 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
      * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */
-    for (int32_t n = 0; n < wd->node_count; n++)
-        if (!within_reach(wd, wd->bodies[wd->nodes[n]]))
-            dynamic[world_group_root(parent, wd->nodes[n])] = INT32_MIN / 2;
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int32_t i = wd->nodes[n];
-        wd->island_kind[i] = dynamic[world_group_root(parent, i)] < 2 ? ISLAND_QUICK_ALONE : ISLAND_QUICK_STACK;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        if (!within_reach(wd, wd->bodies[wd->islands.nodes[n]]))
+            dynamic[world_group_root(parent, wd->islands.nodes[n])] = INT32_MIN / 2;
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n];
+        wd->islands.kind[i] = dynamic[world_group_root(parent, i)] < 2 ? ISLAND_QUICK_ALONE : ISLAND_QUICK_STACK;
     }
     /* An island is stepped if any of its bodies is awake (ODE wakes the rest); mark those roots. */
-    for (int32_t n = 0; n < wd->node_count; n++)
-        if (awake_mover(wd->bodies[wd->nodes[n]]))
-            rows[world_group_root(parent, wd->nodes[n])] |= INT32_MIN;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        if (awake_mover(wd->bodies[wd->islands.nodes[n]]))
+            rows[world_group_root(parent, wd->islands.nodes[n])] |= INT32_MIN;
     const int32_t limit = wd->def.exact_island_rows;
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const int32_t i = wd->nodes[n], r = rows[world_group_root(parent, i)];
-        if (r < 0 && (wd->def.exact_solver || (wd->island_kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
-            wd->island_kind[i] = ISLAND_EXACT;
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n], r = rows[world_group_root(parent, i)];
+        if (r < 0 && (wd->def.exact_solver || (wd->islands.kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
+            wd->islands.kind[i] = ISLAND_EXACT;
     }
     set_spans(wd, pairing);
     list_islands(wd, out);
@@ -253,8 +256,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
 
 void island_list_woken(world *wd)
 {
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        body *bd = wd->bodies[wd->nodes[n]];
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        body *bd = wd->bodies[wd->islands.nodes[n]];
         if (awake_mover(bd))
             awake_add(wd, bd);
     }
@@ -263,8 +266,8 @@ void island_list_woken(world *wd)
 bool island_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        body *bd = wd->bodies[wd->awake_slots[k]];
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        body *bd = wd->bodies[wd->awake.slots[k]];
         if (bd->type != PP_BODY_DYNAMIC || !awake_mover(bd))
             continue;
         if (bd->slow_time > d->sleep_time)
@@ -277,13 +280,13 @@ bool island_sleep(world *wd, double h)
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
         bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
     }
-    if (!d->allow_sleep || wd->node_count == 0)
+    if (!d->allow_sleep || wd->islands.node_count == 0)
         return false; /* no node: nothing awake, and maybe no arrays yet */
     /* Sleep groups: dynamic bodies joined by contacts, over the nodes island_plan collected (every body of a
      * group with an awake body is one: awake, or a contact's). */
-    int32_t *parent = wd->group, *restless = wd->group + wd->group_capacity;
-    for (int32_t n = 0; n < wd->node_count; n++)
-        parent[wd->nodes[n]] = wd->nodes[n], restless[wd->nodes[n]] = 0;
+    int32_t *parent = wd->islands.group, *restless = wd->islands.group + wd->islands.group_capacity;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        parent[wd->islands.nodes[n]] = wd->islands.nodes[n], restless[wd->islands.nodes[n]] = 0;
     for (int32_t k = 0; k < wd->contact_count; k++) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
@@ -292,18 +295,18 @@ bool island_sleep(world *wd, double h)
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const body *a, *b;
         if (joint_movers(wd, wd->joints.items[i], &a, &b) && a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
-            wd->node_mark[a->index] == wd->node_pass)
+            wd->islands.node_mark[a->index] == wd->islands.node_pass)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
     }
     bool slept = false;
     /* A group with a body not yet ready stays awake. */
-    for (int32_t n = 0; n < wd->node_count; n++) {
-        const body *bd = wd->bodies[wd->nodes[n]];
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const body *bd = wd->bodies[wd->islands.nodes[n]];
         if (bd->type == PP_BODY_DYNAMIC && bd->slow_time < d->sleep_time)
-            restless[world_group_root(parent, wd->nodes[n])] = 1;
+            restless[world_group_root(parent, wd->islands.nodes[n])] = 1;
     }
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        body *bd = wd->bodies[wd->awake_slots[k]];
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        body *bd = wd->bodies[wd->awake.slots[k]];
         if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd) && !restless[world_group_root(parent, (int32_t)bd->index)]) {
             solver_body_sleep(&bd->sb);
             bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
@@ -311,4 +314,15 @@ bool island_sleep(world *wd, double h)
         }
     }
     return slept;
+}
+
+void island_free(island_set *is)
+{
+    pp_free(is->group);
+    pp_free(is->node_mark);
+    pp_free(is->nodes);
+    pp_free(is->bodies);
+    pp_free(is->kind);
+    pp_free(is->span);
+    *is = (island_set){0};
 }

@@ -23,4 +23,6 @@ void island_list_woken(world *wd);
  * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. True if a body fell asleep. */
 bool island_sleep(world *wd, double h);
 
+void island_free(island_set *is);
+
 #endif

@@ -33,13 +33,13 @@ static pp_status push_contact(world *wd, const pp_contact *c)
 
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
 {
-    if (n <= wd->pair_capacity)
+    if (n <= wd->batch.capacity)
         return PP_OK;
-    int32_t pairs = wd->pair_capacity, cores = pairs, bodies = pairs; /* the three grow alike */
-    if (!ARRAY_RESERVE(wd->pairs, pairs, n) || !ARRAY_RESERVE(wd->cores, cores, n) ||
-        !array_reserve((void **)&wd->pair_bodies, &bodies, n, 2 * sizeof *wd->pair_bodies))
+    int32_t pairs = wd->batch.capacity, cores = pairs, bodies = pairs; /* the three grow alike */
+    if (!ARRAY_RESERVE(wd->batch.pairs, pairs, n) || !ARRAY_RESERVE(wd->batch.cores, cores, n) ||
+        !array_reserve((void **)&wd->batch.bodies, &bodies, n, 2 * sizeof *wd->batch.bodies))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)n);
-    wd->pair_capacity = pairs;
+    wd->batch.capacity = pairs;
     return PP_OK;
 }
 
@@ -72,8 +72,8 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     *ran = choose_backend(wd, cells);
     *threads = 0;
     /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
-    np_pair *pairs = first ? wd->pairs + first : wd->pairs;
-    np_core *cores = first ? wd->cores + first : wd->cores;
+    np_pair *pairs = first ? wd->batch.pairs + first : wd->batch.pairs;
+    np_core *cores = first ? wd->batch.cores + first : wd->batch.cores;
     pp_status st;
     if (*ran == PP_BACKEND_GPU)
         st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
@@ -98,11 +98,11 @@ static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
         if (joint_keeps_apart(wd, wd->bodies[ia], wd->bodies[ib]) || carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
             continue;
         const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
-        PP_ASSERT(*n < wd->pair_capacity);
-        if (!np_pair_setup(&set, &va, &vb, &wd->pairs[*n]))
+        PP_ASSERT(*n < wd->batch.capacity);
+        if (!np_pair_setup(&set, &va, &vb, &wd->batch.pairs[*n]))
             continue;
-        *cells += np_pair_cells(&wd->pairs[*n]);
-        wd->pair_bodies[2 * *n] = ia, wd->pair_bodies[2 * *n + 1] = ib;
+        *cells += np_pair_cells(&wd->batch.pairs[*n]);
+        wd->batch.bodies[2 * *n] = ia, wd->batch.bodies[2 * *n + 1] = ib;
         ++*n;
         if (pass)
             crowd_set_up(wd, p);
@@ -182,10 +182,11 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     if (st || (st = awake_refresh(wd)))
         return st ? pp_fail_in(fn, st) : st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
-    if (wd->awake_movers > 0 &&
-        (st = broadphase_find_pairs(&wd->broad, wd->proxies, wd->body_ids.capacity, wd->awake_slots, wd->awake_count)))
+    const awake_set *aw = &wd->awake;
+    if (aw->movers > 0 &&
+        (st = broadphase_find_pairs(&wd->broad, aw->proxies, wd->body_ids.capacity, aw->slots, aw->count)))
         return pp_fail_in(fn, st);
-    if (wd->awake_movers == 0)
+    if (wd->awake.movers == 0)
         wd->broad.pair_count = 0;
     if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
         return st;
@@ -203,10 +204,10 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     touch_begin(wd);
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
-        const body *a = wd->bodies[wd->pair_bodies[2 * k]], *b = wd->bodies[wd->pair_bodies[2 * k + 1]];
+        const body *a = wd->bodies[wd->batch.bodies[2 * k]], *b = wd->bodies[wd->batch.bodies[2 * k + 1]];
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
-        np_pair_finish(&set, &va, &vb, &wd->pairs[k], &wd->cores[k], &r);
+        np_pair_finish(&set, &va, &vb, &wd->batch.pairs[k], &wd->batch.cores[k], &r);
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;
@@ -251,9 +252,9 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
  * the caller undoes the step. */
 static pp_status sync_bodies(world *wd)
 {
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        body *bd = wd->bodies[wd->awake_slots[k]];
-        if (!awake_mover(bd) || wd->island_span[bd->index] == SPAN_SKIP)
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        body *bd = wd->bodies[wd->awake.slots[k]];
+        if (!awake_mover(bd) || wd->islands.span[bd->index] == SPAN_SKIP)
             continue;
         solver_body_flatten(&bd->sb);
         solver_body_state s;
@@ -347,8 +348,8 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     if ((st = joint_step_done(wd)))
         pp_log(1, "physpix: joints past their break force stay until a step has room for their events");
     int32_t awake = 0;
-    for (int32_t k = 0; k < wd->awake_count; k++)
-        awake += awake_mover(wd->bodies[wd->awake_slots[k]]);
+    for (int32_t k = 0; k < wd->awake.count; k++)
+        awake += awake_mover(wd->bodies[wd->awake.slots[k]]);
     wd->stats.broadphase_ms = (float)t_broad;
     wd->stats.narrowphase_ms = (float)t_narrow;
     wd->stats.solver_ms = (float)t_solver;

@@ -77,8 +77,8 @@ pp_status step_save(world *wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
                        (int)wd->body_ids.live);
     u->step++;
-    for (int32_t k = 0; k < wd->awake_count; k++) {
-        const body *bd = wd->bodies[wd->awake_slots[k]];
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        const body *bd = wd->bodies[wd->awake.slots[k]];
         if (awake_mover(bd))
             save_body(u, bd);
     }

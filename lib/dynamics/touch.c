@@ -155,8 +155,8 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
 static bool untested(const world *wd, const touch *t)
 {
     const body *a = body_find(wd, (pp_body){t->a}), *b = body_find(wd, (pp_body){t->b});
-    PP_ASSERT(wd->proxy_capacity >= wd->body_ids.capacity);
-    return a && b && !wd->proxies[a->index].awake && !wd->proxies[b->index].awake;
+    PP_ASSERT(wd->awake.proxy_capacity >= wd->body_ids.capacity);
+    return a && b && !wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake;
 }
 
 /* Merge two sorted runs of pairs into out. */
@@ -208,7 +208,7 @@ pp_status touch_end(world *wd)
     /* Nothing awake, found, removed or woken: every pair still touches, untested. No pair at all: nothing to
      * do, and maybe no buffers yet (NULL + 0 below would be undefined, fuzz_scene). */
     if (found + wd->touch_count + wd->resting_count == 0 ||
-        (found == 0 && wd->awake_movers == 0 && !wd->touch_body_gone && !wd->resting_stale))
+        (found == 0 && wd->awake.movers == 0 && !wd->touch_body_gone && !wd->resting_stale))
         return PP_OK;
     touch_sort(wd->touch_next, found);
     pp_status st = step_save_touching(wd, false);

@@ -2,6 +2,9 @@
  * world's simple getters. The step is step.c's. */
 #include "alloc.h"
 #include "awake.h"
+#include "continuous.h"
+#include "forces.h"
+#include "island.h"
 #include "handle.h"
 #include "joint.h"
 #include "status.h"
@@ -276,10 +279,14 @@ void world_free(world *wd)
     step_undo_free(&wd->undo);
     carry_free(&wd->carry);
     crowd_free(&wd->crowd);
-    void *arrays[] = {wd->pairs, wd->cores, wd->pair_bodies, wd->proxies, wd->sweep_from, wd->group,
-                      wd->island_bodies, wd->island_kind, wd->island_span, wd->node_mark, wd->nodes, wd->swept,
-                      wd->awake_slots, wd->contacts, wd->resting, wd->resting_next, wd->touching, wd->touch_next,
-                      wd->forced};
+    awake_free(&wd->awake);
+    island_free(&wd->islands);
+    continuous_free(&wd->sweeps);
+    forces_free(&wd->forced);
+    pp_free(wd->batch.pairs);
+    pp_free(wd->batch.cores);
+    pp_free(wd->batch.bodies);
+    void *arrays[] = {wd->contacts, wd->resting, wd->resting_next, wd->touching, wd->touch_next};
     for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++)
         pp_free(arrays[k]);
     pp_free(wd);

@@ -52,9 +52,9 @@ typedef struct body {
     dvec2 force;             /* applied since the last step, mass·px/s² (forces.c) … */
     double torque;           /* … and its torque about the centre of mass, mass·px²/s² */
     double gravity_scale;    /* of the world's gravity; 1 by default */
-    bool forced;             /* listed in wd->forced: a force, torque or gravity scale acts on it */
+    bool forced;             /* listed in wd->forced.slots: a force, torque or gravity scale acts on it */
     int32_t joint_count;     /* joints attached to it (joint.c) */
-    uint64_t sat_out;        /* the substep (wd->substep_serial) its QuickStep island last sat out (island.c) */
+    uint64_t sat_out;        /* the substep (wd->islands.substep_serial) its QuickStep island last sat out (island.c) */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -76,6 +76,59 @@ enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
  * first substep of a pair out and solve the second with twice its time step. */
 enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2 };
 
+/* The parts of a world each file owns: only its owner writes them; the others read, or call its functions. */
+
+/* The awake set (awake.c). */
+typedef struct awake_set {
+    int32_t *slots;          /* slots, sorted from each substep's start */
+    int32_t count, capacity;
+    bool sorted;
+    int32_t movers;          /* dynamic or kinematic bodies awake at the last broadphase */
+    bp_proxy *proxies;       /* the broadphase's view of every slot, refreshed for the set's bodies */
+    int32_t proxy_capacity;
+} awake_set;
+
+/* The substep's narrowphase batch (step.c; crowd.c orders it). */
+typedef struct pair_batch {
+    np_pair *pairs;          /* the pairs that passed set-up … */
+    np_core *cores;          /* … their integer cores … */
+    int32_t *bodies;         /* … and their bodies' slots, two per pair */
+    int32_t capacity;
+} pair_batch;
+
+/* Continuous collision's bodies (continuous.c). */
+typedef struct sweep_set {
+    continuous_pose *from;   /* by slot: where each swept body started the substep */
+    int32_t from_capacity;
+    int32_t *slots;          /* the slots continuous_begin recorded, in order */
+    int32_t count, capacity;
+} sweep_set;
+
+/* Islands and sleep groups (island.c). */
+typedef struct island_set {
+    int32_t *group;          /* three per slot: union-find parents, each root's rows or restless flag, and its
+                              * ROOT_* flags */
+    int32_t group_capacity;
+    uint32_t *node_mark;     /* by slot: the island pass that last made it a node */
+    int32_t node_mark_capacity;
+    uint32_t node_pass;
+    int32_t *nodes;          /* the substep's island nodes: awake bodies and contacts' movable bodies */
+    int32_t node_count, node_capacity;
+    solver_body **bodies;    /* this substep's islands for solver_step … */
+    int32_t bodies_capacity;
+    uint8_t *kind;           /* … and by slot, how each body's island is solved (ISLAND_*) */
+    int32_t kind_capacity;
+    uint8_t *span;           /* … and by slot, the substeps of time it advances (SPAN_*) */
+    int32_t span_capacity;
+    uint64_t substep_serial; /* counts island_plan's calls: which substep a body's sat_out names */
+} island_set;
+
+/* The bodies with a force, torque or gravity scale (forces.c). */
+typedef struct forced_list {
+    int32_t *slots;
+    int32_t count, capacity;
+} forced_list;
+
 typedef struct world {
     uint32_t slot;
     uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
@@ -87,17 +140,9 @@ typedef struct world {
     pp_broadphase broad;
     pp_contact *contacts;    /* the last substep's contacts */
     int32_t contact_count, contact_capacity;
-    int32_t awake_movers;    /* dynamic or kinematic bodies awake at the last broadphase */
-    int32_t *awake_slots;    /* the awake set (awake.h): slots, sorted from each substep's start */
-    int32_t awake_count, awake_capacity;
-    bool awake_sorted;
+    awake_set awake;         /* the bodies a substep visits (awake.c) */
+    pair_batch batch;        /* the substep's pairs for the narrowphase (step.c, crowd.c) */
     np_scratch scratch;
-    bp_proxy *proxies;       /* the broadphase's view of every slot, refreshed for the awake set's bodies */
-    int32_t proxy_capacity;
-    np_pair *pairs;          /* this substep's pairs that passed set-up … */
-    np_core *cores;          /* … their integer cores … */
-    int32_t *pair_bodies;    /* … and their bodies' slots, two per pair */
-    int32_t pair_capacity;
     np_workers *workers;     /* NULL until a batch needs more than one thread */
     gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
     bool gpu_tried;          /* AUTO tried to bring the GPU up */
@@ -106,25 +151,8 @@ typedef struct world {
     double time;             /* simulated s, the sum of every step's dt */
     timed_edits edits;       /* pending timed edits (timed_edits.c) */
     uint64_t next_serial;    /* the next body's creation serial */
-    continuous_pose *sweep_from; /* by slot: where each swept body started the substep */
-    int32_t sweep_capacity;
-    int32_t *group;          /* three per slot: union-find parents, each root's rows or restless flag, and its
-                              * ROOT_* flags (island.c) */
-    int32_t group_capacity;
-    uint32_t *node_mark;     /* by slot: the island pass that last made it a node (island.c) */
-    int32_t node_mark_capacity;
-    uint32_t node_pass;
-    int32_t *nodes;          /* the substep's island nodes: awake bodies and contacts' movable bodies */
-    int32_t node_count, node_capacity;
-    int32_t *swept;          /* the slots continuous_begin recorded, in order */
-    int32_t swept_count, swept_capacity;
-    solver_body **island_bodies; /* this substep's islands for solver_step (island.c) … */
-    int32_t island_capacity;
-    uint8_t *island_kind;    /* … and by slot, how each body's island is solved (ISLAND_*) */
-    int32_t island_kind_capacity;
-    uint8_t *island_span;    /* … and by slot, the substeps of time it advances (SPAN_*) */
-    int32_t island_span_capacity;
-    uint64_t substep_serial; /* counts island_plan's calls: which substep a body's sat_out names */
+    sweep_set sweeps;          /* continuous collision's swept bodies (continuous.c) */
+    island_set islands;        /* the substep's islands and sleep groups (island.c) */
     touch *touching;         /* pairs touching at the last substep with a body awake, sorted (touch.c) */
     int32_t touch_count, touch_capacity;
     touch *resting;          /* pairs touching whose bodies all sleep (or are static), sorted; no substep visits them */
@@ -138,8 +166,7 @@ typedef struct world {
     step_undo undo;          /* the step transaction (step_undo.c) */
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
-    int32_t *forced;         /* slots of the bodies with a force, torque or gravity scale (forces.c) */
-    int32_t forced_count, forced_capacity;
+    forced_list forced;      /* the bodies a force, torque or gravity scale acts on (forces.c) */
     joint_table joints;
 } world;
 
@@ -213,7 +240,7 @@ double body_round_radius(const body *bd);
 /* Room for n pairs in the world's pair arrays. */
 pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n);
 
-/* The integer cores of wd->pairs[first, first + n) (`cells` samples in all) on the backend the world asked
+/* The integer cores of wd->batch.pairs[first, first + n) (`cells` samples in all) on the backend the world asked
  * for; says which one ran and on how many threads (0 on the GPU). */
 pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
                           int32_t *threads);

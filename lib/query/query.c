@@ -30,12 +30,12 @@ PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *
     np_result r = {0};
     if ((st = world_reserve_pairs(wd, fn, 1)))
         return st;
-    if (np_pair_setup(&set, &va, &vb, &wd->pairs[0])) {
+    if (np_pair_setup(&set, &va, &vb, &wd->batch.pairs[0])) {
         pp_backend ran;
         int32_t threads;
-        if ((st = world_run_cores(wd, fn, 0, 1, np_pair_cells(&wd->pairs[0]), &ran, &threads)))
+        if ((st = world_run_cores(wd, fn, 0, 1, np_pair_cells(&wd->batch.pairs[0]), &ran, &threads)))
             return st;
-        np_pair_finish(&set, &va, &vb, &wd->pairs[0], &wd->cores[0], &r);
+        np_pair_finish(&set, &va, &vb, &wd->batch.pairs[0], &wd->batch.cores[0], &r);
     }
     for (int32_t k = 0; k < r.count && k < capacity; k++) {
         out[k] = r.contacts[k];
