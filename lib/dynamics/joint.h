@@ -1,5 +1,6 @@
-/* Joints (joint.c): the handle table, the joints' bitmap anchors, and what a step, an edit and a body's
- * removal do to them. The ODE side is solver_ode.c's (solver_joint_*). */
+/* Joints: the handle table, creation and the pp_joint_* calls (joint.c); the joints' bitmap anchors, and
+ * what a step, an edit, a body's removal and a snapshot do to them (joint_step.c). The ODE side is
+ * solver_ode.c's (solver_joint_*). */
 #ifndef PP_JOINT_H
 #define PP_JOINT_H
 
@@ -24,11 +25,24 @@ typedef struct joint {
     solver_joint sj;
 } joint;
 
+/* How far past its body's bitmap an anchor may lie, px (or the body's own size where that is more). */
+#define JOINT_REACH 4096.0
+
 /* A live joint of this world, or NULL (no failure recorded). */
 joint *joint_find(const world *wd, pp_joint j);
 /* The joint's bodies; NULL for the world. */
 body *joint_body_a(const world *wd, const joint *jt);
 body *joint_body_b(const world *wd, const joint *jt);
+/* Wake the joint's bodies that have an ODE body. */
+void joint_wake(world *wd, const joint *jt);
+/* Take the joint out of its bodies' counts and the table, and free it with its ODE joint (no event). */
+void joint_free(world *wd, joint *jt);
+/* Whether a bitmap point (px) has a solid pixel within 1 px, the nearest one's column and row in *hx, *hy. */
+bool joint_anchor_held(const body *bd, dvec2 p, int32_t *hx, int32_t *hy);
+/* The joint's value and its rate, as pp_joint_get_value reports them: rad and rad/s revolute, px and px/s else. */
+void joint_value(const world *wd, const joint *jt, double *value, double *speed);
+/* Attach the ODE joint to its bodies as they are now, recording the frame for snapshots (joint_restore). */
+void joint_attach(world *wd, joint *jt);
 
 /* PP_ERR_INVALID_ARGUMENT (or INVALID_HANDLE for a body) unless a def's type, bodies and values make a joint. */
 pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d);

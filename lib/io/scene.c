@@ -1,5 +1,6 @@
 /* JSON scenes: a world's settings, camera, bodies with PNG bitmaps, joints and timed edits naming bodies.
- * The reading itself is scene_json.c's; every complaint names the JSON path of the value at fault. */
+ * The reading itself is scene_json.c's and scene_fields.c's; every complaint names the JSON path of the
+ * value at fault. */
 #include "alloc.h"
 #include "camera.h"
 #include "joint.h"

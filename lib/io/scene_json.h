@@ -1,6 +1,6 @@
 /* The JSON layer shared by scene files (scene.c) and snapshots (snapshot.c): a reader that names the
- * JSON path of every bad value, field tables that read a struct and write it back exactly, and PNG
- * bitmaps named by a file's keys. Only these three files see cJSON. */
+ * JSON path of every bad value and PNG bitmaps named by a file's keys (scene_json.c), and field tables that
+ * read a struct and write it back exactly (scene_fields.c). Only these four files see cJSON. */
 #ifndef PP_SCENE_JSON_H
 #define PP_SCENE_JSON_H
 
@@ -45,6 +45,8 @@ pp_status read_enum(const json_ctx *c, const cJSON *obj, const char *where, cons
                     int32_t *out);
 pp_status read_section(const json_ctx *c, const cJSON *obj, const char *where, const char *key, bool array,
                        const cJSON **out);
+/* Whether it is a number holding an integer in lo..hi, which it stores in *out; no failure recorded. */
+bool json_int(const cJSON *it, int64_t lo, int64_t hi, int64_t *out);
 
 typedef enum field_kind { FK_FLOAT, FK_DOUBLE, FK_VEC2, FK_BOOL, FK_INT, FK_STRIDE, FK_ENUM } field_kind;
 
