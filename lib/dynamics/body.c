@@ -364,27 +364,9 @@ PP_API pp_status pp_body_destroy(pp_world w, pp_body b)
     return PP_OK;
 }
 
-PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_position", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = (pp_vec2){(float)bd->pos.x, (float)bd->pos.y};
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_position, pp_vec2, vec2_of(bd->pos))
 
-PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_angle", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = (float)bd->angle;
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_angle, float, (float)bd->angle)
 
 PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, float angle)
 {
@@ -511,38 +493,11 @@ PP_API pp_status pp_body_is_awake(pp_world w, pp_body b, int32_t *awake)
     return PP_OK;
 }
 
-PP_API pp_status pp_body_get_user_data(pp_world w, pp_body b, uint64_t *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_user_data", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = bd->user_data;
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_user_data, uint64_t, bd->user_data)
 
-PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_pivot", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = (pp_vec2){(float)bd->pivot.x, (float)bd->pivot.y};
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_pivot, pp_vec2, vec2_of(bd->pivot))
 
-PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_type", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = bd->type;
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_type, pp_body_type, bd->type)
 
 PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity)
 {

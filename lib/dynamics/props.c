@@ -198,50 +198,8 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
     return PP_OK;
 }
 
-/* One float property of a body, for its getter. */
-static pp_status get_float(pp_world w, pp_body b, const char *fn, float *out, double (*of)(const body *))
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, fn, out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = (float)of(bd);
-    return PP_OK;
-}
-
-static double friction_of(const body *bd) { return bd->friction; }
-static double restitution_of(const body *bd) { return bd->restitution; }
-static double density_of(const body *bd) { return bd->density; }
-static double gravity_scale_of(const body *bd) { return bd->gravity_scale; }
-
-PP_API pp_status pp_body_get_friction(pp_world w, pp_body b, float *out)
-{
-    return get_float(w, b, "pp_body_get_friction", out, friction_of);
-}
-
-PP_API pp_status pp_body_get_restitution(pp_world w, pp_body b, float *out)
-{
-    return get_float(w, b, "pp_body_get_restitution", out, restitution_of);
-}
-
-PP_API pp_status pp_body_get_density(pp_world w, pp_body b, float *out)
-{
-    return get_float(w, b, "pp_body_get_density", out, density_of);
-}
-
-PP_API pp_status pp_body_get_gravity_scale(pp_world w, pp_body b, float *out)
-{
-    return get_float(w, b, "pp_body_get_gravity_scale", out, gravity_scale_of);
-}
-
-PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out)
-{
-    world *wd;
-    pp_status st;
-    body *bd = body_lookup_out(w, b, "pp_body_get_fixed_rotation", out, "out", &wd, &st);
-    if (!bd)
-        return st;
-    *out = bd->fixed_rotation;
-    return PP_OK;
-}
+BODY_GETTER(pp_body_get_friction, float, (float)bd->friction)
+BODY_GETTER(pp_body_get_restitution, float, (float)bd->restitution)
+BODY_GETTER(pp_body_get_density, float, (float)bd->density)
+BODY_GETTER(pp_body_get_gravity_scale, float, (float)bd->gravity_scale)
+BODY_GETTER(pp_body_get_fixed_rotation, uint32_t, bd->fixed_rotation)

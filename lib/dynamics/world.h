@@ -217,6 +217,21 @@ pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const 
 body *body_lookup_out(pp_world w, pp_body b, const char *fn, const void *out, const char *out_name, world **wd,
                       pp_status *st);
 
+/* A point or vector as the ABI gives it, px. */
+static inline pp_vec2 vec2_of(dvec2 v) { return (pp_vec2){(float)v.x, (float)v.y}; }
+
+/* A getter of one value of a body: the lookup and the check of `out`, then *out = value, an expression of bd. */
+#define BODY_GETTER(name, type, value)                                                                           \
+    PP_API pp_status name(pp_world w, pp_body b, type *out)                                                      \
+    {                                                                                                            \
+        world *wd;                                                                                               \
+        pp_status st;                                                                                            \
+        const body *bd = body_lookup_out(w, b, #name, out, "out", &wd, &st);                                     \
+        if (bd)                                                                                                  \
+            *out = (value);                                                                                      \
+        return st;                                                                                               \
+    }
+
 /* Take a body out of the world and free it; its handle goes stale. */
 void body_remove(world *wd, body *bd);
 /* Give bd the ODE body its new type and fixed rotation ask for (none when static), keeping its pose and, where
