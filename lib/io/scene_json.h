@@ -1,6 +1,6 @@
-/* The JSON layer shared by scene files (scene.c) and snapshots (snapshot.c): a reader that names the
- * JSON path of every bad value and PNG bitmaps named by a file's keys (scene_json.c), and field tables that
- * read a struct and write it back exactly (scene_fields.c). Only these four files see cJSON. */
+/* The JSON layer shared by scene files (scene.c) and snapshots (snapshot_write.c, snapshot_read.c): a reader
+ * that names the JSON path of every bad value and PNG bitmaps named by a file's keys (scene_json.c), and field
+ * tables that read a struct and write it back exactly (scene_fields.c). Only these files see cJSON. */
 #ifndef PP_SCENE_JSON_H
 #define PP_SCENE_JSON_H
 
