@@ -40,12 +40,12 @@ static uint64_t fingerprint(const world *wd)
         const pp_contact *c = &wd->contacts[k];
         MIX(h, c->a.id), MIX(h, c->b.id), MIX(h, c->point), MIX(h, c->normal), MIX(h, c->depth);
     }
-    for (int32_t k = 0; k < wd->touch_count; k++)
-        MIX(h, wd->touching[k].a), MIX(h, wd->touching[k].b);
-    for (int32_t k = 0; k < wd->resting_count; k++)
-        MIX(h, wd->resting[k].a), MIX(h, wd->resting[k].b);
+    for (int32_t k = 0; k < wd->touch.count; k++)
+        MIX(h, wd->touch.pairs[k].a), MIX(h, wd->touch.pairs[k].b);
+    for (int32_t k = 0; k < wd->touch.resting_count; k++)
+        MIX(h, wd->touch.resting[k].a), MIX(h, wd->touch.resting[k].b);
     const uint64_t steps = solver_get_steps(wd->solver);
-    MIX(h, wd->contact_count), MIX(h, wd->touch_count), MIX(h, wd->resting_count), MIX(h, wd->events.count);
+    MIX(h, wd->contact_count), MIX(h, wd->touch.count), MIX(h, wd->touch.resting_count), MIX(h, wd->events.count);
     MIX(h, wd->stats.pairs), MIX(h, wd->stats.contacts), MIX(h, steps);
     return h;
 }
@@ -102,8 +102,8 @@ pp_status step_save_touching(world *wd, bool resting)
     touch **copy = resting ? &u->resting : &u->touching;
     int32_t *copy_count = resting ? &u->resting_count : &u->touch_count;
     int32_t *copy_cap = resting ? &u->resting_capacity : &u->touch_capacity;
-    const touch *list = resting ? wd->resting : wd->touching;
-    const int32_t n = resting ? wd->resting_count : wd->touch_count;
+    const touch *list = resting ? wd->touch.resting : wd->touch.pairs;
+    const int32_t n = resting ? wd->touch.resting_count : wd->touch.count;
     if (*saved)
         return PP_OK;
     if (!ARRAY_RESERVE(*copy, *copy_cap, n))
@@ -153,15 +153,16 @@ void step_restore(world *wd)
     solver_set_steps(wd->solver, u->solver_steps);
     /* The saved pairs become the world's, its buffer the next save's: nothing to allocate. */
     if (u->touch_saved) {
-        touch *list = wd->touching;
-        const int32_t cap = wd->touch_capacity;
-        wd->touching = u->touching, wd->touch_count = u->touch_count, wd->touch_capacity = u->touch_capacity;
+        touch *list = wd->touch.pairs;
+        const int32_t cap = wd->touch.capacity;
+        wd->touch.pairs = u->touching, wd->touch.count = u->touch_count, wd->touch.capacity = u->touch_capacity;
         u->touching = list, u->touch_capacity = cap;
     }
     if (u->resting_saved) {
-        touch *list = wd->resting;
-        const int32_t cap = wd->resting_capacity;
-        wd->resting = u->resting, wd->resting_count = u->resting_count, wd->resting_capacity = u->resting_capacity;
+        touch *list = wd->touch.resting;
+        const int32_t cap = wd->touch.resting_capacity;
+        wd->touch.resting = u->resting, wd->touch.resting_count = u->resting_count;
+        wd->touch.resting_capacity = u->resting_capacity;
         u->resting = list, u->resting_capacity = cap;
     }
     wd->events.count = u->event_count;

@@ -52,8 +52,8 @@ void touch_sort(touch *list, int32_t n)
 const touch *touch_find(const world *wd, uint64_t x, uint64_t y)
 {
     const touch key = handle_slot(x) < handle_slot(y) ? (touch){x, y, 0, 0, {0}} : (touch){y, x, 0, 0, {0}};
-    const touch *t = search(&key, wd->touching, wd->touch_count);
-    return t ? t : search(&key, wd->resting, wd->resting_count);
+    const touch *t = search(&key, wd->touch.pairs, wd->touch.count);
+    return t ? t : search(&key, wd->touch.resting, wd->touch.resting_count);
 }
 
 /* A pair re-anchors (its static friction gave way) when a contact point has slipped this far, or the
@@ -88,7 +88,7 @@ static void set_anchor(const touch *old, const body *a, const body *b, const np_
     memcpy(t->anchor, keep ? old->anchor : now, sizeof now);
 }
 
-void touch_begin(world *wd) { wd->touch_next_count = 0; }
+void touch_begin(world *wd) { wd->touch.next_count = 0; }
 
 /* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */
 static pp_event begin_event(const world *wd, pp_event_type type, const body *from, const body *to, const body *a,
@@ -131,10 +131,10 @@ pp_status touch_pair(world *wd, const body *a, const body *b, const np_result *r
     *keep = !(t.flags & (TOUCH_SENSOR | TOUCH_PASSING));
     /* Room for the record and its event first: a failure changes nothing. */
     pp_status st = world_reserve_events(wd, 1, "pp_world_step");
-    if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, wd->touch_next_count + 1))
+    if (st || !ARRAY_RESERVE(wd->touch.next, wd->touch.next_capacity, wd->touch.next_count + 1))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs",
-                                 (int)wd->touch_next_count + 1);
-    touch *rec = &wd->touch_next[wd->touch_next_count++];
+                                 (int)wd->touch.next_count + 1);
+    touch *rec = &wd->touch.next[wd->touch.next_count++];
     *rec = t;
     if (t.flags & TOUCH_PASSING)
         return PP_OK;
@@ -174,65 +174,66 @@ static void merge(const touch *x, int32_t nx, const touch *y, int32_t ny, touch 
 /* Take the resting pairs back into the touching ones, to be tested again. */
 static pp_status wake_resting(world *wd)
 {
-    const int32_t n = wd->touch_count + wd->resting_count;
+    const int32_t n = wd->touch.count + wd->touch.resting_count;
     pp_status st = step_save_touching(wd, true);
-    if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, n))
+    if (st || !ARRAY_RESERVE(wd->touch.resting_next, wd->touch.resting_next_capacity, n))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
-    merge(wd->touching, wd->touch_count, wd->resting, wd->resting_count, wd->resting_next);
-    touch *list = wd->touching;
-    const int32_t cap = wd->touch_capacity;
-    wd->touching = wd->resting_next, wd->touch_count = n, wd->touch_capacity = wd->resting_next_capacity;
-    wd->resting_next = list, wd->resting_next_capacity = cap;
-    wd->resting_count = 0;
+    merge(wd->touch.pairs, wd->touch.count, wd->touch.resting, wd->touch.resting_count, wd->touch.resting_next);
+    touch *list = wd->touch.pairs;
+    const int32_t cap = wd->touch.capacity;
+    wd->touch.pairs = wd->touch.resting_next, wd->touch.count = n, wd->touch.capacity = wd->touch.resting_next_capacity;
+    wd->touch.resting_next = list, wd->touch.resting_next_capacity = cap;
+    wd->touch.resting_count = 0;
     return PP_OK;
 }
 
 /* Put n pairs (sorted) to rest beside those resting already. */
 static pp_status put_to_rest(world *wd, const touch *pairs, int32_t n)
 {
-    const int32_t total = wd->resting_count + n;
+    const int32_t total = wd->touch.resting_count + n;
     pp_status st = step_save_touching(wd, true);
-    if (st || !ARRAY_RESERVE(wd->resting_next, wd->resting_next_capacity, total))
+    if (st || !ARRAY_RESERVE(wd->touch.resting_next, wd->touch.resting_next_capacity, total))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d resting pairs", (int)total);
-    merge(wd->resting, wd->resting_count, pairs, n, wd->resting_next);
-    touch *list = wd->resting;
-    const int32_t cap = wd->resting_capacity;
-    wd->resting = wd->resting_next, wd->resting_count = total, wd->resting_capacity = wd->resting_next_capacity;
-    wd->resting_next = list, wd->resting_next_capacity = cap;
+    merge(wd->touch.resting, wd->touch.resting_count, pairs, n, wd->touch.resting_next);
+    touch *list = wd->touch.resting;
+    const int32_t cap = wd->touch.resting_capacity;
+    wd->touch.resting = wd->touch.resting_next, wd->touch.resting_count = total;
+    wd->touch.resting_capacity = wd->touch.resting_next_capacity;
+    wd->touch.resting_next = list, wd->touch.resting_next_capacity = cap;
     return PP_OK;
 }
 
 pp_status touch_end(world *wd)
 {
-    const int32_t found = wd->touch_next_count;
+    const int32_t found = wd->touch.next_count;
     /* Nothing awake, found, removed or woken: every pair still touches, untested. No pair at all: nothing to
      * do, and maybe no buffers yet (NULL + 0 below would be undefined, fuzz_scene). */
-    if (found + wd->touch_count + wd->resting_count == 0 ||
-        (found == 0 && wd->awake.movers == 0 && !wd->touch_body_gone && !wd->resting_stale))
+    if (found + wd->touch.count + wd->touch.resting_count == 0 ||
+        (found == 0 && wd->awake.movers == 0 && !wd->touch.body_gone && !wd->touch.resting_stale))
         return PP_OK;
-    touch_sort(wd->touch_next, found);
+    touch_sort(wd->touch.next, found);
     pp_status st = step_save_touching(wd, false);
     /* Resting pairs are tested again when a body woke or went, or one was found (a sleeper an awake body roused). */
-    bool review = wd->resting_stale || wd->touch_body_gone;
+    bool review = wd->touch.resting_stale || wd->touch.body_gone;
     for (int32_t i = 0; !review && i < found; i++)
-        review = listed(&wd->touch_next[i], wd->resting, wd->resting_count);
-    if (!st && review && wd->resting_count > 0)
+        review = listed(&wd->touch.next[i], wd->touch.resting, wd->touch.resting_count);
+    if (!st && review && wd->touch.resting_count > 0)
         st = wake_resting(wd);
     /* Room for the worst case first (every old pair resting, or ended with an event). */
-    const int32_t n = found + wd->touch_count;
+    const int32_t n = found + wd->touch.count;
     if (!st)
-        st = world_reserve_events(wd, wd->touch_count, "pp_world_step");
-    if (st || !ARRAY_RESERVE(wd->touch_next, wd->touch_next_capacity, n) ||
-        !ARRAY_RESERVE(wd->touching, wd->touch_capacity, found))
+        st = world_reserve_events(wd, wd->touch.count, "pp_world_step");
+    if (st || !ARRAY_RESERVE(wd->touch.next, wd->touch.next_capacity, n) ||
+        !ARRAY_RESERVE(wd->touch.pairs, wd->touch.capacity, found))
         return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d touching pairs", (int)n);
-    wd->touch_body_gone = wd->resting_stale = false;
-    for (int32_t i = 0; i < wd->touch_count; i++) {
-        const touch *t = &wd->touching[i];
-        if (listed(t, wd->touch_next, found))
+    wd->touch.body_gone = wd->touch.resting_stale = false;
+    for (int32_t i = 0; i < wd->touch.count; i++) {
+        const touch *t = &wd->touch.pairs[i];
+        if (listed(t, wd->touch.next, found))
             continue;
         if (untested(wd, t)) { /* to rest, after the found pairs */
-            PP_ASSERT(wd->touch_next_count < wd->touch_next_capacity);
-            wd->touch_next[wd->touch_next_count++] = *t;
+            PP_ASSERT(wd->touch.next_count < wd->touch.next_capacity);
+            wd->touch.next[wd->touch.next_count++] = *t;
             continue;
         }
         if (t->flags & TOUCH_PASSING)
@@ -246,9 +247,18 @@ pp_status touch_end(world *wd)
     }
     /* The found pairs are the touching ones now; the untested ones (in the old list's order) go to rest. */
     if (found > 0)
-        memcpy(wd->touching, wd->touch_next, (size_t)found * sizeof *wd->touching);
-    wd->touch_count = found;
-    const int32_t resting = wd->touch_next_count - found;
-    wd->touch_next_count = 0;
-    return resting > 0 ? put_to_rest(wd, wd->touch_next + found, resting) : PP_OK;
+        memcpy(wd->touch.pairs, wd->touch.next, (size_t)found * sizeof *wd->touch.pairs);
+    wd->touch.count = found;
+    const int32_t resting = wd->touch.next_count - found;
+    wd->touch.next_count = 0;
+    return resting > 0 ? put_to_rest(wd, wd->touch.next + found, resting) : PP_OK;
+}
+
+void touch_free(touch_set *t)
+{
+    pp_free(t->pairs);
+    pp_free(t->resting);
+    pp_free(t->next);
+    pp_free(t->resting_next);
+    *t = (touch_set){0};
 }

@@ -31,6 +31,22 @@ typedef struct touch {
     double anchor[3];  /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
 } touch;
 
+/* Every touching pair of a world, awake or resting (touch.c). */
+typedef struct touch_set {
+    touch *pairs;            /* touching at the last substep with a body awake, sorted */
+    int32_t count, capacity;
+    touch *resting;          /* touching with every body asleep (or static), sorted; no substep visits them */
+    int32_t resting_count, resting_capacity;
+    touch *next;             /* the substep's list being built */
+    int32_t next_count, next_capacity;
+    touch *resting_next;     /* scratch for the resting pairs' merge */
+    int32_t resting_next_capacity;
+    bool body_gone;          /* a body was removed since the last touch_end: its pairs end there */
+    bool resting_stale;      /* a body entered the awake set since the last touch_end: resting pairs are reviewed */
+} touch_set;
+
+void touch_free(touch_set *t);
+
 /* Start a substep's list. */
 void touch_begin(struct world *wd);
 

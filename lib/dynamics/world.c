@@ -286,9 +286,8 @@ void world_free(world *wd)
     pp_free(wd->batch.pairs);
     pp_free(wd->batch.cores);
     pp_free(wd->batch.bodies);
-    void *arrays[] = {wd->contacts, wd->resting, wd->resting_next, wd->touching, wd->touch_next};
-    for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++)
-        pp_free(arrays[k]);
+    touch_free(&wd->touch);
+    pp_free(wd->contacts);
     pp_free(wd);
 }
 

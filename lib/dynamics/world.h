@@ -153,16 +153,7 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     sweep_set sweeps;          /* continuous collision's swept bodies (continuous.c) */
     island_set islands;        /* the substep's islands and sleep groups (island.c) */
-    touch *touching;         /* pairs touching at the last substep with a body awake, sorted (touch.c) */
-    int32_t touch_count, touch_capacity;
-    touch *resting;          /* pairs touching whose bodies all sleep (or are static), sorted; no substep visits them */
-    int32_t resting_count, resting_capacity;
-    touch *touch_next;       /* the substep's list being built */
-    int32_t touch_next_count, touch_next_capacity;
-    touch *resting_next;     /* scratch for the resting pairs' merge */
-    int32_t resting_next_capacity;
-    bool touch_body_gone;    /* a body was removed since the last touch_end: its pairs end there */
-    bool resting_stale;      /* a body entered the awake set since the last touch_end: resting pairs are reviewed */
+    touch_set touch;         /* the touching and resting pairs (touch.c) */
     step_undo undo;          /* the step transaction (step_undo.c) */
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */

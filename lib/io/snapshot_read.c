@@ -284,13 +284,13 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
     if (st || n == 0)
         return st;
-    if (!ARRAY_RESERVE(wd->touching, wd->touch_capacity, n))
+    if (!ARRAY_RESERVE(wd->touch.pairs, wd->touch.capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", c->fn, (int)n);
     char where[32];
     int32_t i = 0;
     for (const cJSON *it = arr->child; it && st == PP_OK; it = it->next, i++) {
         snprintf(where, sizeof where, "touching[%d]", (int)i);
-        touch *t = &wd->touching[i];
+        touch *t = &wd->touch.pairs[i];
         int64_t flags = 0;
         if (!(st = check_keys(c, it, where, NULL, keys)) &&
             !(st = read_body_handle(c, it, where, "a", false, wd, &t->a)) &&
@@ -315,8 +315,8 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     }
     if (st)
         return st;
-    wd->touch_count = n;
-    touch_sort(wd->touching, n);
+    wd->touch.count = n;
+    touch_sort(wd->touch.pairs, n);
     return PP_OK;
 }
 

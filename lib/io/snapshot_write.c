@@ -304,12 +304,13 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
  * the touching and the resting ones, merged in their one sorted order. */
 static bool write_touching(const world *wd, cJSON *root)
 {
+    const touch_set *ts = &wd->touch;
     cJSON *arr = cJSON_CreateArray();
     bool ok = arr != NULL;
-    for (int32_t i = 0, j = 0; ok && i + j < wd->touch_count + wd->resting_count;) {
+    for (int32_t i = 0, j = 0; ok && i + j < ts->count + ts->resting_count;) {
         const bool from_touching =
-            j == wd->resting_count || (i < wd->touch_count && touch_order(&wd->touching[i], &wd->resting[j]) < 0);
-        const touch *t = from_touching ? &wd->touching[i++] : &wd->resting[j++];
+            j == ts->resting_count || (i < ts->count && touch_order(&ts->pairs[i], &ts->resting[j]) < 0);
+        const touch *t = from_touching ? &ts->pairs[i++] : &ts->resting[j++];
         cJSON *e = cJSON_CreateObject();
         ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(t->a))) &&
              add(e, "b", json_handle(handle_saved(t->b))) &&
