@@ -363,6 +363,9 @@ typedef struct pp_event {
     pp_joint joint;       ///< JOINT_BROKEN: the joint, now stale; else zero
 } pp_event;
 
+/// Events a world keeps unread: a step drops the oldest beyond this many before it runs (a log line says how
+/// many), so a host that never reads events does not grow without bound. Read them every frame and none go.
+#define PP_MAX_QUEUED_EVENTS (1 << 16)
 /// Write up to capacity events that happened since they were last read, oldest first, and forget those
 /// written; count receives how many were pending (capacity 0 only counts them).
 PP_API pp_status pp_world_get_events(pp_world w, pp_event *out, int32_t capacity, int32_t *count);

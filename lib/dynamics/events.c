@@ -23,6 +23,18 @@ void world_queue_event(world *wd, pp_event ev)
     q->items[q->count++] = ev;
 }
 
+void events_trim(world *wd)
+{
+    event_queue *q = &wd->events;
+    const int32_t drop = q->count - PP_MAX_QUEUED_EVENTS;
+    if (drop <= 0)
+        return;
+    memmove(q->items, q->items + drop, (size_t)PP_MAX_QUEUED_EVENTS * sizeof *q->items);
+    q->count = PP_MAX_QUEUED_EVENTS;
+    pp_log(1, "physpix: world %#llx dropped its %d oldest unread events (PP_MAX_QUEUED_EVENTS)",
+           (unsigned long long)wd->handle.id, (int)drop);
+}
+
 void events_free(event_queue *q)
 {
     pp_free(q->items);

@@ -18,6 +18,9 @@ typedef struct event_queue {
 pp_status world_reserve_events(world *wd, int32_t n, const char *fn);
 /* Queue an event into room reserved (checked by PP_ASSERT). */
 void world_queue_event(world *wd, pp_event ev);
+/* Drop the oldest unread events beyond PP_MAX_QUEUED_EVENTS, with a log line; a step does it before it
+ * saves anything, so the step's undo never sees it. */
+void events_trim(world *wd);
 void events_free(event_queue *q);
 
 #endif

@@ -333,6 +333,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_world_step: dt must be finite and in (0, 1] s, got %g", dt);
     const double t_start = now_ms();
     double t_broad = 0, t_narrow = 0, t_solver = 0;
+    events_trim(wd);
     pp_status st = timed_edits_apply_due(wd, dt);
     if (st || (st = step_save(wd)))
         return st;

@@ -202,6 +202,41 @@ Test(edit, erasing_every_pixel_destroys_the_body_with_an_event) {
     pp_world_destroy(w);
 }
 
+static int dropped_logs;
+static void count_dropped(int level, const char *msg, void *user) { dropped_logs += strstr(msg, "PP_MAX_QUEUED_EVENTS") != 0; }
+
+/* A host that never reads events keeps the newest PP_MAX_QUEUED_EVENTS of them, not every one. */
+Test(edit, unread_events_are_bounded_oldest_dropped_first, .timeout = 60) {
+    enum { N = PP_MAX_QUEUED_EVENTS + 100 };
+    pp_world w = make_world(0, 0);
+    static pp_body made[N];
+    const uint8_t one = 1;
+    for (int i = 0; i < N; i++) { /* one pixel each, on a 512-wide grid of 2 px cells */
+        pp_body_def d = body_def(PP_BODY_STATIC, 2.0f * (i % 512) + 0.5f, 2.0f * (i / 512) + 0.5f, 0);
+        d.width = d.height = 1, d.mask = &one;
+        PP_OK_OR_FAIL(pp_body_create(w, &d, &made[i]));
+    }
+    PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60)); /* a static body leaves the awake set at its first step */
+    int32_t changed = 0, n = 0;
+    PP_OK_OR_FAIL(pp_world_erase_circle(w, v2(512, 256), 1000, &changed));
+    cr_assert_eq(changed, N);
+    PP_OK_OR_FAIL(pp_world_get_events(w, NULL, 0, &n));
+    cr_assert_eq(n, N, "an edit queues every event it makes");
+    dropped_logs = 0;
+    pp_set_log_hook(count_dropped, NULL);
+    PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60));
+    pp_set_log_hook(NULL, NULL);
+    cr_assert_eq(dropped_logs, 1, "the drop is logged once");
+    static pp_event ev[N];
+    PP_OK_OR_FAIL(pp_world_get_events(w, ev, N, &n));
+    cr_assert_eq(n, PP_MAX_QUEUED_EVENTS);
+    /* Bodies are destroyed in slot order, which is creation order: the first 100 events went. */
+    cr_assert_eq(ev[0].type, PP_EVENT_BODY_DESTROYED);
+    cr_assert_eq(ev[0].body.id, made[100].id);
+    cr_assert_eq(ev[n - 1].body.id, made[N - 1].id);
+    pp_world_destroy(w);
+}
+
 Test(edit, bad_edits_are_refused_and_change_nothing) {
     pp_world w = make_world(0, 0);
     pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
