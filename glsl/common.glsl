@@ -1,6 +1,6 @@
 #version 310 es
-// Shared by every narrowphase pass (prepended at build time). The C twin is lib/collide/narrow_cpu.c;
-// every decision is integer so both give the same bits.
+// Shared by every narrowphase pass (prepended at build time). The C twin is lib/collide/narrow_cpu.c
+// (the dense core) with narrow_cpu.h; every decision is integer so both give the same bits.
 precision highp float;
 precision highp int;
 

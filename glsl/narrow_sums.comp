@@ -1,5 +1,5 @@
 // Pass 1, one workgroup per 16×16 tile of a pair's inner grid: intersection count and centroid
-// sums, and the normal estimator (intersection_sums in narrow_cpu.c). Samples of the tile and its
+// sums, and the normal estimator (cell_sums in narrow_cpu.h). Samples of the tile and its
 // two-cell ring are shared; sums meet in shared memory, then one 64-bit add per tile.
 layout(local_size_x = 16, local_size_y = 16) in;
 
