@@ -154,7 +154,9 @@ $(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/an
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(TEST_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' \
 	  -lcriterion $(LIBS)
 
-test-compile: | $(BUILD)/tests
+# bench_core reaches the library's private headers: it is built here too, so a change to them that breaks it
+# fails make test, not only make bench.
+test-compile: $(BUILD)/bench/bench_core | $(BUILD)/tests
 	$(CC) -std=c11 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_c.c -o $(BUILD)/tests/header_c.o
 	$(CXX) -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_cpp.cpp -o $(BUILD)/tests/header_cpp.o
 	@echo "public headers compile as C11 and C++17 with -Werror"

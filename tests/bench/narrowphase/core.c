@@ -22,7 +22,7 @@ static pp_raster make_raster(int w, int h, const uint8_t *mask)
     pp_body_def d = pp_body_def_default();
     d.width = w, d.height = h, d.mask = mask;
     pp_raster r;
-    if (raster_init(&r, &d) != PP_OK) {
+    if (raster_init("bench_core", &r, &d) != PP_OK) {
         fprintf(stderr, "bench_core: raster_init: %s\n", pp_last_error());
         exit(1);
     }
@@ -162,7 +162,7 @@ int main(int argc, char **argv)
     const char *mem_name[2] = {"4096x2048 terrain", "32x32 crate"};
     for (int k = 0; k < 2; k++) {
         const double px = (double)mem[k]->width * mem[k]->height, mask_only = 8.0 * raster_memory_bytes(mem[k]) / px;
-        if (raster_ensure_weights(mem[k]) != PP_OK)
+        if (raster_ensure_weights("bench_core", mem[k]) != PP_OK)
             return 1;
         printf("raster memory, %s: %.3f bits/px mask only, %.3f with weights\n", mem_name[k], mask_only,
                8.0 * raster_memory_bytes(mem[k]) / px);
