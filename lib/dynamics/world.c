@@ -298,15 +298,7 @@ pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t pe
     return PP_OK;
 }
 
-PP_API pp_status pp_world_get_def(pp_world w, pp_world_def *out)
-{
-    pp_status st;
-    world *wd = world_lookup_out(w, "pp_world_get_def", out, "out", &st);
-    if (!wd)
-        return st;
-    *out = wd->def;
-    return PP_OK;
-}
+WORLD_GETTER(pp_world_get_def, pp_world_def, wd->def)
 
 PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count)
 {
@@ -338,15 +330,7 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     return PP_OK;
 }
 
-PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out)
-{
-    pp_status st;
-    world *wd = world_lookup_out(w, "pp_world_get_stats", out, "out", &st);
-    if (!wd)
-        return st;
-    *out = wd->stats;
-    return PP_OK;
-}
+WORLD_GETTER(pp_world_get_stats, pp_step_stats, wd->stats)
 
 PP_API pp_status pp_world_get_time(pp_world w, double *seconds)
 {

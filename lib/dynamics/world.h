@@ -208,6 +208,17 @@ pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const 
 body *body_lookup_out(pp_world w, pp_body b, const char *fn, const void *out, const char *out_name, world **wd,
                       pp_status *st);
 
+/* A getter of one value of a world: the lookup and the check of `out`, then *out = value, an expression of wd. */
+#define WORLD_GETTER(name, type, value)                                                                          \
+    PP_API pp_status name(pp_world w, type *out)                                                                 \
+    {                                                                                                            \
+        pp_status st;                                                                                            \
+        const world *wd = world_lookup_out(w, #name, out, "out", &st);                                           \
+        if (wd)                                                                                                  \
+            *out = (value);                                                                                      \
+        return st;                                                                                               \
+    }
+
 /* A point or vector as the ABI gives it, px. */
 static inline pp_vec2 vec2_of(dvec2 v) { return (pp_vec2){(float)v.x, (float)v.y}; }
 
