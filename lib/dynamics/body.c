@@ -1,4 +1,4 @@
-/* Bodies: the handle table (slot + generation, and the world's tag: handle.h), creation from a def, poses
+/* Bodies: lookups (slots from the world's id pool, and the world's tag: handle.h), creation from a def, poses
  * and velocities. A pose is the world position of the pivot and an angle; ODE holds the centre of mass. */
 #include "alloc.h"
 #include "awake.h"

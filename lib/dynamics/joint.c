@@ -1,4 +1,4 @@
-/* Joints: the handle table (as the bodies': slot, generation, the world's tag), creation from a def and
+/* Joints: lookups (slots from the world's id pool, as the bodies'), creation from a def and
  * its checks, destruction, and the public pp_joint_* calls: values and reactions in pixels, motors, limits,
  * targets. What steps, edits, splits and snapshots do to joints is joint_step.c's. */
 #include "joint.h"

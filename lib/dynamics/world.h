@@ -63,7 +63,7 @@ typedef struct continuous_pose {
     double angle;            /* rad */
 } continuous_pose;
 
-/* The joints of a world (joint.c): a handle table as the bodies'. */
+/* The joints of a world (joint.c): their records by slot of their id pool, as the bodies'. */
 typedef struct joint_table {
     struct joint **items;    /* by slot of ids; NULL where free */
     id_pool ids;             /* the joints' slots and generations */
