@@ -54,24 +54,39 @@ static double bounce_for(const world *wd, const body *a, const body *b, const pp
     return fmin(fmax(e, sqrt(v2) / closing), fmax(e, 1.0));
 }
 
-/* ODE's surface layer leaves a contact shallower than contact_slop where it is, and QuickStep's unfinished
- * solve lets a pile creep down through that band for seconds (a 10-row pyramid sank 0.65 px in the minute
- * after its first second at 4 × 80). On a QuickStep stack the pair closes that gap at the contact_erp rate,
- * as the depth past it is pushed out, so the pile settles in a few steps. Not where a light body carries one
- * over 4 times its mass (QuickStep's weak solve let a 1:10:100:1000 chain fall through the gap), not on an
- * exact island (it holds where it is), and not on a bounce (it keeps its own speed). */
+/* ODE's surface layer leaves a contact shallower than contact_slop where it is, and the contact's softness
+ * (contact_cfm) lets a loaded pile creep down through that band for seconds: a 20-box tower solved exactly
+ * sank 1.3 px in the minute after its first second, a QuickStep pyramid 0.65 px. Instead the pair closes
+ * that gap at the contact_erp rate, as the depth past it is pushed out, so a pile settles in a few steps.
+ * On an exact island the whole pair closes by its deepest point's gap: closing each point by its own let a
+ * tilted pair rock freely up to that speed, and an arch's feet walked apart (it fell at 4 s). Not where
+ * QuickStep's weak solve meets a light body carrying one over 4 times its mass (a 1:10:100:1000 chain fell
+ * through the gap), not on a lone body (nothing loads it but its own weight), and not on a bounce (it keeps
+ * its own speed). */
 enum { CLOSING_MASS_RATIO = 4 };
 
-static double closing_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double h, double e)
+static double closing_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double deepest,
+                            double h, double e)
 {
-    const body *mover = a->sb.body ? a : b;
-    const double gap = wd->def.contact_slop - c->depth, ia = inv_mass(a), ib = inv_mass(b);
-    if (!(gap > 0) || wd->islands.kind[mover->index] != ISLAND_QUICK_STACK)
+    const int kind = wd->islands.kind[(a->sb.body ? a : b)->index];
+    const double gap = wd->def.contact_slop - (kind == ISLAND_EXACT ? deepest : c->depth);
+    const double ia = inv_mass(a), ib = inv_mass(b);
+    if (!(gap > 0) || (kind != ISLAND_QUICK_STACK && kind != ISLAND_EXACT))
         return 0;
-    if ((ia > 0 && ib > 0 && fmax(ia, ib) > CLOSING_MASS_RATIO * fmin(ia, ib)) ||
+    if ((kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 && fmax(ia, ib) > CLOSING_MASS_RATIO * fmin(ia, ib)) ||
         (e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold))
         return 0;
     return wd->def.contact_erp * gap / h;
+}
+
+/* The deepest of the pair's points from contact i on (a pair's points come together). */
+static double pair_deepest(const world *wd, int32_t i)
+{
+    const pp_contact *c = &wd->contacts[i];
+    double deepest = c->depth;
+    for (int32_t j = i + 1; j < wd->contact_count && wd->contacts[j].a.id == c->a.id && wd->contacts[j].b.id == c->b.id; j++)
+        deepest = fmax(deepest, wd->contacts[j].depth);
+    return deepest;
 }
 
 int contact_span(const world *wd, const pp_contact *c)
@@ -84,6 +99,7 @@ void contact_joints_add(world *wd, double h)
 {
     const touch *t = NULL; /* the last pair's, found once for its points (they come together) */
     uint64_t ta = 0, tb = 0;
+    double deepest = 0;
     for (int32_t i = 0; i < wd->contact_count; i++) {
         const pp_contact *c = &wd->contacts[i];
         const int span = contact_span(wd, c);
@@ -92,13 +108,13 @@ void contact_joints_add(world *wd, double h)
         const double hs = span * h; /* the time step of the contact's island */
         const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         if (c->a.id != ta || c->b.id != tb)
-            t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id;
+            t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id, deepest = pair_deepest(wd, i);
         const double e = fmax(a->restitution, b->restitution);
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
             dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
             sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, e),
-            anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, hs, e), span == SPAN_TWO,
+            anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), span == SPAN_TWO,
         };
         solver_add_contact(wd->solver, &sc, i);
     }

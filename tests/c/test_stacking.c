@@ -75,6 +75,23 @@ Test(stacking, a_20_box_tower_of_16px_boxes_stands, .timeout = 120)
     pp_world_destroy(w);
 }
 
+/* The exact solver holds a contact where it is, and the contact's softness let a tower creep down through
+ * the contact_slop band for a minute (a 10-box tower 0.55 px after its first second). Each pair now closes
+ * that band in its first steps: every contact rests at contact_slop, and then nothing moves. */
+Test(stacking, an_exact_tower_rests_at_contact_slop_within_its_first_second, .timeout = 60)
+{
+    const pp_world_def def = pp_world_def_default();
+    pp_world w = stack_world(def);
+    pp_body b[10];
+    add_column(w, b, 10, 16, NULL);
+    const double drift = drift_after_settle(w, b, 10, 10.0);
+    const double sink = body_pos(w, b[9]).y - (GROUND_TOP - 16 * 9.5f);
+    cr_log_info("10-box tower, BALANCED: drift %.4f px over 10 s, top sunk %.4f px", drift, sink);
+    cr_assert_lt(drift, 0.05, "the tower crept %.4f px after its first second", drift);
+    cr_assert_float_eq(sink, 10 * def.contact_slop, 0.05, "the top box sank %.4f px, not 10 contacts' slop", sink);
+    pp_world_destroy(w);
+}
+
 Test(stacking, a_heavy_box_100_to_1_on_three_light_ones_stands, .timeout = 60)
 {
     const float dens[4] = {1, 1, 1, 100};

@@ -74,9 +74,10 @@ func _iteration(delta):
 	if frame > 2:
 		costs.append(world.last_step_ms)
 	if frame == 85:
+		# Resting contacts sit contact_slop (0.75 px) deep: the top of the three-crate stack is 2.25 px down.
 		var still = true
 		for c in crates():
-			still = still and c.get_linear_velocity().length() < 5.0 and c.position.distance_to(start[c.name]) < 2.0
+			still = still and c.get_linear_velocity().length() < 5.0 and c.position.distance_to(start[c.name]) < 2.5
 		check(still and blast_frames.empty(), "the crates rest where they stand before the first blast")
 	if frame == 92:
 		var terrain = world.get_node("Terrain")
