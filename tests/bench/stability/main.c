@@ -2,7 +2,7 @@
  * presets and on the peers, one table line per scene and engine, and CSV. Exit status 0 even when a stack
  * falls: the table says what fell.
  *
- *   bench_stability [--quick] [--only TEXT] [--engine TEXT] [--csv PATH]
+ *   bench_stability [--quick] [--only TEXT] [--engine TEXT] [--offset PX] [--csv PATH]
  */
 #include "../bench.h"
 #include "../machine.h"
@@ -18,13 +18,16 @@
 
 typedef struct options {
     int quick;
+    double offset;
     const char *only, *engine, *csv_path;
 } options;
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: bench_stability [--quick] [--only TEXT] [--engine TEXT] [--csv PATH]\n"
+    fprintf(f, "usage: bench_stability [--quick] [--only TEXT] [--engine TEXT] [--offset PX] [--csv PATH]\n"
                "  --quick        watch stacks 10 s instead of 60 s\n"
+               "  --offset PX    move every body of the stacking scenes PX along x (0..1: where the pixel grid\n"
+               "                 falls on them; a card house's outcome depends on it)\n"
                "  --only TEXT    scenes whose name contains TEXT (e.g. tower20, heavy1000, shot)\n"
                "  --engine TEXT  engines whose name contains TEXT (e.g. BALANCED, PhysPix, Box2D, it30)\n"
                "  --csv PATH     also write the table as CSV\n"
@@ -41,6 +44,8 @@ static int parse_options(int argc, char **argv, options *o)
             o->only = argv[++i];
         else if (strcmp(argv[i], "--engine") == 0 && i + 1 < argc)
             o->engine = argv[++i];
+        else if (strcmp(argv[i], "--offset") == 0 && i + 1 < argc)
+            o->offset = atof(argv[++i]);
         else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc)
             o->csv_path = argv[++i];
         else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -86,8 +91,11 @@ static void print_header(const options *o, const stab_engine *engines, int n, do
            "against 2/3 g sin(a) and g(sin a - mu cos a); ref2 / err2%% (roll) = the body's own g sin(a)/(1 + I/(m r^2));\n"
            "ramp20 = slide over 2 s, px; bounce = first rebound apex (bottom above ground), px, against e^2 * 200;\n"
            "shot = the box's leading face past the wall's near face after 1 s, px (0: stopped at it; 8: through).\n"
-           "ms/step: median over the frames run after the settle.\n\n",
+           "ms/step: median over the frames run after the settle.\n",
            STAB_GRAVITY, run_s);
+    if (o->offset != 0)
+        printf("stacking scenes moved %.3f px along x (--offset)\n", o->offset);
+    printf("\n");
     printf("%-14s %-17s %-9s %8s %6s %8s %9s %9s %8s %9s %8s %8s\n", "scene", "engine", "result", "drift", "fall",
            "crush", "value", "ref", "err%", "ref2", "err2%", "ms/step");
 }
@@ -137,6 +145,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench_stability: out of memory building %s\n", stab_scene_name(i));
             return 1;
         }
+        for (int b = 0; scene.kind == STAB_STACK && b < scene.count; b++)
+            scene.bodies[b].x += opt.offset;
         for (int k = 0; k < nengines; k++) {
             if (!bench_matches(engines[k].name, opt.engine))
                 continue;
