@@ -183,7 +183,7 @@ typedef enum pp_contact_mode {
  * They differ only in solver work, the knob that decides whether stacks stand; all keep AREA_GRADIENT
  * normals, MANIFOLD contacts (two points a pair) and raster stride 1. BALANCED meets the accuracy targets
  * (normal error median ≤ 0.5°, 95th percentile ≤ 2°; depth error median ≤ 0.5 px) and holds 20-box
- * towers, 20-row pyramids, mass ratios of 1:1000, a card house and an arch for 60 s; FAST holds a 10-row
+ * towers, 20-row pyramids, mass ratios of 1:1000 and an arch for 60 s; FAST holds a 10-row
  * pyramid and a 10-box tower, lets taller stacks fall and is for debris and loose piles. A
  * scene's "preset" key and Python's World.from_preset start from them; the other settings override. */
 

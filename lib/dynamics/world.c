@@ -108,10 +108,10 @@ PP_API pp_world_def pp_world_def_default(void)
 /* The presets differ only in the solver's work, the knob that decides whether stacks stand; the
  * figures behind each are in the README ("Presets") and come from build/bench/bench_accuracy.
  * FAST is the front's cheapest point without a coarse stride (stride 2 took the depth error from 0.26 to 1 px):
- * it holds 10-high stacks, not 20. BALANCED's 20 iterations stand bench_stability's card house for 60 s with
- * carried contacts, as 15 do with the arch and the 20-row pyramid drifting more; 10 let the card house fall at
- * 35 s, and 40 cost 1.5 times as much and stand nothing more. One contact point a pair (CENTROID) lets a box tip on a gentle slope,
- * so every preset keeps two. */
+ * it holds 10-high stacks, not 20. BALANCED's 20 iterations stand bench_stability's arch and 20-row pyramid for
+ * 60 s with carried contacts (15 drift more), and 40 cost 1.5 times as much and stand nothing more; its card
+ * house, for which 20 were picked, collapses while settling at every preset. One contact point a pair
+ * (CENTROID) lets a box tip on a gentle slope, so every preset keeps two. */
 PP_API pp_world_def pp_world_def_preset(pp_preset preset)
 {
     pp_world_def d = pp_world_def_default();

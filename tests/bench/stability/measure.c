@@ -7,10 +7,12 @@
 #include "../machine.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #define FALL_FRACTION 0.25  /* of a body's size: moved farther, it fell */
+#define COLLAPSE_TURN 0.25  /* rad: a body turned this far while settling came apart */
 #define AFTER_FALL_S 1.0    /* a fallen stack runs this much longer, then stops */
 #define FIT_T0 0.5          /* s: the acceleration fit's window, after the start-up contacts settle */
 #define FIT_T1 1.5
@@ -19,7 +21,8 @@
 const char *stab_verdict_name(stab_verdict v)
 {
     static const char *const names[] = {"stands", "FALLS",  "NaN",      "error",   "rolls", "bounces",
-                                        "no bounce", "sticks", "slides", "stopped", "STUCK", "TUNNELLED"};
+                                        "no bounce", "sticks", "slides", "stopped", "STUCK", "TUNNELLED",
+                                        "COLLAPSES"};
     return (unsigned)v < sizeof names / sizeof names[0] ? names[v] : "?";
 }
 
@@ -69,28 +72,53 @@ static stab_verdict failed(int rc)
     return rc < 0 ? STAB_ERROR : STAB_NAN;
 }
 
-/* Settle, take the reference pose, then watch: drift, the fall, the tracked box's crush. */
+/* Whether a stack came apart while settling: a body moved over a quarter of its size sideways from where it
+ * was placed, or turned COLLAPSE_TURN. Its sink is not counted: every contact of a column settles to the
+ * engine's resting depth (a 20-box PhysPix tower's top sinks 15 px), and crush is measured on its own. */
+static bool came_apart(const stab_scene *s, const stab_pose *placed, const stab_pose *now)
+{
+    for (int i = 0; i < s->count; i++)
+        if (!s->bodies[i].is_static && (fabs(now[i].x - placed[i].x) > FALL_FRACTION * stab_body_size(&s->bodies[i]) ||
+                                        fabs(now[i].angle - placed[i].angle) > COLLAPSE_TURN))
+            return true;
+    return false;
+}
+
+/* Settle, take the reference pose, then watch: drift, the fall, the tracked box's crush. A stack that came
+ * apart while settling did not stand, whatever its heap does later: its drift is how far it came apart, and
+ * it runs 1 s more for ms/step only. */
 static void run_stack(run *r, const stab_options *o, stab_result *out)
 {
     const stab_scene *s = r->s;
     const int settle = (int)lround((o->settle_s > 0 ? o->settle_s : 1.0) / STAB_DT);
     const int watch = (int)lround((o->run_s > 0 ? o->run_s : 60.0) / STAB_DT);
-    stab_pose *ref = malloc((size_t)s->count * sizeof *ref);
-    int rc = ref ? 0 : -1, stop = watch;
-    for (int f = 0; f < settle && rc == 0; f++)
+    stab_pose *ref = malloc((size_t)s->count * sizeof *ref), *placed = malloc((size_t)s->count * sizeof *placed);
+    int rc = ref && placed ? 0 : -1, stop = watch;
+    for (int i = 0; rc == 0 && i < s->count; i++)
+        r->e->pose(r->world, i, &placed[i]);
+    out->verdict = STAB_STANDS;
+    for (int f = 0; f < settle && rc == 0; f++) {
         rc = frame(r, 0);
+        if (rc == 0 && out->verdict == STAB_STANDS && came_apart(s, placed, r->pose)) {
+            out->verdict = STAB_COLLAPSES;
+            out->fall_s = (f + 1) * STAB_DT;
+            stop = (int)lround(AFTER_FALL_S / STAB_DT); /* for ms/step */
+        }
+    }
     if (rc == 0) {
         for (int i = 0; i < s->count; i++)
             ref[i] = r->pose[i];
-        out->drift = 0;
+        double worst;
+        out->drift = out->verdict == STAB_COLLAPSES ? stab_max_displacement(s, placed, ref, &worst) : 0;
         if (s->tracked >= 0)
             out->settle_sink = ref[s->tracked].y - s->bodies[s->tracked].y;
     }
-    out->verdict = STAB_STANDS;
     for (int f = 0; f < stop && rc == 0; f++) {
         rc = frame(r, 1);
         if (rc != 0)
             break;
+        if (out->verdict == STAB_COLLAPSES)
+            continue;
         double worst;
         out->drift = fmax(out->drift, stab_max_displacement(s, ref, r->pose, &worst));
         if (worst > FALL_FRACTION && out->verdict == STAB_STANDS) {
@@ -105,6 +133,7 @@ static void run_stack(run *r, const stab_options *o, stab_result *out)
     else if (s->tracked >= 0)
         out->crush = r->pose[s->tracked].y - ref[s->tracked].y;
     free(ref);
+    free(placed);
 }
 
 /* Distance of the tracked body's origin down the slope from where it started, px. */

@@ -130,14 +130,16 @@ typedef enum stab_verdict {
     STAB_SLIDES = 8,    ///< ramp: slid
     STAB_STOPPED = 9,   ///< shot: stopped in front of the wall
     STAB_STUCK = 10,    ///< shot: ended inside the wall
-    STAB_TUNNELLED = 11 ///< shot: ended beyond the wall
+    STAB_TUNNELLED = 11, ///< shot: ended beyond the wall
+    STAB_COLLAPSES = 12  ///< stack: came apart while settling (fall_s says when, from the start)
 } stab_verdict;
 
 /// What one scene on one engine measured. Unused figures are NaN.
 typedef struct stab_result {
     stab_verdict verdict;
     double drift;        ///< stack: largest move of any body from the settled pose, px
-    double fall_s;       ///< stack: time after the settle when a body first moved over a quarter of its size, s
+    double fall_s;       ///< stack: time after the settle when a body first moved over a quarter of its size, s;
+                         ///< COLLAPSES: time from the start when one first moved so far sideways or turned, s
     double crush;        ///< stack with a tracked box: its sink below the settled pose at the end, px
     double settle_sink;  ///< stack with a tracked box: its sink during the settle, px
     double value;        ///< roll, ramp 35°: acceleration, px/s²; ramp 20°: slide, px; bounce: apex, px;
