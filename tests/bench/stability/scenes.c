@@ -123,7 +123,7 @@ static int build_chain(stab_scene *s, int unused_a, int unused_b)
  * 0.4 px in from corner-on-corner contact), so that they press into each other instead of balancing on their
  * corners. Friction 1. Box2D 2.4's outcome looked chaotic in these numbers, judged from the settled pose; watched
  * from the start, it collapses in every engine of bench_stability within 0.25 s. */
-static int build_card_house(stab_scene *s, int levels, int unused)
+static int build_card_house(stab_scene *s, int levels, int wide)
 {
     const double len = 32, t = 2, phi = 15 * PI / 180, mu = 1.0, overhang = 1.0, lean_in = 0.4;
     const double c = cos(phi), sn = sin(phi);
@@ -145,7 +145,8 @@ static int build_card_house(stab_scene *s, int levels, int unused)
         }
         const double top = base - rise;
         for (int i = 0; i + 1 < tents && rc == 0; i++) {
-            stab_body flat = box(x0 + (i + 0.5) * pitch, top - 0.5 * t, len, t, 0);
+            /* wide: the flat spans its tents, its ends 0.25 px short of their axes (1.3 px past the corners) */
+            stab_body flat = box(x0 + (i + 0.5) * pitch, top - 0.5 * t, wide ? pitch - 0.5 : len, t, 0);
             flat.friction = mu;
             rc = add(s, &flat);
         }
@@ -272,6 +273,7 @@ static const scene_entry scenes[] = {
     {"heavy1000_on3", build_heavy, 1000, 3},
     {"chain", build_chain, 0, 0},
     {"cardhouse4", build_card_house, 4, 0},
+    {"cardhouse2w", build_card_house, 2, 1},
     {"arch11", build_arch, 11, 0},
     {"roll16", build_roll, 16, 0},
     {"roll32", build_roll, 32, 0},
