@@ -171,83 +171,6 @@ static void touch_round(const world *wd, const body *a, const body *b, np_result
     r->count = 1;
 }
 
-/* A pair whose intersection is a few pixels is a corner on a face (or a corner on a corner): the narrowphase's
- * normal, from the intersection raster alone, can lie far off the face (a flat card on a tilted card's top
- * corner: 28°, then 66°, and the flat slid off the corner). The normal is chosen again from the two bodies' own
- * masks, as separating axes choose it for polygons: of the narrowphase's normal and the bitmap axes of either
- * body (those leaning from a to b), the one along which the bodies' pixels within CORNER_RADIUS of the contact
- * point overlap least. A corner on a face overlaps least along the face's normal: along any other axis the
- * face's pixels reach past the corner. The narrowphase's normal stays unless an axis beats it by CORNER_MARGIN. */
-#define CORNER_PIXELS 3
-#define CORNER_RADIUS 3.0
-#define CORNER_MARGIN 0.1 /* px */
-
-/* The extreme projection on world direction n (max, or min when !up) of bd's pixel squares whose centres lie
- * within CORNER_RADIUS of world point p; false when there are none. */
-static bool patch_extent(const body *bd, dvec2 p, dvec2 n, bool up, double *out)
-{
-    const pp_raster *r = &bd->raster;
-    const dvec2 l = dv_add(bd->pivot, dv_unrot(dv_sub(p, bd->pos), bd->cos_a, bd->sin_a));
-    const dvec2 u = dv_unrot(n, bd->cos_a, bd->sin_a);
-    const double half = 0.5 * (fabs(u.x) + fabs(u.y));
-    const int32_t reach = (int32_t)ceil(CORNER_RADIUS), cx = (int32_t)floor(l.x), cy = (int32_t)floor(l.y);
-    bool any = false;
-    double best = 0;
-    for (int32_t y = cy - reach; y <= cy + reach; y++)
-        for (int32_t x = cx - reach; x <= cx + reach; x++) {
-            const double dx = x + 0.5 - l.x, dy = y + 0.5 - l.y;
-            if (dx * dx + dy * dy > CORNER_RADIUS * CORNER_RADIUS || !raster_solid_clamped(r, x, y))
-                continue;
-            const double q = dx * u.x + dy * u.y + (up ? half : -half);
-            if (!any || (up ? q > best : q < best))
-                best = q, any = true;
-        }
-    *out = best + dv_dot(p, n); /* q was measured from p (l in the bitmap) */
-    return any;
-}
-
-/* How far a's patch reaches past b's along n (from a to b); false when a patch is empty. */
-static bool patch_overlap(const body *a, const body *b, dvec2 p, dvec2 n, double *pen)
-{
-    double hi, lo;
-    if (!patch_extent(a, p, n, true, &hi) || !patch_extent(b, p, n, false, &lo))
-        return false;
-    *pen = hi - lo;
-    return true;
-}
-
-static void touch_corner(const body *a, const body *b, np_result *r)
-{
-    if (r->contacts[0].pixel_count > CORNER_PIXELS)
-        return;
-    dvec2 p = dv(0, 0);
-    for (int32_t k = 0; k < r->count; k++)
-        p = dv_add(p, dv(r->contacts[k].point.x, r->contacts[k].point.y));
-    p = dv_scale(p, 1.0 / r->count);
-    const dvec2 n0 = dv(r->contacts[0].normal.x, r->contacts[0].normal.y); /* from a to b */
-    double best;
-    if (!patch_overlap(a, b, p, n0, &best))
-        return;
-    const double pen0 = best;
-    dvec2 n = n0;
-    static const double axes[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-    for (int side = 0; side < 2; side++) {
-        const body *bd = side ? b : a;
-        for (int k = 0; k < 4; k++) {
-            dvec2 m = dv_rot(dv(axes[k][0], axes[k][1]), bd->cos_a, bd->sin_a); /* outward from bd */
-            if (side)
-                m = dv_scale(m, -1.0);
-            double pen;
-            if (dv_dot(m, n0) > 0 && patch_overlap(a, b, p, m, &pen) && pen < best)
-                best = pen, n = m;
-        }
-    }
-    if (!(best < pen0 - CORNER_MARGIN))
-        return;
-    for (int32_t k = 0; k < r->count; k++)
-        r->contacts[k].normal = (pp_vec2){(float)n.x, (float)n.y};
-}
-
 /* Broadphase and narrowphase at the current poses of `substep`; fills wd->contacts. At a step's first
  * substep every pair is collided but the held ones, and resting pairs' contacts are carried through the later
  * ones, as are a pair's whose bodies sat a substep out into the next (carry.h). */
@@ -285,8 +208,6 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
         np_pair_finish(&set, &va, &vb, &wd->batch.pairs[k], &wd->batch.cores[k], &r);
-        if (r.count > 0)
-            touch_corner(a, b, &r);
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;

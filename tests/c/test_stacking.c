@@ -173,35 +173,3 @@ Test(stacking, exact_island_rows_out_of_range_is_refused)
     EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_INVALID_ARGUMENT, "exact_island_rows");
     cr_assert_eq(w.id, 0);
 }
-
-/* A flat card resting on the top corners of two tilted cards, as in a card house: each corner meets the
- * flat's face through a pixel or two, where the intersection raster alone gave a normal 28° and then 66° off
- * the face, and the flat slid off. Its contacts push along its face's normal, and it stays put. */
-Test(stacking, a_flat_card_on_two_card_corners_is_held_by_its_face_normal, .timeout = 30)
-{
-    const float tilt = 15 * (float)M_PI / 180, corner_dx = 3.175f, corner_dy = 15.714f; /* a 2 × 32 card's top corner */
-    pp_world_def d = pp_world_def_default();
-    d.allow_sleep = 0;
-    pp_world w = make_world_def(&d);
-    add_rect(w, body_def(PP_BODY_STATIC, 385.3f + corner_dx, 300 + corner_dy, -tilt), 2, 32);
-    add_rect(w, body_def(PP_BODY_STATIC, 414.7f - corner_dx, 300 + corner_dy, tilt), 2, 32);
-    pp_body_def fd = body_def(PP_BODY_DYNAMIC, 400, 299, 0);
-    fd.friction = 1.0f;
-    const pp_body flat = add_rect(w, fd, 32, 2);
-    double worst_deg = 0;
-    for (int f = 0; f < 60; f++) {
-        PP_OK_OR_FAIL(pp_world_step(w, DT));
-        pp_contact c[8];
-        int32_t n = 0;
-        PP_OK_OR_FAIL(pp_world_get_contacts(w, c, 8, &n));
-        for (int i = 0; i < n; i++)
-            worst_deg = fmax(worst_deg, acos(fmin(1.0, fabs(c[i].normal.y))) * 180 / M_PI);
-    }
-    const pp_vec2 p = body_pos(w, flat);
-    cr_log_info("flat on two card corners: normals within %.1f deg of its face's, moved (%.2f, %.2f) px, turned %.3f rad",
-                worst_deg, p.x - 400, p.y - 299, body_angle(w, flat));
-    cr_assert_lt(worst_deg, 5.0, "a contact's normal lay %.1f deg off the flat's face", worst_deg);
-    cr_assert_lt(fabs(p.x - 400), 0.5, "the flat slid %.2f px", p.x - 400);
-    cr_assert_lt(fabs(body_angle(w, flat)), 0.02);
-    pp_world_destroy(w);
-}
