@@ -12,6 +12,7 @@ PP_TEST_SUITE(stacking);
 
 #define DT (1.0f / 60.0f)
 #define GROUND_TOP 500.0f
+#define QUARTER_BOX 4.0 /* px: a quarter of the 16 px boxes every test here stacks */
 
 static pp_world stack_world(pp_world_def d)
 {
@@ -45,7 +46,7 @@ static double drift_after_settle(pp_world w, const pp_body *b, int n, double sec
         PP_OK_OR_FAIL(pp_world_step(w, DT));
         for (int i = 0; i < n; i++) {
             const double dx = fabs(body_pos(w, b[i]).x - placed[i].x), da = fabs(body_angle(w, b[i]) - turned[i]);
-            if (!(dx <= 4.0 && da <= 0.25)) {
+            if (!(dx <= QUARTER_BOX && da <= 0.25)) {
                 cr_log_info("box %d came apart while settling at %.2f s: %.2f px sideways, %.2f rad", i, (k + 1) * DT, dx, da);
                 return INFINITY;
             }
@@ -85,7 +86,7 @@ Test(stacking, a_20_box_tower_of_16px_boxes_stands, .timeout = 120)
     add_column(w, b, 20, 16, NULL);
     const double drift = drift_after_settle(w, b, 20, 20.0);
     cr_log_info("20-box tower, BALANCED: drift %.2f px over 20 s", drift);
-    cr_assert_lt(drift, 4.0, "the 20-box tower moved %.2f px (fell before issue 22 at 1.9 s)", drift);
+    cr_assert_lt(drift, QUARTER_BOX, "the 20-box tower moved %.2f px (fell before issue 22 at 1.9 s)", drift);
     pp_world_destroy(w);
 }
 
@@ -106,30 +107,32 @@ Test(stacking, an_exact_tower_rests_at_contact_slop_within_its_first_second, .ti
     pp_world_destroy(w);
 }
 
-Test(stacking, a_heavy_box_100_to_1_on_three_light_ones_stands, .timeout = 60)
+/* A column of four 16 px boxes of densities dens (bottom up) at the default preset: its drift over `seconds`
+ * after the settle, px. */
+static double column_drift(const float dens[4], double seconds)
 {
-    const float dens[4] = {1, 1, 1, 100};
     pp_world w = stack_world(pp_world_def_default());
     pp_body b[4];
     add_column(w, b, 4, 16, dens);
-    const double drift = drift_after_settle(w, b, 4, 20.0);
+    const double drift = drift_after_settle(w, b, 4, seconds);
+    pp_world_destroy(w);
+    return drift;
+}
+
+Test(stacking, a_heavy_box_100_to_1_on_three_light_ones_stands, .timeout = 60)
+{
+    const double drift = column_drift((const float[4]){1, 1, 1, 100}, 20.0);
     cr_log_info("100:1 on three light boxes: drift %.3f px", drift);
     cr_assert_lt(drift, 1.0, "heavy on light moved %.3f px", drift);
-    pp_world_destroy(w);
 }
 
 Test(stacking, the_1_10_100_1000_chain_stands_on_the_exact_solver, .timeout = 60)
 {
     /* Fell within 0.1 s before issue 22. Its island is small enough for the exact solver, which holds it;
      * QuickStep alone (exact_island_rows 0) lays it on its side within 0.8 s at 20 iterations, 2 s at 80. */
-    const float dens[4] = {1, 10, 100, 1000};
-    pp_world w = stack_world(pp_world_def_default());
-    pp_body b[4];
-    add_column(w, b, 4, 16, dens);
-    const double drift = drift_after_settle(w, b, 4, 10.0);
+    const double drift = column_drift((const float[4]){1, 10, 100, 1000}, 10.0);
     cr_log_info("1:10:100:1000 chain, exact: drift %.3f px", drift);
     cr_assert_lt(drift, 1.0, "the chain moved %.3f px", drift);
-    pp_world_destroy(w);
 }
 
 /* A 7-row pyramid at the preset with the exact solver off, so QuickStep holds the island: its drift over
@@ -150,7 +153,7 @@ Test(stacking, friction_anchors_hold_a_quickstep_pyramid, .timeout = 120)
 {
     const double drift = quickstep_pyramid_drift(PP_PRESET_FAST, 20.0);
     cr_log_info("7-row pyramid, FAST with QuickStep alone: drift %.2f px", drift);
-    cr_assert_lt(drift, 4.0, "the pyramid crept %.2f px", drift);
+    cr_assert_lt(drift, QUARTER_BOX, "the pyramid crept %.2f px", drift);
 }
 
 Test(stacking, a_quickstep_pile_settles_to_the_slop_depth_at_once, .timeout = 120)
