@@ -53,7 +53,8 @@ GLSL_SRC := $(wildcard glsl/*.comp)
 GLSL_GEN := $(BUILD)/gen/glsl_sources.c
 LIB_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/glsl_sources.o
 SAN_OBJ  := $(LIB_SRC:lib/%.c=$(BUILD)/san/%.o) $(BUILD)/san/glsl_sources.o
-TEST_SRC := $(wildcard tests/c/*.c)
+# The C tests build the stability benchmark's scenes through its PhysPix side, not its peers.
+TEST_SRC := $(wildcard tests/c/*.c) tests/bench/stability/scenes.c tests/bench/stability/scenes_physpix.c
 BENCH_SRC := $(wildcard tests/bench/*.c)
 PLUGIN_SRC := plugin/plugin.c plugin/classes.c plugin/settings.c
 
@@ -145,12 +146,12 @@ $(BUILD) $(BUILD)/obj $(BUILD)/san $(BUILD)/tests $(BUILD)/gen:
 
 # C tests: Criterion, linked against the sanitized library (ASan + UBSan). It links the objects, so
 # PP_TEST_PRIVATE lets tests reach private headers (tests/c/test_tiles.c).
-$(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
+$(BUILD)/tests/test_c_san: $(TEST_SRC) $(SAN_OBJ) tests/c/*.h tests/bench/accuracy/analytic.h tests/bench/stability/stability.h | $(BUILD)/tests
 	$(CC) $(PP_CFLAGS) -O1 -g $(SANFLAGS) -DPP_TEST_PRIVATE $(USER_CFLAGS) -o $@ $(TEST_SRC) $(SAN_OBJ) $(LDFLAGS) \
 	  -lcriterion $(LIBS)
 
 # The same tests against the optimised shared library, as a user links it.
-$(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/analytic.h | $(BUILD)/tests
+$(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/analytic.h tests/bench/stability/stability.h | $(BUILD)/tests
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(TEST_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' \
 	  -lcriterion $(LIBS)
 

@@ -3,6 +3,7 @@
 #include "alloc.h"
 #include "awake.h"
 #include "contact_solve.h"
+#include "corner.h"
 #include "continuous.h"
 #include "forces.h"
 #include "island.h"
@@ -208,6 +209,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         const np_body va = body_np_view(a), vb = body_np_view(b);
         np_result r;
         np_pair_finish(&set, &va, &vb, &wd->batch.pairs[k], &wd->batch.cores[k], &r);
+        corner_normal(a, b, &r);
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;

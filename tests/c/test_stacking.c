@@ -2,6 +2,7 @@
  * solver on small islands and by friction anchors on QuickStep's large ones. Sleep is off so that the
  * solver alone holds them. */
 #include "helpers.h"
+#include "../bench/stability/stability.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -164,6 +165,33 @@ Test(stacking, a_quickstep_pile_settles_to_the_slop_depth_at_once, .timeout = 12
     const double drift = quickstep_pyramid_drift(PP_PRESET_ACCURATE, 10.0);
     cr_log_info("7-row pyramid, ACCURATE on QuickStep: drift %.3f px over 10 s after a 1 s settle", drift);
     cr_assert_lt(drift, 0.1, "the pile crept %.3f px after settling", drift);
+}
+
+/* The drift over `seconds` after the settle, px, of bench_stability's scene `name` at BALANCED, sleep off. */
+static double scene_drift(const char *name, double seconds)
+{
+    stab_scene s;
+    cr_assert_eq(stab_scene_build(stab_scene_find(name), &s), 0, "no scene %s", name);
+    cr_assert_leq(s.count, 32);
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    pp_body b[32];
+    cr_assert_eq(stab_physpix_add_bodies(w, &s, b), 0);
+    const double drift = drift_after_settle(w, b, s.count, seconds);
+    pp_world_destroy(w);
+    stab_scene_free(&s);
+    return drift;
+}
+
+/* Four levels of 2 × 32 px cards, the flats spanning their tents: each flat rests on two card corners through
+ * a pixel or two, whose raster normal lay 28-66° off the flat's face until corner contacts took the face's
+ * normal (it collapsed within 0.2 s). */
+Test(stacking, a_4_level_card_house_stands, .timeout = 120)
+{
+    const double drift = scene_drift("cardhouse4w", 20.0);
+    cr_log_info("4-level card house, BALANCED: drift %.3f px over 20 s", drift);
+    cr_assert_lt(drift, 1.0, "the card house moved %.3f px", drift);
 }
 
 Test(stacking, exact_island_rows_out_of_range_is_refused)

@@ -121,8 +121,8 @@ static int build_chain(stab_scene *s, int unused_a, int unused_b)
  * cards bridging neighbouring apexes, each resting on the near outer top corner of both (0.6 px to spare);
  * the next row's tents stand centred on those flat cards. A tent's cards overlap 0.8 px at the apex (each is
  * 0.4 px in from corner-on-corner contact), so that they press into each other instead of balancing on their
- * corners. Friction 1. Box2D 2.4's outcome looked chaotic in these numbers, judged from the settled pose; watched
- * from the start, it collapses in every engine of bench_stability within 0.25 s. */
+ * corners. Friction 1. So built (`cardhouse4`) it collapses in every engine of bench_stability within 0.25 s: the
+ * flats barely reach the corners. `wide`: each flat spans its two tents (`cardhouse2w`, `3w`, `4w`). */
 static int build_card_house(stab_scene *s, int levels, int wide)
 {
     const double len = 32, t = 2, phi = 15 * PI / 180, mu = 1.0, overhang = 1.0, lean_in = 0.4;
@@ -274,6 +274,8 @@ static const scene_entry scenes[] = {
     {"chain", build_chain, 0, 0},
     {"cardhouse4", build_card_house, 4, 0},
     {"cardhouse2w", build_card_house, 2, 1},
+    {"cardhouse3w", build_card_house, 3, 1},
+    {"cardhouse4w", build_card_house, 4, 1},
     {"arch11", build_arch, 11, 0},
     {"roll16", build_roll, 16, 0},
     {"roll32", build_roll, 32, 0},

@@ -1,0 +1,12 @@
+/* A corner resting on a face: the normal of a pair that meets through a few pixels, chosen again from the
+ * two bodies' faces (see corner.c). */
+#ifndef PP_CORNER_H
+#define PP_CORNER_H
+
+#include "world.h"
+
+/* Where r's pair meets through at most CORNER_PIXELS pixels, turn its normals to the face of a or b along
+ * which the two overlap least, when that beats the narrowphase's normal. Points and depths stay. */
+void corner_normal(const body *a, const body *b, np_result *r);
+
+#endif
