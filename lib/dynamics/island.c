@@ -165,7 +165,7 @@ static int list_of(world *wd, int32_t i)
     const body *bd = wd->bodies[i];
     if (wd->islands.group[wd->islands.group_capacity + world_group_root(wd->islands.group, i)] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
-    if (wd->islands.kind[i] == ISLAND_EXACT)
+    if (island_exact(wd->islands.kind[i]))
         return 0;
     if (!awake_mover(bd))
         return -1;
@@ -247,7 +247,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int32_t i = wd->islands.nodes[n], r = rows[world_group_root(parent, i)];
         if (r < 0 && (wd->def.exact_solver || (wd->islands.kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
-            wd->islands.kind[i] = ISLAND_EXACT;
+            wd->islands.kind[i] = wd->islands.kind[i] == ISLAND_QUICK_ALONE ? ISLAND_EXACT_ALONE : ISLAND_EXACT;
     }
     set_spans(wd, pairing);
     list_islands(wd, out);

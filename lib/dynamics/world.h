@@ -70,8 +70,10 @@ typedef struct joint_table {
     uint64_t next_attach;    /* the next attach's order: ODE lists a body's joints newest attached first */
 } joint_table;
 
-/* How a body's island is solved this substep (island.c). */
-enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
+/* How a body's island is solved this substep (island.c): a stack (two or more dynamic bodies) or a lone body,
+ * by the exact solver or by QuickStep. */
+enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_EXACT_ALONE, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
+static inline bool island_exact(int kind) { return kind == ISLAND_EXACT || kind == ISLAND_EXACT_ALONE; }
 /* How many substeps of time a body's island advances this substep (island.c): QuickStep islands sit the
  * first substep of a pair out and solve the second with twice its time step. */
 enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2 };
