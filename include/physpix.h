@@ -199,7 +199,8 @@ typedef enum pp_preset {
  * a dynamic AABB tree of the solid pixels' world boxes, queried by the awake bodies only (static–static,
  * filtered and sleeping–sleeping pairs are skipped; a sleeping body costs a step nothing), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
  * and contact points from the intersection raster, in integers, so the CPU and GPU backends agree bit for
- * bit and runs are deterministic. The narrowphase runs at a step's first substep; a resting pair (moving
+ * bit and runs are deterministic; a pair meeting through at most 3 pixels (a corner on a face) takes the
+ * face's normal where either body's bitmap axis separates their pixels near the contact better. The narrowphase runs at a step's first substep; a resting pair (moving
  * under 0.25 px against each other in a step) keeps its contacts through the later substeps, each point
  * moved with its bodies and its depth with their separation, and every other pair is collided again at
  * each substep. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
@@ -207,9 +208,10 @@ typedef enum pp_preset {
  * bounce_threshold; contact_cfm is relative to the pair's reduced mass, so it does not depend on body size.
  * Each contact is two rows (the normal and one in-plane friction direction). An island of two or more
  * dynamic bodies with at most exact_island_rows rows is solved by ODE's exact dWorldStep (towers, heavy on
- * light), larger ones by QuickStep, whose unfinished solve would let a pile creep: there every touching
- * pair keeps a friction anchor, and friction takes back what a contact slipped since (within Coulomb's
- * bound; a slip over 0.5 px or a turn over 0.05 rad re-anchors).
+ * light), larger ones by QuickStep. A pile would creep on either (QuickStep's solve stops short, and the
+ * exact solve gives at contact_cfm under a steady sideways load), so in every island of two or more dynamic
+ * bodies each touching pair keeps a friction anchor, and friction takes back what a contact slipped since
+ * (within Coulomb's bound; a slip over 2 px or a turn over 0.05 rad re-anchors).
  * QuickStep's random order is seeded from the world's step count before each step: the same scene gives
  * the same result in any run. Sleeping: bodies slower than sleep_linear_speed and sleep_angular_speed for
  * sleep_time sleep, and bodies in contact sleep together or not at all.
