@@ -197,13 +197,14 @@ typedef enum pp_preset {
 
 /* How a world steps. Each pp_world_step(dt) runs `substeps` passes of collision and solver. Collision:
  * a dynamic AABB tree of the solid pixels' world boxes, queried by the awake bodies only (static–static,
- * filtered and sleeping–sleeping pairs are skipped; a sleeping body costs a step nothing), then the narrowphase samples both masks on one grid and finds each pair's normal, depth
- * and contact points from the intersection raster, in integers, so the CPU and GPU backends agree bit for
- * bit and runs are deterministic; a pair meeting through at most 3 pixels (a corner on a face) takes the
- * face's normal where either body's bitmap axis separates their pixels near the contact better. The narrowphase runs at a step's first substep; a resting pair (moving
- * under 0.25 px against each other in a step) keeps its contacts through the later substeps, each point
- * moved with its bodies and its depth with their separation, and every other pair is collided again at
- * each substep. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
+ * filtered and sleeping–sleeping pairs are skipped; a sleeping body costs a step nothing), then the
+ * narrowphase samples both masks on one grid and finds each pair's normal, depth and contact points from the
+ * intersection raster, in integers, so the CPU and GPU backends agree bit for bit and runs are
+ * deterministic; a pair meeting through at most 3 pixels (a corner on a face) takes the face's normal where
+ * either body's bitmap axis separates their pixels near the contact better. The narrowphase runs at a step's
+ * first substep; a resting pair (moving under 0.25 px against each other in a step) keeps its contacts
+ * through the later substeps, each point moved with its bodies and its depth with their separation, and
+ * every other pair is collided again at each substep. Solver: ODE 0.16 (double precision) in the plane, ODE seeing metres
  * (pixels_per_meter); contact joints with Coulomb friction μ = √(μa·μb) and restitution max(ea, eb) above
  * bounce_threshold; contact_cfm is relative to the pair's reduced mass, so it does not depend on body size.
  * Each contact is two rows (the normal and one in-plane friction direction). An island of two or more
