@@ -1,6 +1,6 @@
 /* Stacks that stand (issue 22): the cheap scenes of build/bench/bench_stability, held by the exact
- * solver on small islands and by friction anchors on QuickStep's large ones. Sleep is off so that the
- * solver alone holds them. */
+ * solver on small islands and by QuickStep on large ones, each stack's pairs by friction anchors. Sleep is
+ * off so that the solver alone holds them. */
 #include "helpers.h"
 #include "../bench/stability/stability.h"
 
