@@ -122,7 +122,7 @@ static void run_scene(void)
     expect(CALL(crate, "get_mass").as.real == CRATE * CRATE, "crate mass = its pixel count (density 1)",
            CALL(crate, "get_mass").as.real);
 
-    step_for(world, 0.6); /* landed, not yet asleep (sleeping pairs report no contacts) */
+    step_for(world, 0.6); /* landed (awake or asleep, its pair lists its contacts) */
     const int64_t contacts = CALL(world, "get_contact_count").as.integer;
     const pp_vec2 n = contacts > 0 ? CALL(world, "get_contact_normal", V_INT(0)).as.vec2 : (pp_vec2){0, 0};
     expect(contacts > 0 && fabs(hypot(n.x, n.y) - 1.0) < 1e-3, "contacts of the last step, with unit normals",

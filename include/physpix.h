@@ -294,9 +294,11 @@ typedef struct pp_step_stats {
 /// Statistics of the last step.
 PP_API pp_status pp_world_get_stats(pp_world w, pp_step_stats *out);
 
-/* Contacts are those of the last substep. `a` is the pair's body in the lower slot. normal_impulse is read
- * back from ODE's joint feedback: a box resting on the ground has impulses summing to its weight × the
- * substep; divide by the substep (s) for a force. pp_world_collide runs no solver and reports 0. */
+/* Contacts are those of the last substep, then those of the sleeping pairs: an island that falls asleep keeps
+ * its pairs and each pair its points with the impulses of its last solve, so a pile at rest still lists what
+ * it stands on. `a` is the pair's body in the lower slot. normal_impulse is read back from ODE's joint
+ * feedback: a box resting on the ground (awake or asleep) has impulses summing to its weight × the substep;
+ * divide by the substep (s) for a force. pp_world_collide runs no solver and reports 0. */
 
 /// One contact point between two bodies.
 typedef struct pp_contact {
@@ -311,7 +313,7 @@ typedef struct pp_contact {
     uint32_t reserved;   ///< zero
 } pp_contact;
 
-/// Write up to capacity contacts of the last substep; count receives the total.
+/// Write up to capacity contacts: the last substep's, then the sleeping pairs'; count receives the total.
 PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
 
 /* Events queue inside the step and are read after it with pp_world_get_events, oldest first.
@@ -323,7 +325,9 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
  *   until read): each substep compares the touching pairs with those of the substep before; a new pair
  *   queues CONTACT_BEGIN, a pair gone CONTACT_END. `body` is the pair's body in the lower slot, as in
  *   pp_contact. Pairs of sleeping bodies are not tested and not ended, so a pile that falls asleep keeps
- *   its pairs; destroying a body (or emptying it) ends its pairs at the next substep. Switched on, pairs
+ *   its pairs (and lists their contacts), and a pair woken while still touching begins nothing; an edit
+ *   that parts a sleeping pair wakes it and ends the pair at the next substep, and destroying a body (or
+ *   emptying it) ends its pairs there too. Switched on, pairs
  *   already touching begin at the next substep; switched off, recorded pairs end without an event. Among
  *   crowded bodies (PP_CROWDED_CONTACT_PAIRS) only the pairs the budget collides are seen.
  * Sensors (pp_body_def.is_sensor): a pair with a sensor runs the narrowphase but makes no contact:
@@ -808,6 +812,7 @@ PP_API pp_status pp_world_load_scene(const char *path, pp_world *out);
  * pp_world_get_bodies lists them in the same order, and each handle differs from the saved world's only in
  * the bits that name the world (a handle of the saved world is PP_ERR_INVALID_HANDLE in the loaded one). The
  * last step's contacts are not saved (the next step makes them); the pairs touching at the last substep are,
+ * with the points of their last solve (a sleeping pile lists its contacts as soon as it is loaded),
  * so a loaded world does not report resting contacts as begun again and a body halfway through a one-way
  * platform is not stopped inside it, and so are the resting pairs held from step to step with their contacts
  * ("held"), which the loaded world carries uncollided as the saved one would. A world holding a number that is not finite, or past ±FLT_MAX (which

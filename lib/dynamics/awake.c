@@ -18,7 +18,7 @@ void awake_add(world *wd, body *bd)
     if (bd->awake_at >= 0)
         return;
     PP_ASSERT(wd->awake.count < wd->awake.capacity); /* awake_reserve at creation */
-    wd->touch.resting_stale = true; /* it may be in a resting pair (touch.c) */
+    wd->table.resting_stale = true; /* it may be in a resting pair (contact_table.c) */
     const int32_t n = wd->awake.count++;
     wd->awake.slots[n] = (int32_t)bd->index;
     bd->awake_at = n;

@@ -341,7 +341,7 @@ void body_remove(world *wd, body *bd)
     awake_forget(wd, bd);
     forces_forget(wd, bd);
     carry_forget(wd, slot);
-    wd->touch.body_gone = true;
+    contact_table_body_removed(wd, b.id);
     body_free(wd, bd);
     wd->bodies[slot] = NULL;
     id_pool_release(&wd->body_ids, slot);

@@ -3,7 +3,6 @@
 #include "alloc.h"
 #include "island.h"
 #include "status.h"
-#include "touch.h"
 #include "world.h"
 
 #include <math.h>
@@ -260,7 +259,7 @@ pp_status carry_push(world *wd)
             continue;
         const body *a = wd->bodies[p->a], *b = wd->bodies[p->b];
         bool keep = true;
-        pp_status st = touch_pair(wd, a, b, &r, &keep);
+        pp_status st = contact_table_found(wd, a, b, &r, &keep);
         if (st)
             return st;
         if (!keep)

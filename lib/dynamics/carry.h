@@ -73,7 +73,7 @@ pp_status carry_record(struct world *wd, double dt, int32_t k);
 bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 /* At a later substep, after the collided pairs' contacts are pushed: mark their bodies struck. */
 void carry_strike(struct world *wd);
-/* At a later substep, after carry_strike: the claimed pairs' moved contacts, through touch_pair. */
+/* At a later substep, after carry_strike: the claimed pairs' moved contacts, through contact_table_found. */
 pp_status carry_push(struct world *wd);
 /* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that
  * stay within their bound through this step are carried into it, the rest dropped. */

@@ -2,7 +2,6 @@
  * order its joints are handed to ODE in. */
 #include "contact_solve.h"
 #include "handle.h"
-#include "touch.h"
 #include "world.h"
 
 #include <math.h>
@@ -13,11 +12,12 @@ static double inv_mass(const body *bd)
 }
 
 /* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
- * pair's friction anchor (touch.c); Coulomb's bound still caps the force, so a sliding body slides.
+ * pair's friction anchor (contact_table.c); Coulomb's bound still caps the force, so a sliding body slides.
  * Stacks slip unasked: QuickStep's because its solve stops short, the exact solver's because contact_cfm
  * lets a contact under a steady sideways load give (a 3-level card house's tents walked 0.035 px/s and
  * fell at 19 s; an arch crept 3 px). A lone body is left free: its anchor would brake a roll. */
-static double anchor_speed(const world *wd, const body *a, const body *b, const touch *t, const pp_contact *c,
+static double anchor_speed(const world *wd, const body *a, const body *b, const contact_record *t,
+                           const pp_contact *c,
                            double h)
 {
     const int kind = wd->islands.kind[(a->sb.body ? a : b)->index];
@@ -25,7 +25,7 @@ static double anchor_speed(const world *wd, const body *a, const body *b, const 
         return 0;
     if (!t || handle_slot(t->a) != a->index)
         return 0;
-    const dvec2 slip = touch_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
+    const dvec2 slip = contact_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
     const double along = dv_dot(slip, dv(-c->normal.y, c->normal.x));
     const double v = wd->def.contact_erp * along / h, cap = wd->def.max_correction_speed;
     return fmax(-cap, fmin(cap, v));
@@ -100,7 +100,7 @@ int contact_span(const world *wd, const pp_contact *c)
 
 void contact_joints_add(world *wd, double h)
 {
-    const touch *t = NULL; /* the last pair's, found once for its points (they come together) */
+    const contact_record *t = NULL; /* the last pair's, found once for its points (they come together) */
     uint64_t ta = 0, tb = 0;
     double deepest = 0;
     for (int32_t i = 0; i < wd->contact_count; i++) {
@@ -111,7 +111,7 @@ void contact_joints_add(world *wd, double h)
         const double hs = span * h; /* the time step of the contact's island */
         const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
         if (c->a.id != ta || c->b.id != tb)
-            t = touch_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id, deepest = pair_deepest(wd, i);
+            t = contact_table_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id, deepest = pair_deepest(wd, i);
         const double e = fmax(a->restitution, b->restitution);
         const solver_contact sc = {
             a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),

@@ -123,7 +123,7 @@ static bool stops(const world *wd, const body *bd, const body *o, dvec2 dcom)
     if (!o->one_way)
         return true;
     const dvec2 d = dv_rot(o->one_way_dir, o->cos_a, o->sin_a);
-    return dv_dot(dcom, d) < 0 && !touch_find(wd, bd->handle.id, o->handle.id);
+    return dv_dot(dcom, d) < 0 && !contact_table_find(wd, bd->handle.id, o->handle.id);
 }
 
 /* Sweep one body from its recorded pose to where the substep left it; stop it at its first hit. */

@@ -63,7 +63,7 @@ PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled)
     world *wd = world_lookup(w, "pp_world_set_contact_events");
     if (!wd)
         return PP_ERR_INVALID_HANDLE;
-    /* Off, the pairs recorded for events end silently (touch.c queues no END without it). */
+    /* Off, the pairs recorded for events end silently (contact_table.c queues no END without it). */
     wd->def.contact_events = enabled != 0;
     return PP_OK;
 }

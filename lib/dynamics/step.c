@@ -202,7 +202,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
         return st;
     wd->contact_count = 0;
-    touch_begin(wd);
+    contact_table_begin_substep(wd);
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
         const body *a = wd->bodies[wd->batch.bodies[2 * k]], *b = wd->bodies[wd->batch.bodies[2 * k + 1]];
@@ -213,7 +213,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;
-        if (r.count > 0 && (st = touch_pair(wd, a, b, &r, &keep)))
+        if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, &keep)))
             return st;
         for (int32_t c = 0; keep && c < r.count; c++) {
             r.contacts[c].a = a->handle;
@@ -223,7 +223,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         }
     }
     carry_strike(wd);
-    if ((st = carry_push(wd)) || (st = touch_end(wd)) || (st = crowd_limit_contacts(wd)))
+    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
@@ -313,6 +313,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
                                      ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h)
                                      : 0;
         }
+        contact_table_store(wd);
         if ((st = sync_bodies(wd)))
             return st;
         if ((st = continuous_end(wd)))
@@ -347,6 +348,7 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
         forces_step_undone(wd);
         return st;
     }
+    step_commit(wd);
     forces_step_done(wd);
     if ((st = joint_step_done(wd)))
         pp_log(1, "physpix: joints past their break force stay until a step has room for their events");

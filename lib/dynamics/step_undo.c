@@ -1,5 +1,5 @@
 /* The step transaction: what pp_world_step saves before it changes anything, and how a failed step puts it
- * back. Bodies are saved once a step, on first change; the pair lists are swapped back, not copied. */
+ * back. Bodies are saved once a step, on first change; the contact table logs its own changes. */
 #include "alloc.h"
 #include "awake.h"
 #include "check.h"
@@ -21,7 +21,7 @@ static uint64_t mix(uint64_t h, const void *p, size_t n)
 #define MIX(h, v) ((h) = mix((h), &(v), sizeof(v)))
 
 /* FNV-1a over what a step saves: each body's pose, bounds, sleep clock and ODE state, the contacts, the
- * touching and resting pairs, the events queued, the stats and the solver's step count. */
+ * contact table's pairs, the events queued, the stats and the solver's step count. */
 static uint64_t fingerprint(const world *wd)
 {
     uint64_t h = 0xcbf29ce484222325ull;
@@ -40,12 +40,10 @@ static uint64_t fingerprint(const world *wd)
         const pp_contact *c = &wd->contacts[k];
         MIX(h, c->a.id), MIX(h, c->b.id), MIX(h, c->point), MIX(h, c->normal), MIX(h, c->depth);
     }
-    for (int32_t k = 0; k < wd->touch.count; k++)
-        MIX(h, wd->touch.pairs[k].a), MIX(h, wd->touch.pairs[k].b);
-    for (int32_t k = 0; k < wd->touch.resting_count; k++)
-        MIX(h, wd->touch.resting[k].a), MIX(h, wd->touch.resting[k].b);
+    for (int32_t k = 0; k < wd->table.count; k++)
+        MIX(h, wd->table.records[k]);
     const uint64_t steps = solver_get_steps(wd->solver);
-    MIX(h, wd->contact_count), MIX(h, wd->touch.count), MIX(h, wd->touch.resting_count), MIX(h, wd->events.count);
+    MIX(h, wd->contact_count), MIX(h, wd->table.count), MIX(h, wd->table.awake), MIX(h, wd->events.count);
     MIX(h, wd->stats.pairs), MIX(h, wd->stats.contacts), MIX(h, steps);
     return h;
 }
@@ -85,34 +83,14 @@ pp_status step_save(world *wd)
     if (wd->contact_count > 0)
         memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
     u->contact_count = wd->contact_count;
-    u->touch_saved = u->resting_saved = false; /* saved by touch_end before it first changes them */
     u->event_count = wd->events.count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
 #ifdef PP_CHECKS
     u->fingerprint = fingerprint(wd);
 #endif
-    return carry_save(wd);
-}
-
-pp_status step_save_touching(world *wd, bool resting)
-{
-    step_undo *u = &wd->undo;
-    bool *saved = resting ? &u->resting_saved : &u->touch_saved;
-    touch **copy = resting ? &u->resting : &u->touching;
-    int32_t *copy_count = resting ? &u->resting_count : &u->touch_count;
-    int32_t *copy_cap = resting ? &u->resting_capacity : &u->touch_capacity;
-    const touch *list = resting ? wd->touch.resting : wd->touch.pairs;
-    const int32_t n = resting ? wd->touch.resting_count : wd->touch.count;
-    if (*saved)
-        return PP_OK;
-    if (!ARRAY_RESERVE(*copy, *copy_cap, n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)n);
-    if (n > 0)
-        memcpy(*copy, list, (size_t)n * sizeof **copy);
-    *copy_count = n;
-    *saved = true;
-    return PP_OK;
+    pp_status st = contact_table_save(wd);
+    return st ? st : carry_save(wd);
 }
 
 void step_save_contact_bodies(world *wd)
@@ -151,31 +129,19 @@ void step_restore(world *wd)
     wd->contact_count = u->contact_count;
     wd->stats = u->stats;
     solver_set_steps(wd->solver, u->solver_steps);
-    /* The saved pairs become the world's, its buffer the next save's: nothing to allocate. */
-    if (u->touch_saved) {
-        touch *list = wd->touch.pairs;
-        const int32_t cap = wd->touch.capacity;
-        wd->touch.pairs = u->touching, wd->touch.count = u->touch_count, wd->touch.capacity = u->touch_capacity;
-        u->touching = list, u->touch_capacity = cap;
-    }
-    if (u->resting_saved) {
-        touch *list = wd->touch.resting;
-        const int32_t cap = wd->touch.resting_capacity;
-        wd->touch.resting = u->resting, wd->touch.resting_count = u->resting_count;
-        wd->touch.resting_capacity = u->resting_capacity;
-        u->resting = list, u->resting_capacity = cap;
-    }
+    contact_table_restore(wd);
     wd->events.count = u->event_count;
     carry_restore(wd);
     awake_rebuild(wd); /* poses and sleep came back behind the set's back */
+    contact_table_validate(wd);
     PP_ASSERT(fingerprint(wd) == u->fingerprint);
 }
+
+void step_commit(world *wd) { contact_table_commit(wd); }
 
 void step_undo_free(step_undo *u)
 {
     pp_free(u->bodies);
     pp_free(u->contacts);
-    pp_free(u->touching);
-    pp_free(u->resting);
     *u = (step_undo){0};
 }

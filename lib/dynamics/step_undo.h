@@ -8,7 +8,6 @@
 #include "math2d.h"
 #include "physpix.h"
 #include "solver_ode.h"
-#include "touch.h"
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -33,12 +32,6 @@ typedef struct step_undo {
     int32_t contact_count, contact_capacity;
     pp_step_stats stats;
     uint64_t solver_steps;
-    touch *touching;          /* the touching pairs as the step found them, once touch_end first changes them; */
-    int32_t touch_count, touch_capacity; /* swapped back, not copied, so a restore cannot fail */
-    bool touch_saved;         /* touching holds this step's saved pairs */
-    touch *resting;           /* the same for the resting pairs */
-    int32_t resting_count, resting_capacity;
-    bool resting_saved;
     int32_t event_count;      /* events queued before the step */
     uint64_t fingerprint;     /* PP_CHECKS: the world's state at step_save */
 } step_undo;
@@ -48,10 +41,10 @@ pp_status step_save(world *wd);
 /* Before the solver runs: every body a contact joint or a joint may wake is saved (a sleeper changes only
  * then). */
 void step_save_contact_bodies(world *wd);
-/* Save the touching (resting: the resting) pairs, once a step, before touch_end first changes them. */
-pp_status step_save_touching(world *wd, bool resting);
 /* Put back what the step saved; cannot fail. */
 void step_restore(world *wd);
+/* After a step that ran whole: what it saved is no longer needed. */
+void step_commit(world *wd);
 void step_undo_free(step_undo *u);
 
 #endif

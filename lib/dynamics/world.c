@@ -286,7 +286,7 @@ void world_free(world *wd)
     pp_free(wd->batch.pairs);
     pp_free(wd->batch.cores);
     pp_free(wd->batch.bodies);
-    touch_free(&wd->touch);
+    contact_table_free(&wd->table);
     pp_free(wd->contacts);
     pp_free(wd);
 }
@@ -323,10 +323,18 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     world *wd = world_lookup_list(w, "pp_world_get_contacts", out, capacity, count, &st);
     if (!wd)
         return st;
+    /* The last substep's contacts, then the manifolds the sleeping pairs keep. */
     const int32_t n = wd->contact_count < capacity ? wd->contact_count : capacity;
     if (n > 0)
         memcpy(out, wd->contacts, (size_t)n * sizeof *out);
-    *count = wd->contact_count;
+    int32_t total = wd->contact_count;
+    for (int32_t i = 0; i < wd->table.count; i++) {
+        const contact_record *r = &wd->table.records[i];
+        for (int32_t k = 0; k < contact_table_resting_points(wd, r); k++, total++)
+            if (total < capacity)
+                out[total] = r->points[k];
+    }
+    *count = total;
     return PP_OK;
 }
 

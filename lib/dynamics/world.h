@@ -5,6 +5,7 @@
 #include "broadphase.h"
 #include "carry.h"
 #include "check.h"
+#include "contact_table.h"
 #include "crowd.h"
 #include "events.h"
 #include "handle.h"
@@ -17,7 +18,6 @@
 #include "solver_ode.h"
 #include "step_undo.h"
 #include "timed_edits.h"
-#include "touch.h"
 #include "workers.h"
 
 #include <stdbool.h>
@@ -155,7 +155,7 @@ typedef struct world {
     uint64_t next_serial;    /* the next body's creation serial */
     sweep_set sweeps;          /* continuous collision's swept bodies (continuous.c) */
     island_set islands;        /* the substep's islands and sleep groups (island.c) */
-    touch_set touch;         /* the touching and resting pairs (touch.c) */
+    contact_table table;     /* every touching pair, awake or resting (contact_table.c) */
     step_undo undo;          /* the step transaction (step_undo.c) */
     crowd crowd;             /* the contact budget of crowded bodies (crowd.c) */
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */

@@ -20,5 +20,7 @@ enum { JOINT_STATE_DOUBLES = 31 };
 /* A held pair's contact as 15 numbers: point, normal, depth, pixel count, impulse, then both bodies' centres of
  * mass and rotations when the raster found it. */
 enum { HELD_NUMBERS = 15 };
+/* A touching pair's saved contact: point, normal, depth, pixel count, impulse (the first of a held one's). */
+enum { SAVED_CONTACT_NUMBERS = 7 };
 
 #endif

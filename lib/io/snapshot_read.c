@@ -275,49 +275,90 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
     return st;
 }
 
+/* n numbers, each finite as a float, from a JSON array of exactly n; false for anything else. */
+static bool read_numbers(const cJSON *arr, int n, double *v)
+{
+    bool ok = cJSON_IsArray(arr) && cJSON_GetArraySize(arr) == n;
+    for (int i = 0; ok && i < n; i++) {
+        const cJSON *x = cJSON_GetArrayItem(arr, i);
+        ok = cJSON_IsNumber(x) && fabs(x->valuedouble) <= FLT_MAX;
+        v[i] = ok ? x->valuedouble : 0;
+    }
+    return ok;
+}
+
+/* A saved contact's first numbers: point, unit normal, depth, a count of pixels, impulse. */
+static bool saved_contact_ok(const double *v)
+{
+    return fabs(hypot(v[2], v[3]) - 1) < 1e-3 && v[5] >= 0 && v[5] <= INT32_MAX && v[5] == floor(v[5]);
+}
+
+static pp_contact saved_contact(pp_body a, pp_body b, const double *v)
+{
+    return (pp_contact){a, b, {(float)v[0], (float)v[1]}, {(float)v[2], (float)v[3]}, (float)v[4], (int32_t)v[5],
+                        (float)v[6], 0};
+}
+
+/* A touching pair's manifold (its "points"; absent before sleeping pairs kept theirs). */
+static pp_status restore_manifold(const json_ctx *c, const cJSON *it, const char *where, contact_record *t)
+{
+    const cJSON *points = cJSON_GetObjectItemCaseSensitive(it, "points");
+    if (!points)
+        return PP_OK;
+    if (!cJSON_IsArray(points) || cJSON_GetArraySize(points) > PP_MAX_CONTACTS_PER_PAIR)
+        return json_fail(c, PP_ERR_FORMAT, where, "points", "expected at most %d contacts", PP_MAX_CONTACTS_PER_PAIR);
+    for (const cJSON *p = points->child; p; p = p->next) {
+        double v[SAVED_CONTACT_NUMBERS];
+        if (!read_numbers(p, SAVED_CONTACT_NUMBERS, v) || !saved_contact_ok(v))
+            return json_fail(c, PP_ERR_FORMAT, where, "points",
+                             "expected contacts of %d finite numbers: point, unit normal, depth, pixel count, impulse",
+                             SAVED_CONTACT_NUMBERS);
+        t->points[t->point_count++] = saved_contact((pp_body){t->a}, (pp_body){t->b}, v);
+    }
+    return PP_OK;
+}
+
 /* The touching pairs; absent in snapshots from before contact events. */
 static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *wd)
 {
-    static const char *const keys[] = {"a", "b", "flags", "anchor", NULL};
+    static const char *const keys[] = {"a", "b", "flags", "anchor", "points", NULL};
     const cJSON *arr;
     pp_status st = read_section(c, root, "", "touching", true, &arr);
     const int32_t n = arr ? cJSON_GetArraySize(arr) : 0;
     if (st || n == 0)
         return st;
-    if (!ARRAY_RESERVE(wd->touch.pairs, wd->touch.capacity, n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", c->fn, (int)n);
     char where[32];
     int32_t i = 0;
     for (const cJSON *it = arr->child; it && st == PP_OK; it = it->next, i++) {
         snprintf(where, sizeof where, "touching[%d]", (int)i);
-        touch *t = &wd->touch.pairs[i];
+        contact_record rec = {0}, *t = &rec;
         int64_t flags = 0;
         if (!(st = check_keys(c, it, where, NULL, keys)) &&
             !(st = read_body_handle(c, it, where, "a", false, wd, &t->a)) &&
             !(st = read_body_handle(c, it, where, "b", false, wd, &t->b)))
-            st = read_required_int(c, it, where, "flags", 0, TOUCH_FLAGS, &flags);
-        t->flags = (uint32_t)flags, t->reserved = 0;
+            st = read_required_int(c, it, where, "flags", 0, CT_SAVED_FLAGS, &flags);
+        t->flags = (uint32_t)flags;
         /* Before friction anchors, only pairs with events, sensors or one-way bodies were kept, and every
          * contact pair kept with events on had begun. Such a pair anchors at the next substep. */
         const bool anchored = cJSON_GetObjectItemCaseSensitive(it, "anchor") != NULL;
         if (!st && anchored)
             st = read_doubles(c, it, where, "anchor", t->anchor, 3);
         else if (!st) {
-            t->flags |= TOUCH_UNANCHORED;
-            if (wd->def.contact_events && !(t->flags & (TOUCH_SENSOR | TOUCH_PASSING)))
-                t->flags |= TOUCH_BEGUN;
+            t->flags |= CT_UNANCHORED;
+            if (wd->def.contact_events && !(t->flags & (CT_SENSOR | CT_PASSING)))
+                t->flags |= CT_BEGUN;
         }
-        /* touch_find expects a in the lower slot */
+        /* the table keys a pair by its slots, a's the lower */
         if (!st && (t->a == 0 || t->b == 0))
             st = json_fail(c, PP_ERR_FORMAT, where, t->a ? "b" : "a", "expected a body, not 0");
-        if (!st && handle_slot(t->a) > handle_slot(t->b))
+        if (!st && handle_slot(t->a) >= handle_slot(t->b))
             st = json_fail(c, PP_ERR_FORMAT, where, "a", "must be in a lower slot than b");
+        if (!st && !(st = restore_manifold(c, it, where, t)) && (t->flags & (CT_SENSOR | CT_PASSING)) && t->point_count)
+            st = json_fail(c, PP_ERR_FORMAT, where, "points", "a sensor's or passing pair has no contacts");
+        if (!st)
+            st = contact_table_add(wd, t, c->fn, where);
     }
-    if (st)
-        return st;
-    wd->touch.count = n;
-    touch_sort(wd->touch.pairs, n);
-    return PP_OK;
+    return st;
 }
 
 /* One held pair's contacts, in order, into the carry's arrays (room made). */
@@ -330,23 +371,16 @@ static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, cons
     for (const cJSON *it = arr->child; it; it = it->next, k++) {
         snprintf(at, sizeof at, "%s.contacts[%d]", where, (int)k);
         double v[HELD_NUMBERS];
-        bool ok = cJSON_IsArray(it) && cJSON_GetArraySize(it) == HELD_NUMBERS;
-        for (int i = 0; ok && i < HELD_NUMBERS; i++) {
-            const cJSON *x = cJSON_GetArrayItem(it, i);
-            ok = cJSON_IsNumber(x) && fabs(x->valuedouble) <= FLT_MAX;
-            v[i] = ok ? x->valuedouble : 0;
-        }
-        /* A unit normal, a count of pixels, rotations as cosines and sines: anything else is no saved contact. */
-        ok = ok && fabs(hypot(v[2], v[3]) - 1) < 1e-3 && v[5] >= 0 && v[5] <= INT32_MAX && v[5] == floor(v[5]) &&
-             fabs(hypot(v[11], v[12]) - 1) < 1e-6 && fabs(hypot(v[13], v[14]) - 1) < 1e-6;
+        /* A saved contact, then rotations as cosines and sines: anything else is no held contact. */
+        const bool ok = read_numbers(it, HELD_NUMBERS, v) && saved_contact_ok(v) &&
+                        fabs(hypot(v[11], v[12]) - 1) < 1e-6 && fabs(hypot(v[13], v[14]) - 1) < 1e-6;
         if (!ok)
             return json_fail(c, PP_ERR_FORMAT, at, NULL,
                              "expected %d finite numbers: point, unit normal, depth, pixel count, impulse, two centres "
                              "of mass, two (cos, sin) pairs",
                              HELD_NUMBERS);
         carried_contact *cc = &cy->contacts[cy->contact_count++];
-        cc->c = (pp_contact){a, b, {(float)v[0], (float)v[1]}, {(float)v[2], (float)v[3]}, (float)v[4],
-                             (int32_t)v[5], (float)v[6], 0};
+        cc->c = saved_contact(a, b, v);
         cc->com_a = dv(v[7], v[8]), cc->com_b = dv(v[9], v[10]);
         cc->cos_a = v[11], cc->sin_a = v[12], cc->cos_b = v[13], cc->sin_b = v[14];
     }

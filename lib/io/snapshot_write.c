@@ -300,21 +300,32 @@ static bool write_edits_and_events(const world *wd, cJSON *root)
     return add(root, "events", events);
 }
 
-/* The pairs touching at the last substep, which the next one's events and one-way platforms compare with:
- * the touching and the resting ones, merged in their one sorted order. */
+/* The contact table's pairs, in its order, which the next substep's events and one-way platforms compare with,
+ * each with its manifold (a sleeping pair lists it). A pair whose body is gone ends at the next substep: it is
+ * not written, and so ends silently. */
 static bool write_touching(const world *wd, cJSON *root)
 {
-    const touch_set *ts = &wd->touch;
+    const contact_table *ts = &wd->table;
     cJSON *arr = cJSON_CreateArray();
     bool ok = arr != NULL;
-    for (int32_t i = 0, j = 0; ok && i + j < ts->count + ts->resting_count;) {
-        const bool from_touching =
-            j == ts->resting_count || (i < ts->count && touch_order(&ts->pairs[i], &ts->resting[j]) < 0);
-        const touch *t = from_touching ? &ts->pairs[i++] : &ts->resting[j++];
-        cJSON *e = cJSON_CreateObject();
+    for (int32_t i = 0; ok && i < ts->count; i++) {
+        const contact_record *t = &ts->records[i];
+        if (t->flags & CT_GONE)
+            continue;
+        cJSON *e = cJSON_CreateObject(), *points = NULL;
         ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(t->a))) &&
              add(e, "b", json_handle(handle_saved(t->b))) &&
-             add(e, "flags", json_number(t->flags, false)) && add(e, "anchor", json_doubles(t->anchor, 3));
+             add(e, "flags", json_number(t->flags, false)) && add(e, "anchor", json_doubles(t->anchor, 3)) &&
+             add(e, "points", points = cJSON_CreateArray());
+        for (int32_t k = 0; ok && k < t->point_count; k++) {
+            const pp_contact *p = &t->points[k];
+            const double v[SAVED_CONTACT_NUMBERS] = {p->point.x, p->point.y, p->normal.x, p->normal.y, p->depth,
+                                                     p->pixel_count, p->normal_impulse};
+            cJSON *nums = json_doubles(v, SAVED_CONTACT_NUMBERS);
+            ok = nums && cJSON_AddItemToArray(points, nums);
+            if (!ok)
+                cJSON_Delete(nums);
+        }
     }
     if (!ok)
         cJSON_Delete(arr);

@@ -1,0 +1,499 @@
+/* The contact table (contact_table.h): every touching pair's record, found by a hash of its two slots, the
+ * awake pairs before the resting ones. Each substep stamps the pairs the narrowphase finds; the pass after it
+ * ends the awake pairs it did not find and puts to rest those it could not have found. */
+#include "alloc.h"
+#include "awake.h"
+#include "contact_solve.h"
+#include "status.h"
+#include "world.h"
+
+#include <math.h>
+#include <string.h>
+
+/* A one-way platform keeps a contact whose normal (platform to other body) is within 60° of its
+ * direction: a body landing on it from above, not one entering from below or the side. */
+#define ONE_WAY_COS 0.5
+
+#define HASH_MIN 64
+
+static uint64_t key_of_slots(uint32_t sa, uint32_t sb) { return (uint64_t)sa << 32 | sb; }
+
+static uint64_t key_of(const contact_record *r) { return key_of_slots(handle_slot(r->a), handle_slot(r->b)); }
+
+/* Fibonacci hashing: the key's high product bits, spread over the table. */
+static int32_t home_of(uint64_t key, int32_t capacity)
+{
+    return (int32_t)((key * 0x9e3779b97f4a7c15ull) >> 32) & (capacity - 1);
+}
+
+/* ---- the hash: key → record index ------------------------------------------------------------------ */
+
+static int32_t hash_slot_of(const contact_table *t, uint64_t key)
+{
+    const int32_t mask = t->hash_capacity - 1;
+    for (int32_t h = home_of(key, t->hash_capacity);; h = (h + 1) & mask)
+        if (t->hash[h].rec < 0 || t->hash[h].key == key)
+            return h;
+}
+
+static int32_t lookup(const contact_table *t, uint64_t key)
+{
+    return t->hash_capacity ? t->hash[hash_slot_of(t, key)].rec : -1;
+}
+
+/* Point the key (present or not) at record `rec`; room was reserved. */
+static void hash_set(contact_table *t, uint64_t key, int32_t rec)
+{
+    contact_key *k = &t->hash[hash_slot_of(t, key)];
+    k->key = key, k->rec = rec;
+}
+
+/* Take the key out, shifting back the keys after it that probed past its slot, so no tombstone is left. */
+static void hash_remove(contact_table *t, uint64_t key)
+{
+    const int32_t mask = t->hash_capacity - 1;
+    int32_t hole = hash_slot_of(t, key);
+    PP_ASSERT(t->hash[hole].rec >= 0);
+    for (int32_t h = (hole + 1) & mask; t->hash[h].rec >= 0; h = (h + 1) & mask) {
+        const int32_t home = home_of(t->hash[h].key, t->hash_capacity);
+        /* It may fill the hole unless its home lies cyclically in (hole, h]. */
+        const bool stays = hole <= h ? (home > hole && home <= h) : (home > hole || home <= h);
+        if (!stays) {
+            t->hash[hole] = t->hash[h];
+            hole = h;
+        }
+    }
+    t->hash[hole].rec = -1;
+}
+
+static void hash_rebuild(contact_table *t)
+{
+    for (int32_t h = 0; h < t->hash_capacity; h++)
+        t->hash[h].rec = -1;
+    for (int32_t i = 0; i < t->count; i++)
+        if (!(t->records[i].flags & CT_GONE))
+            hash_set(t, key_of(&t->records[i]), i);
+}
+
+/* Room for n records, and a hash at most half full of them. */
+static pp_status reserve(contact_table *t, int32_t n, const char *fn)
+{
+    if (!ARRAY_RESERVE(t->records, t->capacity, n))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", fn, (int)n);
+    if ((int64_t)2 * n <= t->hash_capacity)
+        return PP_OK;
+    int32_t cap = HASH_MIN;
+    while (cap < 2 * n)
+        cap *= 2;
+    contact_key *h = pp_calloc((size_t)cap, sizeof *h);
+    if (!h)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", fn, (int)n);
+    pp_free(t->hash);
+    t->hash = h, t->hash_capacity = cap;
+    hash_rebuild(t);
+    return PP_OK;
+}
+
+/* ---- records, each change logged for a failed step ------------------------------------------------- */
+
+/* Keep the record at i as the step found it, once a step (only a step logs: saved_count is 0 outside one). */
+static void log_record(contact_table *t, int32_t i)
+{
+    if (i >= t->saved_count || t->logged[i] == t->step)
+        return;
+    PP_ASSERT(t->log_count < t->log_capacity && t->log_count < t->log_at_capacity);
+    t->logged[i] = t->step;
+    t->log[t->log_count] = t->records[i];
+    t->log_at[t->log_count++] = i;
+}
+
+static contact_record *edit(contact_table *t, int32_t i)
+{
+    log_record(t, i);
+    return &t->records[i];
+}
+
+static void move(contact_table *t, int32_t from, int32_t to)
+{
+    *edit(t, to) = t->records[from];
+    if (!(t->records[to].flags & CT_GONE))
+        hash_set(t, key_of(&t->records[to]), to);
+}
+
+static void swap(contact_table *t, int32_t i, int32_t j)
+{
+    if (i == j)
+        return;
+    const contact_record ri = t->records[i];
+    move(t, j, i);
+    *edit(t, j) = ri;
+    if (!(ri.flags & CT_GONE))
+        hash_set(t, key_of(&ri), j);
+}
+
+/* A resting record into the awake part; returns where it is now. */
+static int32_t wake_record(contact_table *t, int32_t i)
+{
+    PP_ASSERT(i >= t->awake && i < t->count);
+    swap(t, i, t->awake);
+    return t->awake++;
+}
+
+static void rest_record(contact_table *t, int32_t i)
+{
+    PP_ASSERT(i < t->awake);
+    swap(t, i, --t->awake);
+}
+
+/* An awake record out of the table: the last awake one takes its place, the last resting one that one's. */
+static void remove_record(contact_table *t, int32_t i)
+{
+    PP_ASSERT(i < t->awake);
+    if (!(t->records[i].flags & CT_GONE))
+        hash_remove(t, key_of(&t->records[i]));
+    const int32_t last_awake = t->awake - 1, last = t->count - 1;
+    if (i != last_awake)
+        move(t, last_awake, i);
+    if (last_awake != last)
+        move(t, last, last_awake);
+    t->awake--, t->count--;
+}
+
+/* A new record into the awake part (room reserved): the first resting record moves to the end. */
+static int32_t insert_record(contact_table *t, const contact_record *rec)
+{
+    PP_ASSERT(t->count < t->capacity && 2 * (t->count + 1) <= t->hash_capacity);
+    if (t->awake < t->count)
+        move(t, t->awake, t->count);
+    const int32_t i = t->awake++;
+    t->count++;
+    *edit(t, i) = *rec;
+    hash_set(t, key_of(rec), i);
+    return i;
+}
+
+const contact_record *contact_table_find(const world *wd, uint64_t x, uint64_t y)
+{
+    const uint32_t sx = handle_slot(x), sy = handle_slot(y);
+    const int32_t i = lookup(&wd->table, sx < sy ? key_of_slots(sx, sy) : key_of_slots(sy, sx));
+    if (i < 0)
+        return NULL;
+    const contact_record *r = &wd->table.records[i];
+    return (r->a == x && r->b == y) || (r->a == y && r->b == x) ? r : NULL;
+}
+
+/* ---- friction anchors ------------------------------------------------------------------------------ */
+
+/* A pair re-anchors (its static friction gave way) when a contact point has slipped this far, or the
+ * bodies have turned this far against each other (a rolling body's contact moves round it). At 0.5 px,
+ * FAST's 10 iterations let a 10-row pyramid creep past it, re-anchor and creep on (it fell at 49 s). */
+#define ANCHOR_SLIP_PX 2.0
+#define ANCHOR_TURN_RAD 0.05
+
+static void relative_pose(const body *a, const body *b, double out[3])
+{
+    const dvec2 q = dv_unrot(dv_sub(b->pos, a->pos), a->cos_a, a->sin_a);
+    out[0] = q.x, out[1] = q.y, out[2] = b->angle - a->angle;
+}
+
+dvec2 contact_anchor_slip(const contact_record *t, const body *a, const body *b, dvec2 p)
+{
+    const dvec2 x = dv_unrot(dv_sub(p, b->pos), b->cos_a, b->sin_a); /* the point in b's bitmap frame */
+    const dvec2 then = dv_add(dv(t->anchor[0], t->anchor[1]), dv_rot(x, cos(t->anchor[2]), sin(t->anchor[2])));
+    return dv_sub(p, dv_add(a->pos, dv_rot(then, a->cos_a, a->sin_a)));
+}
+
+/* Keep the old anchor while every contact point is within ANCHOR_SLIP_PX of it and the pair has not turned. */
+static void set_anchor(const contact_record *old, const body *a, const body *b, const np_result *r, double out[3])
+{
+    double now[3];
+    relative_pose(a, b, now);
+    bool keep = old && !(old->flags & CT_UNANCHORED) && fabs(now[2] - old->anchor[2]) <= ANCHOR_TURN_RAD;
+    for (int32_t c = 0; keep && c < r->count; c++) {
+        const dvec2 slip = contact_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y));
+        keep = dv_dot(slip, slip) <= ANCHOR_SLIP_PX * ANCHOR_SLIP_PX;
+    }
+    memcpy(out, keep ? old->anchor : now, sizeof now);
+}
+
+/* ---- a substep's pass ------------------------------------------------------------------------------ */
+
+void contact_table_begin_substep(world *wd)
+{
+    contact_table *t = &wd->table;
+    if (++t->substep == 0) { /* wrapped: no record's stamp may look current */
+        for (int32_t i = 0; i < t->count; i++)
+            edit(t, i)->found = 0;
+        t->substep = 1;
+    }
+    t->found_count = 0;
+}
+
+/* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */
+static pp_event begin_event(const world *wd, pp_event_type type, const body *from, const body *to, const body *a,
+                            const np_result *r)
+{
+    const pp_contact *c = &r->contacts[0];
+    const double sign = from == a ? 1.0 : -1.0;
+    const dvec2 p = dv(c->point.x, c->point.y), n = dv_scale(dv(c->normal.x, c->normal.y), sign);
+    /* `to` closes on `from` when its velocity relative to `from` points against the normal. */
+    const dvec2 rel = dv_sub(body_point_velocity(wd, to, p), body_point_velocity(wd, from, p));
+    const double closing = -dv_dot(rel, n);
+    return (pp_event){type, 0, from->handle, to->handle, c->point, {(float)n.x, (float)n.y},
+                      (float)(closing > 0 ? closing : 0), 0, {0}};
+}
+
+/* A new pair with a one-way platform: let the other body through unless it comes from the allowed side. */
+static bool one_way_passes(const body *a, const body *b, const np_result *r)
+{
+    const body *plat = a->one_way ? a : b;
+    const dvec2 n = dv_scale(dv(r->contacts[0].normal.x, r->contacts[0].normal.y), plat == a ? 1.0 : -1.0);
+    const dvec2 d = dv_rot(plat->one_way_dir, plat->cos_a, plat->sin_a);
+    return dv_dot(n, d) < ONE_WAY_COS;
+}
+
+pp_status contact_table_found(world *wd, const body *a, const body *b, const np_result *r, bool *keep)
+{
+    static const char *fn = "pp_world_step";
+    *keep = true;
+    if (a->is_sensor && b->is_sensor) {
+        *keep = false; /* sensors sense bodies, not each other */
+        return PP_OK;
+    }
+    contact_table *t = &wd->table;
+    int32_t i = lookup(t, key_of_slots(a->index, b->index));
+    PP_ASSERT(i < 0 || (t->records[i].a == a->handle.id && t->records[i].b == b->handle.id));
+    /* Room for the record and its event first: a failure changes nothing. */
+    pp_status st = world_reserve_events(wd, 1, fn);
+    if (st || (i < 0 && (st = reserve(t, t->count + 1, fn))))
+        return st;
+    const bool sensor = a->is_sensor || b->is_sensor, one_way = a->one_way || b->one_way;
+    contact_record rec = {.a = a->handle.id, .b = b->handle.id, .found = t->substep,
+                          .flags = sensor ? CT_SENSOR | (a->is_sensor ? 0 : CT_SENSOR_B) : 0};
+    if (i >= 0) { /* the pair as it was: its flags and manifold */
+        if (i >= t->awake)
+            i = wake_record(t, i); /* a sleeper an awake body roused */
+        const contact_record *old = &t->records[i];
+        set_anchor(old, a, b, r, rec.anchor);
+        rec.flags = old->flags & ~(uint32_t)CT_UNANCHORED;
+        rec.point_count = old->point_count;
+        memcpy(rec.points, old->points, sizeof rec.points);
+    } else {
+        set_anchor(NULL, a, b, r, rec.anchor);
+        if (!sensor && one_way && one_way_passes(a, b, r))
+            rec.flags |= CT_PASSING;
+    }
+    *keep = !(rec.flags & (CT_SENSOR | CT_PASSING));
+    if (!*keep)
+        rec.point_count = 0;
+    t->found_count++;
+    if (!(rec.flags & CT_PASSING)) {
+        if (sensor) { /* the sensor is the event's body */
+            if (i < 0)
+                world_queue_event(wd, a->is_sensor ? begin_event(wd, PP_EVENT_SENSOR_BEGIN, a, b, a, r)
+                                                   : begin_event(wd, PP_EVENT_SENSOR_BEGIN, b, a, a, r));
+        } else if (!wd->def.contact_events) {
+            rec.flags &= ~(uint32_t)CT_BEGUN; /* switched off: ends silently, begins again if switched on */
+        } else if (!(rec.flags & CT_BEGUN)) { /* new, or touching since events were switched on */
+            world_queue_event(wd, begin_event(wd, PP_EVENT_CONTACT_BEGIN, a, b, a, r));
+            rec.flags |= CT_BEGUN;
+        }
+    }
+    if (i < 0)
+        insert_record(t, &rec);
+    else
+        *edit(t, i) = rec;
+    return PP_OK;
+}
+
+/* A pair not found this substep still touches if neither body was awake to be tested. */
+static bool untested(const world *wd, const contact_record *r)
+{
+    const body *a = body_find(wd, (pp_body){r->a}), *b = body_find(wd, (pp_body){r->b});
+    PP_ASSERT(wd->awake.proxy_capacity >= wd->body_ids.capacity);
+    return a && b && !wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake;
+}
+
+/* The END of a pair that no longer touches (room reserved); a body that went through a one-way platform
+ * never touched it. */
+static void queue_end(world *wd, const contact_record *r)
+{
+    if (r->flags & CT_PASSING)
+        return;
+    const bool b_first = (r->flags & CT_SENSOR_B) != 0; /* the sensor is the event's body */
+    const pp_body first = {b_first ? r->b : r->a}, second = {b_first ? r->a : r->b};
+    if (r->flags & CT_SENSOR)
+        world_queue_event(wd, (pp_event){PP_EVENT_SENSOR_END, 0, first, second, {0, 0}, {0, 0}, 0, 0, {0}});
+    else if (wd->def.contact_events && (r->flags & CT_BEGUN))
+        world_queue_event(wd, (pp_event){PP_EVENT_CONTACT_END, 0, first, second, {0, 0}, {0, 0}, 0, 0, {0}});
+}
+
+pp_status contact_table_end_substep(world *wd)
+{
+    contact_table *t = &wd->table;
+    /* Nothing awake, found, removed or woken: every pair still touches, untested. */
+    if (t->count == 0 || (t->found_count == 0 && wd->awake.movers == 0 && t->gone == 0 && !t->resting_stale))
+        return PP_OK;
+    pp_status st = world_reserve_events(wd, t->count, "pp_world_step"); /* the worst case: every pair ends */
+    if (st)
+        return st;
+    if (t->resting_stale) /* a body woke: its resting pairs are tested again */
+        for (int32_t i = t->awake; i < t->count; i++)
+            if (!untested(wd, &t->records[i]))
+                wake_record(t, i);
+    t->resting_stale = false;
+    for (int32_t i = 0; i < t->awake;) {
+        const contact_record *r = &t->records[i];
+        const bool gone = (r->flags & CT_GONE) != 0;
+        if (!gone && r->found == t->substep)
+            i++;
+        else if (!gone && untested(wd, r))
+            rest_record(t, i); /* the last awake record comes to i: look at it next */
+        else {
+            queue_end(wd, r);
+            remove_record(t, i);
+        }
+    }
+    t->gone = 0;
+    contact_table_validate(wd);
+    return PP_OK;
+}
+
+void contact_table_store(world *wd)
+{
+    contact_table *t = &wd->table;
+    for (int32_t i = 0, end; i < wd->contact_count; i = end) {
+        const pp_contact *c = &wd->contacts[i];
+        for (end = i + 1; end < wd->contact_count && wd->contacts[end].a.id == c->a.id &&
+                          wd->contacts[end].b.id == c->b.id;)
+            end++;
+        if (contact_span(wd, c) == SPAN_SKIP)
+            continue; /* it sat the substep out: its last solve stands */
+        const int32_t k = lookup(t, key_of_slots(handle_slot(c->a.id), handle_slot(c->b.id)));
+        PP_ASSERT(k >= 0); /* every contact's pair was found */
+        if (k < 0)
+            continue;
+        contact_record *rec = edit(t, k);
+        rec->point_count = end - i < PP_MAX_CONTACTS_PER_PAIR ? end - i : PP_MAX_CONTACTS_PER_PAIR;
+        memcpy(rec->points, c, (size_t)rec->point_count * sizeof *c);
+    }
+}
+
+int32_t contact_table_resting_points(const world *wd, const contact_record *rec)
+{
+    if ((rec->flags & CT_GONE) || rec->found == wd->table.substep) /* found: its points are the world's contacts */
+        return 0;
+    const body *a = body_find(wd, (pp_body){rec->a}), *b = body_find(wd, (pp_body){rec->b});
+    return a && b && !awake_mover(a) && !awake_mover(b) ? rec->point_count : 0;
+}
+
+void contact_table_body_removed(world *wd, uint64_t id)
+{
+    contact_table *t = &wd->table;
+    for (int32_t i = 0; i < t->count; i++) {
+        contact_record *r = &t->records[i];
+        if ((r->a != id && r->b != id) || (r->flags & CT_GONE))
+            continue;
+        hash_remove(t, key_of(r));
+        r->flags |= CT_GONE;
+        r->point_count = 0;
+        t->gone++;
+        if (i >= t->awake)
+            wake_record(t, i); /* ended by the next substep's pass, which sees only awake records */
+    }
+}
+
+pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn, const char *where)
+{
+    contact_table *t = &wd->table;
+    if (lookup(t, key_of(rec)) >= 0)
+        return pp_fail(PP_ERR_FORMAT, "%s: %s: the pair is listed twice", fn, where);
+    pp_status st = reserve(t, t->count + 1, fn);
+    if (st)
+        return st;
+    contact_record r = *rec;
+    r.found = t->substep - 1; /* not found at the last substep: a resting pair lists its own points */
+    insert_record(t, &r);
+    return PP_OK;
+}
+
+/* ---- the step transaction -------------------------------------------------------------------------- */
+
+pp_status contact_table_save(world *wd)
+{
+    contact_table *t = &wd->table;
+    const int32_t had = t->logged_capacity;
+    if (!ARRAY_RESERVE(t->log, t->log_capacity, t->count) || !ARRAY_RESERVE(t->log_at, t->log_at_capacity, t->count) ||
+        !ARRAY_RESERVE(t->logged, t->logged_capacity, t->count))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)t->count);
+    if (t->logged_capacity > had)
+        memset(t->logged + had, 0, (size_t)(t->logged_capacity - had) * sizeof *t->logged);
+    if (++t->step == 0) { /* wrapped: no stale mark may match */
+        memset(t->logged, 0, (size_t)t->logged_capacity * sizeof *t->logged);
+        t->step = 1;
+    }
+    t->log_count = 0;
+    t->saved_count = t->count, t->saved_awake = t->awake, t->saved_gone = t->gone, t->saved_substep = t->substep;
+    return PP_OK;
+}
+
+void contact_table_restore(world *wd)
+{
+    contact_table *t = &wd->table;
+    for (int32_t k = 0; k < t->log_count; k++)
+        t->records[t->log_at[k]] = t->log[k];
+    t->count = t->saved_count, t->awake = t->saved_awake, t->gone = t->saved_gone, t->substep = t->saved_substep;
+    hash_rebuild(t); /* the hash held at least this many: no room to find */
+    contact_table_commit(wd);
+}
+
+void contact_table_commit(world *wd)
+{
+    wd->table.saved_count = 0;
+    wd->table.log_count = 0;
+}
+
+/* ---- the validator --------------------------------------------------------------------------------- */
+
+void contact_table_validate(const world *wd)
+{
+#ifdef PP_CHECKS
+    const contact_table *t = &wd->table;
+    PP_ASSERT(0 <= t->awake && t->awake <= t->count && t->count <= t->capacity);
+    PP_ASSERT(t->count == 0 || 2 * t->count <= t->hash_capacity);
+    int32_t keyed = 0;
+    for (int32_t i = 0; i < t->count; i++) {
+        const contact_record *r = &t->records[i];
+        PP_ASSERT(r->point_count >= 0 && r->point_count <= PP_MAX_CONTACTS_PER_PAIR);
+        if (r->flags & CT_GONE) {
+            PP_ASSERT(i < t->awake); /* only the next pass ends it */
+            continue;
+        }
+        keyed++;
+        PP_ASSERT(handle_slot(r->a) < handle_slot(r->b));
+        PP_ASSERT(lookup(t, key_of(r)) == i); /* the hash finds it where it is */
+        const body *a = body_find(wd, (pp_body){r->a}), *b = body_find(wd, (pp_body){r->b});
+        PP_ASSERT(a && b); /* a removed body's pairs are marked gone */
+        PP_ASSERT(!(r->flags & (CT_SENSOR | CT_PASSING)) || r->point_count == 0);
+        /* A resting pair has no awake body (the pass moved the rest; awake_add marks the table stale). */
+        PP_ASSERT(i < t->awake || t->resting_stale ||
+                  (!wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake));
+    }
+    int32_t hashed = 0;
+    for (int32_t h = 0; h < t->hash_capacity; h++)
+        hashed += t->hash[h].rec >= 0;
+    PP_ASSERT(hashed == keyed);
+#else
+    (void)wd;
+#endif
+}
+
+void contact_table_free(contact_table *t)
+{
+    pp_free(t->records);
+    pp_free(t->hash);
+    pp_free(t->log);
+    pp_free(t->log_at);
+    pp_free(t->logged);
+    *t = (contact_table){0};
+}

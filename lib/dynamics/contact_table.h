@@ -1,0 +1,116 @@
+/* The contact table: one record for every pair of bodies that touches, awake or asleep, and the one owner of
+ * what the world remembers of a pair between substeps: what it is (sensor, passing a one-way platform, its
+ * BEGIN queued), its friction anchor, and its manifold with the impulses of its last solve. A record is made
+ * when the narrowphase first finds the pair touching and goes when it no longer does, or a body goes; an
+ * island falling asleep keeps its records (and pp_world_get_contacts lists their manifolds), so it ends
+ * nothing, and waking while still touching begins nothing. Contact and sensor events come from the records'
+ * changes in one pass a substep (contact_table_end_substep).
+ * Records live in one array, the pairs with an awake body first, the resting ones after; a hash by the two
+ * bodies' slots finds a pair. A step's changes are logged record by record, so that a failed step puts the
+ * table back as it was at the cost of what changed. */
+#ifndef PP_CONTACT_TABLE_H
+#define PP_CONTACT_TABLE_H
+
+#include "math2d.h"
+#include "narrowphase.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct world;
+struct body;
+
+/* What a pair is to the world while it touches (the values snapshots keep). */
+enum {
+    CT_SENSOR = 1,      /* one body is a sensor: events, no contacts */
+    CT_SENSOR_B = 2,    /* with CT_SENSOR: the sensor is b */
+    CT_PASSING = 4,     /* a one-way platform let the other body in from the wrong side: no contacts until they part */
+    CT_BEGUN = 8,       /* its PP_EVENT_CONTACT_BEGIN was queued: its END will be */
+    CT_UNANCHORED = 16, /* loaded from a snapshot without anchors: anchors at its next substep */
+    CT_SAVED_FLAGS = 31,
+    CT_GONE = 32,       /* a body was removed: the pair ends at the next substep (out of the hash meanwhile) */
+};
+
+/* One touching pair: a is the body in the lower slot (the broadphase's order). */
+typedef struct contact_record {
+    uint64_t a, b;         /* body handle ids */
+    uint32_t flags;        /* CT_* */
+    uint32_t found;        /* the substep (contact_table.substep) the narrowphase last found the pair in */
+    double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
+    int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
+    int32_t reserved;
+    pp_contact points[PP_MAX_CONTACTS_PER_PAIR];
+} contact_record;
+
+/* A slot of the hash: the pair's key (a's slot << 32 | b's slot) and its record, or rec −1 when empty. */
+typedef struct contact_key {
+    uint64_t key;
+    int32_t rec;
+    int32_t reserved;
+} contact_key;
+
+typedef struct contact_table {
+    contact_record *records; /* [0, awake): a body awake at the last substep; [awake, count): resting */
+    int32_t count, awake, capacity;
+    contact_key *hash;       /* open addressing, linear probing; a power of two, at least twice count */
+    int32_t hash_capacity;
+    uint32_t substep;        /* counts the substeps that looked for pairs */
+    int32_t found_count;     /* pairs found in this one */
+    bool resting_stale;      /* a body entered the awake set: resting pairs with an awake body are tested again */
+    int32_t gone;            /* records marked CT_GONE, ended at the next substep */
+    /* The step's log: the records as the step found them, each saved on its first change. */
+    contact_record *log;
+    int32_t *log_at;         /* the index each logged record was at */
+    int32_t log_count, log_capacity, log_at_capacity;
+    uint32_t *logged;        /* by index: the step that logged it */
+    int32_t logged_capacity;
+    uint32_t step;           /* counts the steps saved, from 1 */
+    int32_t saved_count, saved_awake, saved_gone; /* the counts the step found; saved_count 0 outside a step */
+    uint32_t saved_substep;
+} contact_table;
+
+/* Start a substep's search. */
+void contact_table_begin_substep(struct world *wd);
+
+/* A pair the narrowphase found touching (r->count > 0): find or make its record, queue its BEGIN event if it is
+ * new, and say whether its contacts go to the solver (not for sensors or a passing one-way pair). */
+pp_status contact_table_found(struct world *wd, const struct body *a, const struct body *b, const np_result *r,
+                              bool *keep);
+
+/* After every pair: end each awake pair not found (its END event queued), put to rest those neither of whose
+ * bodies was awake to be tested (a sleeping stack still touches), and take back the resting pairs a woken body
+ * is in. */
+pp_status contact_table_end_substep(struct world *wd);
+
+/* After a substep's solve: each solved contact's pair keeps its points and impulses as its manifold. */
+void contact_table_store(struct world *wd);
+
+/* The record of two bodies (handle ids, either order), or NULL. */
+const contact_record *contact_table_find(const struct world *wd, uint64_t x, uint64_t y);
+
+/* How far b's material point at world point p has moved relative to a since the pair's anchor, px:
+ * the slip that static friction has let through and the solver should undo. */
+dvec2 contact_anchor_slip(const contact_record *t, const struct body *a, const struct body *b, dvec2 p);
+
+/* A body is being removed: its pairs end at the next substep. Cannot fail. */
+void contact_table_body_removed(struct world *wd, uint64_t id);
+
+/* Add a record read from a snapshot (a in the lower slot), before any step; PP_ERR_FORMAT names `where` when
+ * the pair is listed twice. */
+pp_status contact_table_add(struct world *wd, const contact_record *rec, const char *fn, const char *where);
+
+/* The contacts a sleeping pair keeps: its manifold, when neither of its bodies is awake; else 0. */
+int32_t contact_table_resting_points(const struct world *wd, const contact_record *rec);
+
+/* The step transaction (step_undo.c): start logging (it allocates; nothing changes on failure), put the table
+ * back as the step found it (cannot fail), and stop logging after a step that ran whole. */
+pp_status contact_table_save(struct world *wd);
+void contact_table_restore(struct world *wd);
+void contact_table_commit(struct world *wd);
+
+/* PP_CHECKS: the table's invariants hold (asserts); a no-op otherwise. */
+void contact_table_validate(const struct world *wd);
+
+void contact_table_free(contact_table *t);
+
+#endif
