@@ -1,4 +1,4 @@
-# PhysPix — every entry point: deps, all, test, demo, bench, wheel, install, clean (and godot-api, fuzz).
+# PhysPix — every entry point: deps, all, test, demo, bench, wheel, install, clean (and godot-api, fuzz, bench-instr).
 # Build outputs go to build/ (ignored by git).
 
 CC      ?= cc
@@ -64,7 +64,7 @@ STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
 .PHONY: all lib print-version deps test test-c test-san test-compile test-plugin test-python test-godot test-demo test-package check-deep \
-        demo bench install clean fuzz test-fuzz api check-api
+        demo bench bench-instr install clean fuzz test-fuzz api check-api
 .DEFAULT_GOAL := all
 
 # Installs missing packages as root; otherwise prints the apt-get line and fails.
@@ -156,8 +156,8 @@ $(BUILD)/tests/test_c: $(TEST_SRC) $(SHARED) tests/c/*.h tests/bench/accuracy/an
 	  -lcriterion $(LIBS)
 
 # bench_core reaches the library's private headers: it is built here too, so a change to them that breaks it
-# fails make test, not only make bench.
-test-compile: $(BUILD)/bench/bench_core | $(BUILD)/tests
+# fails make test, not only make bench; bench_instr is built (never run: that needs valgrind) for the same reason.
+test-compile: $(BUILD)/bench/bench_core $(BUILD)/bench/bench_instr | $(BUILD)/tests
 	$(CC) -std=c11 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_c.c -o $(BUILD)/tests/header_c.o
 	$(CXX) -std=c++17 -Wall -Wextra -Wpedantic -Werror -Iinclude -c tests/compile/header_cpp.cpp -o $(BUILD)/tests/header_cpp.o
 	@echo "public headers compile as C11 and C++17 with -Werror"
@@ -328,11 +328,24 @@ $(BUILD)/bench/bench_cost: $(COST_SRC) $(COST_HDR) $(BUILD)/bench/peer_box2d.o $
 	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(COST_SRC) $(BUILD)/bench/peer_box2d.o $(BUILD)/bench/cost_remesh.o \
 	  $(STATIC) $(LDFLAGS) -lbox2d -lchipmunk -lstdc++ $(LIBS)
 
+# Instructions per step, stage by stage, under callgrind (issue 40): bench_instr runs one scene and counts only its
+# measured steps; report.py runs it under valgrind per scene and charges each instruction to a stage of lib/ or
+# to ODE. -g lets callgrind name each function's source file. About 1.5 min.
+INSTR_SRC := tests/bench/instr/main.c tests/bench/cost/scenes.c tests/bench/stability/scenes.c \
+  tests/bench/stability/scenes_physpix.c
+$(BUILD)/bench/bench_instr: $(INSTR_SRC) $(COST_HDR) $(STATIC)
+	mkdir -p $(BUILD)/bench
+	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(INSTR_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
+
+bench-instr: deps
+	$(MAKE) all $(BUILD)/bench/bench_instr
+	$(VENV_PY) tests/bench/instr/report.py --binary $(BUILD)/bench/bench_instr --csv $(BUILD)/bench/instr.csv
+
 bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
 	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
-	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost
+	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
@@ -353,6 +366,7 @@ bench: deps
 	$(VENV_PY) tests/bench/accuracy/plot.py $(BUILD)/bench/accuracy.csv $(BUILD)/bench/accuracy.png
 	$(VENV_PY) tests/bench/scale/plot.py $(BUILD)/bench/scale.csv $(BUILD)/bench/scale.png
 	$(VENV_PY) tests/bench/cost/plot.py $(BUILD)/bench/cost.csv $(BUILD)/bench/cost.png
+	$(VENV_PY) tests/bench/instr/report.py --binary $(BUILD)/bench/bench_instr --csv $(BUILD)/bench/instr.csv
 
 # Under PREFIX: lib/ (libraries, the plugin and its manifest, pkgconfig/physpix.pc), include/, and share/physpix/:
 # godot/addons/physpix/ (the Godot 3.2 addon with its libraries, copied into a project's addons/) and python/

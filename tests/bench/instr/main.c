@@ -1,0 +1,204 @@
+/* One step-cost scene for callgrind (issue 40): builds and settles it uninstrumented, then counts only the
+ * measured steps (CALLGRIND_START/STOP_INSTRUMENTATION around them, collection toggled on inside), and prints
+ * what report.py divides the instructions by. Outside valgrind the macros do nothing and it just runs.
+ *
+ *   bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N]
+ *
+ * stdout, one line: `instr scene=NAME steps=N awake_sum=A contacts_sum=C`, the sums over the measured steps of
+ * pp_step_stats.awake_bodies and .contacts (contact points of the last substep).
+ */
+#include "../cost/cost.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <valgrind/callgrind.h>
+
+typedef struct measure {
+    long long awake, contacts;
+} measure;
+
+static void check(pp_status st, const char *what)
+{
+    if (st != PP_OK) {
+        fprintf(stderr, "bench_instr: %s: %s (%s)\n", what, pp_status_name(st), pp_last_error());
+        exit(1);
+    }
+}
+
+static void die(const char *what)
+{
+    fprintf(stderr, "bench_instr: %s\n", what);
+    exit(1);
+}
+
+/* As bench_cost: BALANCED, the CPU backend on one thread, so the counts are those of one core's work. */
+static pp_world make_world(int sleep)
+{
+    pp_world_def def = pp_world_def_preset(PP_PRESET_BALANCED);
+    def.allow_sleep = (uint32_t)sleep;
+    def.backend = PP_BACKEND_CPU;
+    def.worker_threads = 1;
+    def.gravity = (pp_vec2){0.0f, (float)STAB_GRAVITY};
+    pp_world w;
+    check(pp_world_create(&def, &w), "pp_world_create");
+    return w;
+}
+
+static pp_step_stats stats(pp_world w)
+{
+    pp_step_stats st;
+    check(pp_world_get_stats(w, &st), "pp_world_get_stats");
+    return st;
+}
+
+/* The measured region's bounds: instrumentation is off before it (fast settling) and collection on only
+ * inside, so callgrind's totals are the measured steps' alone. */
+static void region_begin(void)
+{
+    CALLGRIND_START_INSTRUMENTATION;
+    CALLGRIND_ZERO_STATS;
+    CALLGRIND_TOGGLE_COLLECT;
+}
+
+static void region_end(void)
+{
+    CALLGRIND_TOGGLE_COLLECT;
+    CALLGRIND_STOP_INSTRUMENTATION;
+}
+
+static void step(pp_world w, measure *m)
+{
+    check(pp_world_step(w, (float)STAB_DT), "pp_world_step");
+    if (m) { /* reading the stats is the benchmark's work, not the step's: collection off around it */
+        CALLGRIND_TOGGLE_COLLECT;
+        const pp_step_stats st = stats(w);
+        m->awake += st.awake_bodies, m->contacts += st.contacts;
+        CALLGRIND_TOGGLE_COLLECT;
+    }
+}
+
+/* A stability-style scene (pyramid, rain, sleeping crates): settle steps uncounted, then `steps` counted. */
+static void run_stab(const stab_scene *s, int sleep, int settle, int steps, measure *m)
+{
+    pp_world w = make_world(sleep);
+    pp_body *bodies = malloc((size_t)s->count * sizeof *bodies);
+    if (!bodies || stab_physpix_add_bodies(w, s, bodies) != 0)
+        die("could not build the scene");
+    /* With sleep on, settling ends when everything sleeps (settle is then a ceiling). */
+    for (int k = 0; k < settle && !(sleep && k > 0 && stats(w).awake_bodies == 0); k++)
+        step(w, NULL);
+    if (sleep && stats(w).awake_bodies != 0)
+        die("the crates did not all fall asleep while settling");
+    region_begin();
+    for (int k = 0; k < steps; k++)
+        step(w, m);
+    region_end();
+    check(pp_world_destroy(w), "pp_world_destroy");
+    free(bodies);
+}
+
+/* bench_cost's destruction scene: sleep on, a crater every COST_EDIT_EVERY steps, the erase counted. */
+static void run_destruction(int settle, int steps, measure *m)
+{
+    cost_destruction d;
+    if (cost_destruction_build(&d) != 0)
+        die("out of memory building the terrain");
+    pp_world w = make_world(1);
+    pp_body_def td = pp_body_def_default();
+    td.type = PP_BODY_STATIC;
+    td.width = COST_TERRAIN_W, td.height = COST_TERRAIN_H, td.mask = d.terrain;
+    td.custom_pivot = 1; /* pivot (0, 0) at the origin: bitmap pixels are world pixels */
+    pp_body terrain, *crates = malloc((size_t)d.crates.count * sizeof *crates);
+    check(pp_body_create(w, &td, &terrain), "the terrain");
+    if (!crates || stab_physpix_add_bodies(w, &d.crates, crates) != 0)
+        die("could not build the crates");
+    for (int k = 0; k < settle; k++)
+        step(w, NULL);
+    region_begin();
+    for (int k = 0; k < steps; k++) {
+        if (k % COST_EDIT_EVERY == 0) {
+            double x, y;
+            cost_crater(&d, k / COST_EDIT_EVERY, &x, &y);
+            check(pp_body_erase_circle(w, terrain, (pp_vec2){(float)x, (float)y}, (float)COST_CRATER_R, NULL),
+                  "pp_body_erase_circle");
+        }
+        step(w, m);
+    }
+    region_end();
+    check(pp_world_destroy(w), "pp_world_destroy");
+    free(crates);
+    cost_destruction_free(&d);
+}
+
+/* 1000 crates of 32 px in 250 stacks of 4 on a static ground, each crate 1 px above the one below. */
+enum { SLEEP_CRATES = 1000, SLEEP_STACK = 4, SLEEP_PITCH = 36 };
+
+static int sleep_scene_build(stab_scene *out)
+{
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "sleep%d", SLEEP_CRATES);
+    out->tracked = -1;
+    out->bodies = calloc(SLEEP_CRATES + 1, sizeof *out->bodies);
+    if (!out->bodies)
+        return -1;
+    const int cols = SLEEP_CRATES / SLEEP_STACK;
+    const double width = cols * SLEEP_PITCH;
+    out->bodies[out->count++] = (stab_body){.shape = STAB_BOX, .x = 0, .y = 20, .w = width + 64, .h = 40,
+                                            .density = 1, .friction = 0.6, .is_static = 1};
+    for (int i = 0; i < SLEEP_CRATES; i++)
+        out->bodies[out->count++] = (stab_body){.shape = STAB_BOX, .x = (i / SLEEP_STACK - 0.5 * (cols - 1)) * SLEEP_PITCH,
+                                                .y = -16.5 - (i % SLEEP_STACK) * 33.0, .w = 32, .h = 32,
+                                                .density = 1, .friction = 0.6};
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene = NULL;
+    int steps = 0; /* 0: the scene's own count */
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc)
+            scene = argv[++i];
+        else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc && atoi(argv[i + 1]) > 0)
+            steps = atoi(argv[++i]);
+        else
+            scene = NULL, i = argc;
+    }
+    if (!scene) {
+        fprintf(stderr, "usage: bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N]\n"
+                        "  run under valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no\n"
+                        "  (tests/bench/instr/report.py does)\n");
+        return 2;
+    }
+
+    measure m = {0};
+    stab_scene s;
+    if (strcmp(scene, "pyramid20") == 0) {
+        steps = steps ? steps : 60;
+        if (stab_scene_build(stab_scene_find("pyramid20"), &s) != 0)
+            die("could not build pyramid20");
+        run_stab(&s, 0, 60, steps, &m);
+        stab_scene_free(&s);
+    } else if (strcmp(scene, "rain500") == 0) {
+        steps = steps ? steps : 300; /* from the drop, as bench_cost: falling, landing, piling up */
+        if (cost_rain_build(500, &s) != 0)
+            die("could not build rain500");
+        run_stab(&s, 0, 0, steps, &m);
+        stab_scene_free(&s);
+    } else if (strcmp(scene, "destruction") == 0) {
+        steps = steps ? steps : 120;
+        run_destruction(120, steps, &m);
+    } else if (strcmp(scene, "sleep1000") == 0) {
+        steps = steps ? steps : 60;
+        if (sleep_scene_build(&s) != 0)
+            die("could not build sleep1000");
+        run_stab(&s, 1, 1200, steps, &m);
+        stab_scene_free(&s);
+    } else {
+        fprintf(stderr, "bench_instr: unknown scene %s\n", scene);
+        return 2;
+    }
+    printf("instr scene=%s steps=%d awake_sum=%lld contacts_sum=%lld\n", scene, steps, m.awake, m.contacts);
+    return 0;
+}
