@@ -6,7 +6,6 @@
 #include "world.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* A carried point whose bodies have pulled it this far apart no longer touches, px. Nearer, it stays: ODE
@@ -15,13 +14,6 @@
 
 static uint32_t slot_of(pp_body b) { return handle_slot(b.id); }
 
-static uint64_t key_of(uint32_t a, uint32_t b) { return (uint64_t)a << 32 | b; }
-
-static int key_cmp(const void *x, const void *y)
-{
-    const uint64_t p = ((const carried_key *)x)->slots, q = ((const carried_key *)y)->slots;
-    return p < q ? -1 : p > q; /* keys are unique: a pair is found once a substep */
-}
 
 /* A pair is carried only while no point of one body moves more than CARRY_MOTION_PX against the other in a
  * step, px, and neither turns more than CARRY_TURN_RAD: a resting pair. Its contacts then stay within that of
@@ -78,24 +70,15 @@ static bool sits_out(const world *wd, const body *bd)
     return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->islands.substep_serial);
 }
 
-/* The pair carried for these slots among the first n sorted keys, or NULL. (A loop, not bsearch: it runs for
- * every broadphase pair of every substep.) */
+/* The pair carried for these slots among the first n indexed, or NULL. */
 static carried_pair *find_pair(carry *c, int32_t n, uint32_t a, uint32_t b)
 {
-    const uint64_t want = key_of(a, b);
-    int32_t lo = 0, hi = n;
-    while (lo < hi) {
-        const int32_t mid = lo + (hi - lo) / 2;
-        if (c->by_slots[mid].slots < want)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < n && c->by_slots[lo].slots == want ? &c->pairs[c->by_slots[lo].pair] : NULL;
+    const int32_t i = pair_map_get(&c->by_slots, pair_key(a, b));
+    return i >= 0 && i < n ? &c->pairs[i] : NULL;
 }
 
-/* Drop the pairs carried no further than before substep k and sort the rest's keys (unless the pairs and
- * their keys are as they were). */
+/* Drop the pairs carried no further than before substep k and index the rest (unless the pairs and their index
+ * are as they were). */
 static void keep_from(carry *c, int32_t k, bool added)
 {
     int32_t n = 0;
@@ -110,13 +93,14 @@ static void keep_from(carry *c, int32_t k, bool added)
 
 bool carry_index(carry *c)
 {
-    for (int32_t i = 0; i < c->pair_count; i++)
-        c->by_slots[i] = (carried_key){key_of(c->pairs[i].a, c->pairs[i].b), i};
-    if (c->pair_count > 0)
-        qsort(c->by_slots, (size_t)c->pair_count, sizeof *c->by_slots, key_cmp);
-    for (int32_t i = 1; i < c->pair_count; i++)
-        if (c->by_slots[i].slots == c->by_slots[i - 1].slots)
+    PP_ASSERT(2 * c->pair_count <= c->by_slots.capacity || c->pair_count == 0);
+    pair_map_clear(&c->by_slots);
+    for (int32_t i = 0; i < c->pair_count; i++) {
+        const uint64_t key = pair_key(c->pairs[i].a, c->pairs[i].b);
+        if (pair_map_get(&c->by_slots, key) >= 0)
             return false;
+        pair_map_set(&c->by_slots, key, i);
+    }
     return true;
 }
 
@@ -147,7 +131,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         return PP_OK;
     if (!ARRAY_RESERVE(c->contacts, c->contact_capacity, c->contact_count + n) ||
         !ARRAY_RESERVE(c->pairs, c->pair_capacity, c->pair_count + n) ||
-        !ARRAY_RESERVE(c->by_slots, c->by_slots_capacity, c->pair_count + n))
+        !pair_map_reserve(&c->by_slots, c->pair_count + n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
     for (int32_t i = 0, end; i < n; i = end) {
         const pp_contact *ct = &wd->contacts[i];
@@ -389,7 +373,7 @@ void carry_free(carry *c)
     pp_free(c->struck);
     pp_free(c->contacts);
     pp_free(c->pairs);
-    pp_free(c->by_slots);
+    pair_map_free(&c->by_slots);
     pp_free(c->saved_pairs);
     pp_free(c->saved_contacts);
 }

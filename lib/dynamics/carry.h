@@ -16,6 +16,7 @@
 #define PP_CARRY_H
 
 #include "math2d.h"
+#include "pair_map.h"
 #include "physpix.h"
 
 #include <stdbool.h>
@@ -41,18 +42,12 @@ typedef struct carried_pair {
     bool stack;                  /* its bodies sat that substep out: bound CARRY_STACK_PX, else CARRY_MOTION_PX */
 } carried_pair;
 
-typedef struct carried_key {
-    uint64_t slots;              /* a << 32 | b */
-    int32_t pair;                /* in carry.pairs */
-} carried_key;
-
 typedef struct carry {
     carried_contact *contacts;
     int32_t contact_count, contact_capacity;
     carried_pair *pairs;         /* in the order the first substep found them */
     int32_t pair_count, pair_capacity;
-    carried_key *by_slots;       /* the pairs sorted by their slots, for carry_claim */
-    int32_t by_slots_capacity;
+    pair_map by_slots;           /* a pair's slots → its place in pairs, for carry_claim */
     carried_contact *saved_contacts; /* the held pairs as the step found them, put back if it fails */
     carried_pair *saved_pairs;
     int32_t saved_contact_count, saved_contact_capacity, saved_pair_count, saved_pair_capacity;
@@ -83,7 +78,8 @@ void carry_end_step(struct world *wd);
 /* Before a step changes the held pairs, a copy; carry_restore puts it back (cannot fail). */
 pp_status carry_save(struct world *wd);
 void carry_restore(struct world *wd);
-/* Sort the pairs' keys (carry_claim finds a pair by its slots); false if two pairs have the same slots. */
+/* Index the pairs by their slots (carry_claim finds a pair by them), room reserved for pair_count; false if two
+ * pairs have the same slots. */
 bool carry_index(carry *c);
 /* Drop the held pairs of the body in this slot: its pixels, type or existence changed outside a step. */
 void carry_forget(struct world *wd, uint32_t slot);

@@ -14,83 +14,23 @@
  * direction: a body landing on it from above, not one entering from below or the side. */
 #define ONE_WAY_COS 0.5
 
-#define HASH_MIN 64
+static uint64_t key_of(const contact_record *r) { return pair_key(handle_slot(r->a), handle_slot(r->b)); }
 
-static uint64_t key_of_slots(uint32_t sa, uint32_t sb) { return (uint64_t)sa << 32 | sb; }
+static int32_t lookup(const contact_table *t, uint64_t key) { return pair_map_get(&t->index, key); }
 
-static uint64_t key_of(const contact_record *r) { return key_of_slots(handle_slot(r->a), handle_slot(r->b)); }
-
-/* Fibonacci hashing: the key's high product bits, spread over the table. */
-static int32_t home_of(uint64_t key, int32_t capacity)
+static void index_rebuild(contact_table *t)
 {
-    return (int32_t)((key * 0x9e3779b97f4a7c15ull) >> 32) & (capacity - 1);
-}
-
-/* ---- the hash: key → record index ------------------------------------------------------------------ */
-
-static int32_t hash_slot_of(const contact_table *t, uint64_t key)
-{
-    const int32_t mask = t->hash_capacity - 1;
-    for (int32_t h = home_of(key, t->hash_capacity);; h = (h + 1) & mask)
-        if (t->hash[h].rec < 0 || t->hash[h].key == key)
-            return h;
-}
-
-static int32_t lookup(const contact_table *t, uint64_t key)
-{
-    return t->hash_capacity ? t->hash[hash_slot_of(t, key)].rec : -1;
-}
-
-/* Point the key (present or not) at record `rec`; room was reserved. */
-static void hash_set(contact_table *t, uint64_t key, int32_t rec)
-{
-    contact_key *k = &t->hash[hash_slot_of(t, key)];
-    k->key = key, k->rec = rec;
-}
-
-/* Take the key out, shifting back the keys after it that probed past its slot, so no tombstone is left. */
-static void hash_remove(contact_table *t, uint64_t key)
-{
-    const int32_t mask = t->hash_capacity - 1;
-    int32_t hole = hash_slot_of(t, key);
-    PP_ASSERT(t->hash[hole].rec >= 0);
-    for (int32_t h = (hole + 1) & mask; t->hash[h].rec >= 0; h = (h + 1) & mask) {
-        const int32_t home = home_of(t->hash[h].key, t->hash_capacity);
-        /* It may fill the hole unless its home lies cyclically in (hole, h]. */
-        const bool stays = hole <= h ? (home > hole && home <= h) : (home > hole || home <= h);
-        if (!stays) {
-            t->hash[hole] = t->hash[h];
-            hole = h;
-        }
-    }
-    t->hash[hole].rec = -1;
-}
-
-static void hash_rebuild(contact_table *t)
-{
-    for (int32_t h = 0; h < t->hash_capacity; h++)
-        t->hash[h].rec = -1;
+    pair_map_clear(&t->index);
     for (int32_t i = 0; i < t->count; i++)
         if (!(t->records[i].flags & CT_GONE))
-            hash_set(t, key_of(&t->records[i]), i);
+            pair_map_set(&t->index, key_of(&t->records[i]), i);
 }
 
-/* Room for n records, and a hash at most half full of them. */
+/* Room for n records and their keys. */
 static pp_status reserve(contact_table *t, int32_t n, const char *fn)
 {
-    if (!ARRAY_RESERVE(t->records, t->capacity, n))
+    if (!ARRAY_RESERVE(t->records, t->capacity, n) || !pair_map_reserve(&t->index, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", fn, (int)n);
-    if ((int64_t)2 * n <= t->hash_capacity)
-        return PP_OK;
-    int32_t cap = HASH_MIN;
-    while (cap < 2 * n)
-        cap *= 2;
-    contact_key *h = pp_calloc((size_t)cap, sizeof *h);
-    if (!h)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d touching pairs", fn, (int)n);
-    pp_free(t->hash);
-    t->hash = h, t->hash_capacity = cap;
-    hash_rebuild(t);
     return PP_OK;
 }
 
@@ -117,7 +57,7 @@ static void move(contact_table *t, int32_t from, int32_t to)
 {
     *edit(t, to) = t->records[from];
     if (!(t->records[to].flags & CT_GONE))
-        hash_set(t, key_of(&t->records[to]), to);
+        pair_map_set(&t->index, key_of(&t->records[to]), to);
 }
 
 static void swap(contact_table *t, int32_t i, int32_t j)
@@ -128,7 +68,7 @@ static void swap(contact_table *t, int32_t i, int32_t j)
     move(t, j, i);
     *edit(t, j) = ri;
     if (!(ri.flags & CT_GONE))
-        hash_set(t, key_of(&ri), j);
+        pair_map_set(&t->index, key_of(&ri), j);
 }
 
 /* A resting record into the awake part; returns where it is now. */
@@ -150,7 +90,7 @@ static void remove_record(contact_table *t, int32_t i)
 {
     PP_ASSERT(i < t->awake);
     if (!(t->records[i].flags & CT_GONE))
-        hash_remove(t, key_of(&t->records[i]));
+        pair_map_remove(&t->index, key_of(&t->records[i]));
     const int32_t last_awake = t->awake - 1, last = t->count - 1;
     if (i != last_awake)
         move(t, last_awake, i);
@@ -162,20 +102,20 @@ static void remove_record(contact_table *t, int32_t i)
 /* A new record into the awake part (room reserved): the first resting record moves to the end. */
 static int32_t insert_record(contact_table *t, const contact_record *rec)
 {
-    PP_ASSERT(t->count < t->capacity && 2 * (t->count + 1) <= t->hash_capacity);
+    PP_ASSERT(t->count < t->capacity && 2 * (t->count + 1) <= t->index.capacity);
     if (t->awake < t->count)
         move(t, t->awake, t->count);
     const int32_t i = t->awake++;
     t->count++;
     *edit(t, i) = *rec;
-    hash_set(t, key_of(rec), i);
+    pair_map_set(&t->index, key_of(rec), i);
     return i;
 }
 
 const contact_record *contact_table_find(const world *wd, uint64_t x, uint64_t y)
 {
     const uint32_t sx = handle_slot(x), sy = handle_slot(y);
-    const int32_t i = lookup(&wd->table, sx < sy ? key_of_slots(sx, sy) : key_of_slots(sy, sx));
+    const int32_t i = lookup(&wd->table, sx < sy ? pair_key(sx, sy) : pair_key(sy, sx));
     if (i < 0)
         return NULL;
     const contact_record *r = &wd->table.records[i];
@@ -199,12 +139,19 @@ static void relative_pose(const body *a, const body *b, double out[3])
 dvec2 contact_anchor_slip(const contact_record *t, const body *a, const body *b, dvec2 p)
 {
     const dvec2 x = dv_unrot(dv_sub(p, b->pos), b->cos_a, b->sin_a); /* the point in b's bitmap frame */
-    const dvec2 then = dv_add(dv(t->anchor[0], t->anchor[1]), dv_rot(x, cos(t->anchor[2]), sin(t->anchor[2])));
+    const dvec2 then = dv_add(dv(t->anchor[0], t->anchor[1]), dv_rot(x, t->anchor_cos, t->anchor_sin));
     return dv_sub(p, dv_add(a->pos, dv_rot(then, a->cos_a, a->sin_a)));
 }
 
+static void anchor_turn(contact_record *t)
+{
+    t->anchor_cos = cos(t->anchor[2]);
+    t->anchor_sin = sin(t->anchor[2]);
+}
+
 /* Keep the old anchor while every contact point is within ANCHOR_SLIP_PX of it and the pair has not turned. */
-static void set_anchor(const contact_record *old, const body *a, const body *b, const np_result *r, double out[3])
+static void set_anchor(const contact_record *old, const body *a, const body *b, const np_result *r,
+                       contact_record *out)
 {
     double now[3];
     relative_pose(a, b, now);
@@ -213,7 +160,13 @@ static void set_anchor(const contact_record *old, const body *a, const body *b, 
         const dvec2 slip = contact_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y));
         keep = dv_dot(slip, slip) <= ANCHOR_SLIP_PX * ANCHOR_SLIP_PX;
     }
-    memcpy(out, keep ? old->anchor : now, sizeof now);
+    if (keep) {
+        memcpy(out->anchor, old->anchor, sizeof now);
+        out->anchor_cos = old->anchor_cos, out->anchor_sin = old->anchor_sin;
+    } else {
+        memcpy(out->anchor, now, sizeof now);
+        anchor_turn(out);
+    }
 }
 
 /* ---- a substep's pass ------------------------------------------------------------------------------ */
@@ -261,7 +214,7 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
         return PP_OK;
     }
     contact_table *t = &wd->table;
-    int32_t i = lookup(t, key_of_slots(a->index, b->index));
+    int32_t i = lookup(t, pair_key(a->index, b->index));
     PP_ASSERT(i < 0 || (t->records[i].a == a->handle.id && t->records[i].b == b->handle.id));
     /* Room for the record and its event first: a failure changes nothing. */
     pp_status st = world_reserve_events(wd, 1, fn);
@@ -274,12 +227,12 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
         if (i >= t->awake)
             i = wake_record(t, i); /* a sleeper an awake body roused */
         const contact_record *old = &t->records[i];
-        set_anchor(old, a, b, r, rec.anchor);
+        set_anchor(old, a, b, r, &rec);
         rec.flags = old->flags & ~(uint32_t)CT_UNANCHORED;
         rec.point_count = old->point_count;
         memcpy(rec.points, old->points, sizeof rec.points);
     } else {
-        set_anchor(NULL, a, b, r, rec.anchor);
+        set_anchor(NULL, a, b, r, &rec);
         if (!sensor && one_way && one_way_passes(a, b, r))
             rec.flags |= CT_PASSING;
     }
@@ -369,7 +322,7 @@ void contact_table_store(world *wd)
             end++;
         if (contact_span(wd, c) == SPAN_SKIP)
             continue; /* it sat the substep out: its last solve stands */
-        const int32_t k = lookup(t, key_of_slots(handle_slot(c->a.id), handle_slot(c->b.id)));
+        const int32_t k = lookup(t, pair_key(handle_slot(c->a.id), handle_slot(c->b.id)));
         PP_ASSERT(k >= 0); /* every contact's pair was found */
         if (k < 0)
             continue;
@@ -394,7 +347,7 @@ void contact_table_body_removed(world *wd, uint64_t id)
         contact_record *r = &t->records[i];
         if ((r->a != id && r->b != id) || (r->flags & CT_GONE))
             continue;
-        hash_remove(t, key_of(r));
+        pair_map_remove(&t->index, key_of(r));
         r->flags |= CT_GONE;
         r->point_count = 0;
         t->gone++;
@@ -412,6 +365,7 @@ pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn
     if (st)
         return st;
     contact_record r = *rec;
+    anchor_turn(&r);
     r.found = t->substep - 1; /* not found at the last substep: a resting pair lists its own points */
     insert_record(t, &r);
     return PP_OK;
@@ -443,7 +397,7 @@ void contact_table_restore(world *wd)
     for (int32_t k = 0; k < t->log_count; k++)
         t->records[t->log_at[k]] = t->log[k];
     t->count = t->saved_count, t->awake = t->saved_awake, t->gone = t->saved_gone, t->substep = t->saved_substep;
-    hash_rebuild(t); /* the hash held at least this many: no room to find */
+    index_rebuild(t); /* it held at least this many: no room to find */
     contact_table_commit(wd);
 }
 
@@ -460,7 +414,7 @@ void contact_table_validate(const world *wd)
 #ifdef PP_CHECKS
     const contact_table *t = &wd->table;
     PP_ASSERT(0 <= t->awake && t->awake <= t->count && t->count <= t->capacity);
-    PP_ASSERT(t->count == 0 || 2 * t->count <= t->hash_capacity);
+    PP_ASSERT(t->count == 0 || 2 * t->count <= t->index.capacity);
     int32_t keyed = 0;
     for (int32_t i = 0; i < t->count; i++) {
         const contact_record *r = &t->records[i];
@@ -479,10 +433,7 @@ void contact_table_validate(const world *wd)
         PP_ASSERT(i < t->awake || t->resting_stale ||
                   (!wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake));
     }
-    int32_t hashed = 0;
-    for (int32_t h = 0; h < t->hash_capacity; h++)
-        hashed += t->hash[h].rec >= 0;
-    PP_ASSERT(hashed == keyed);
+    PP_ASSERT(pair_map_count(&t->index) == keyed);
 #else
     (void)wd;
 #endif
@@ -491,7 +442,7 @@ void contact_table_validate(const world *wd)
 void contact_table_free(contact_table *t)
 {
     pp_free(t->records);
-    pp_free(t->hash);
+    pair_map_free(&t->index);
     pp_free(t->log);
     pp_free(t->log_at);
     pp_free(t->logged);

@@ -13,6 +13,7 @@
 
 #include "math2d.h"
 #include "narrowphase.h"
+#include "pair_map.h"
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -37,23 +38,16 @@ typedef struct contact_record {
     uint32_t flags;        /* CT_* */
     uint32_t found;        /* the substep (contact_table.substep) the narrowphase last found the pair in */
     double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
+    double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it */
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
     int32_t reserved;
     pp_contact points[PP_MAX_CONTACTS_PER_PAIR];
 } contact_record;
 
-/* A slot of the hash: the pair's key (a's slot << 32 | b's slot) and its record, or rec −1 when empty. */
-typedef struct contact_key {
-    uint64_t key;
-    int32_t rec;
-    int32_t reserved;
-} contact_key;
-
 typedef struct contact_table {
     contact_record *records; /* [0, awake): a body awake at the last substep; [awake, count): resting */
     int32_t count, awake, capacity;
-    contact_key *hash;       /* open addressing, linear probing; a power of two, at least twice count */
-    int32_t hash_capacity;
+    pair_map index;          /* the pair's slots → its record (not the gone ones) */
     uint32_t substep;        /* counts the substeps that looked for pairs */
     int32_t found_count;     /* pairs found in this one */
     bool resting_stale;      /* a body entered the awake set: resting pairs with an awake body are tested again */

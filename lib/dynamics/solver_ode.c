@@ -233,8 +233,6 @@ pp_status solver_reserve_contacts(pp_solver *s, int32_t n)
 {
     if (!ARRAY_RESERVE(s->feedback, s->feedback_capacity, n) || !ARRAY_RESERVE(s->pending, s->pending_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contact impulses", (int)n);
-    if (n > 0) /* a joint ODE leaves out of its step (all its bodies asleep) applied nothing */
-        memset(s->feedback, 0, (size_t)n * sizeof *s->feedback);
     return PP_OK;
 }
 
@@ -286,6 +284,9 @@ static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)
     ct.geom.depth = c->depth * s->inv_ppm;
     dJointID j = dJointCreateContact(s->world, s->contacts, &ct);
     dJointAttach(j, c->a ? (dBodyID)c->a->body : 0, c->b ? (dBodyID)c->b->body : 0);
+    /* A joint ODE leaves out of its step (all its bodies asleep) writes no feedback: it applied nothing. Only f1
+     * is read (solver_contact_impulse). */
+    memset(s->feedback[k].f1, 0, sizeof s->feedback[k].f1);
     dJointSetFeedback(j, &s->feedback[k]);
 }
 
@@ -532,6 +533,9 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
             if (p->c.twice == (twice == 1))
                 attach_contact(s, &p->c, p->k);
         }
+    for (int32_t n = 0; n < s->pending_count; n++) /* not attached: it applied nothing */
+        if (!stepped[s->pending[n].c.twice])
+            memset(s->feedback[s->pending[n].k].f1, 0, sizeof s->feedback[s->pending[n].k].f1);
     s->pending_count = 0;
 }
 

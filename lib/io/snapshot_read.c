@@ -400,7 +400,7 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
         return json_fail(c, PP_ERR_FORMAT, "held", NULL, "expected none in a world of one substep");
     carry *cy = &wd->carry;
     if (!ARRAY_RESERVE(cy->pairs, cy->pair_capacity, n) ||
-        !ARRAY_RESERVE(cy->by_slots, cy->by_slots_capacity, n))
+        !pair_map_reserve(&cy->by_slots, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
     char where[32];
     int32_t i = 0;
