@@ -1,6 +1,7 @@
 /* Edit latency: a 32 px crater in a 4096×2048 terrain with 200 boxes resting on it. Times the
  * erase call itself and the step after it against a step without an edit; median and 99th
- * percentile over the craters, printed and written as CSV.
+ * percentile over the craters, printed and written as CSV. Then one pp_world_erase_circle over n one-pixel
+ * bodies (debris), before any step: its time a body should not grow with n.
  *
  *   bench_edit [--csv PATH] [--craters N]
  */
@@ -22,6 +23,32 @@ static void check(pp_status st, const char *what)
         fprintf(stderr, "bench_edit: %s: %s (%s)\n", what, pp_status_name(st), pp_last_error());
         exit(1);
     }
+}
+
+/* One pp_world_erase_circle that empties side² one-pixel bodies 2 px apart, ms. */
+static double erase_debris(int side)
+{
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU;
+    pp_world w;
+    check(pp_world_create(&wd, &w), "pp_world_create");
+    uint8_t one = 1;
+    for (int j = 0; j < side; j++)
+        for (int i = 0; i < side; i++) {
+            pp_body_def d = pp_body_def_default();
+            d.position = (pp_vec2){2.0f * i, 2.0f * j};
+            d.width = d.height = 1, d.mask = &one;
+            pp_body b;
+            check(pp_body_create(w, &d, &b), "debris");
+        }
+    int32_t changed = 0;
+    const double t0 = bench_clock_ms();
+    check(pp_world_erase_circle(w, (pp_vec2){(float)side, (float)side}, 2.0f * side, &changed), "erase the debris");
+    const double ms = bench_clock_ms() - t0;
+    if (changed != side * side)
+        check(PP_ERR_INVALID_ARGUMENT, "the erase missed debris");
+    check(pp_world_destroy(w), "pp_world_destroy");
+    return ms;
 }
 
 static double pct(double *v, int n, double p)
@@ -97,6 +124,16 @@ int main(int argc, char **argv)
     printf("%-26s %10.4f %10.4f\n", "step after an edit", a50, a99);
     printf("%-26s %10.4f %10.4f\n", "step without an edit", p50, p99);
     printf("pixels erased per crater: %.0f\n", (double)erased / craters);
+    enum { DEBRIS_SIZES = 3 };
+    const int sides[DEBRIS_SIZES] = {64, 128, 256};
+    double debris_ms[DEBRIS_SIZES];
+    printf("\none erase emptying n one-pixel bodies (before any step)\n%-26s %10s %14s\n", "bodies", "ms",
+           "us per body");
+    for (int i = 0; i < DEBRIS_SIZES; i++) {
+        debris_ms[i] = erase_debris(sides[i]);
+        printf("%-26d %10.3f %14.3f\n", sides[i] * sides[i], debris_ms[i],
+               1e3 * debris_ms[i] / (sides[i] * sides[i]));
+    }
     if (csv_path) {
         FILE *f = fopen(csv_path, "w");
         if (!f) {
@@ -105,6 +142,8 @@ int main(int argc, char **argv)
         }
         fprintf(f, "what,median_ms,p99_ms\nerase,%.6f,%.6f\nstep_after_edit,%.6f,%.6f\nstep_plain,%.6f,%.6f\n", e50,
                 e99, a50, a99, p50, p99);
+        for (int i = 0; i < DEBRIS_SIZES; i++) /* one run each: median and p99 are that run */
+            fprintf(f, "erase_debris_%d,%.6f,%.6f\n", sides[i] * sides[i], debris_ms[i], debris_ms[i]);
         fclose(f);
         printf("wrote %s\n", csv_path);
     }
