@@ -27,10 +27,11 @@ bool pair_map_reserve(pair_map *m, int32_t n)
     int32_t cap = PAIR_MAP_MIN;
     while (cap < 2 * n)
         cap *= 2;
-    pair_map grown = {pp_malloc((size_t)cap * sizeof *grown.slots), cap};
+    pair_map grown = {pp_malloc((size_t)cap * sizeof *grown.slots), cap, 0};
     if (!grown.slots)
         return false;
-    pair_map_clear(&grown);
+    for (int32_t h = 0; h < cap; h++)
+        grown.slots[h].value = -1;
     for (int32_t h = 0; h < m->capacity; h++)
         if (m->slots[h].value >= 0)
             pair_map_set(&grown, m->slots[h].key, m->slots[h].value);
@@ -45,6 +46,8 @@ void pair_map_set(pair_map *m, uint64_t key, int32_t value)
 {
     PP_ASSERT(m->capacity > 0 && value >= 0);
     pair_map_entry *e = &m->slots[slot_of(m, key)];
+    m->count += e->value < 0;
+    PP_ASSERT(2 * m->count <= m->capacity);
     e->key = key, e->value = value;
 }
 
@@ -63,20 +66,14 @@ void pair_map_remove(pair_map *m, uint64_t key)
         }
     }
     m->slots[hole].value = -1;
+    m->count--;
 }
 
 void pair_map_clear(pair_map *m)
 {
-    for (int32_t h = 0; h < m->capacity; h++)
+    for (int32_t h = 0; m->count > 0 && h < m->capacity; h++)
         m->slots[h].value = -1;
-}
-
-int32_t pair_map_count(const pair_map *m)
-{
-    int32_t n = 0;
-    for (int32_t h = 0; h < m->capacity; h++)
-        n += m->slots[h].value >= 0;
-    return n;
+    m->count = 0;
 }
 
 void pair_map_free(pair_map *m)

@@ -16,6 +16,7 @@ typedef struct pair_map_entry {
 typedef struct pair_map {
     pair_map_entry *slots;   /* a power of two of them, or none */
     int32_t capacity;
+    int32_t count;           /* keys held */
 } pair_map;
 
 /* The key of a pair of slots. */
@@ -29,10 +30,8 @@ int32_t pair_map_get(const pair_map *m, uint64_t key);
 void pair_map_set(pair_map *m, uint64_t key, int32_t value);
 /* Take a present key out. */
 void pair_map_remove(pair_map *m, uint64_t key);
-/* Empty it, keeping its room. */
+/* Empty it, keeping its room (free when it holds nothing). */
 void pair_map_clear(pair_map *m);
-/* Keys held (for validators: a walk of every slot). */
-int32_t pair_map_count(const pair_map *m);
 void pair_map_free(pair_map *m);
 
 #endif

@@ -288,7 +288,7 @@ static bool still_held(const world *wd, const carried_pair *p, const void *step_
     return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);
 }
 
-/* Keep the pairs for which keep(…, arg) holds, in order, their contacts packed; then sort their keys. */
+/* Keep the pairs for which keep(…, arg) holds, in order, their contacts packed; then index them. */
 static void keep_pairs(world *wd, bool (*keep)(const world *, const carried_pair *, const void *), const void *arg)
 {
     carry *c = &wd->carry;
@@ -302,8 +302,10 @@ static void keep_pairs(world *wd, bool (*keep)(const world *, const carried_pair
         p.first = m, m += p.count;
         c->pairs[n++] = p;
     }
+    const bool dropped = n < c->pair_count; /* else every pair is where the index has it */
     c->pair_count = n, c->contact_count = m;
-    keep_from(c, 0, true);
+    if (dropped)
+        (void)carry_index(c); /* the pairs were unique before */
 }
 
 pp_status carry_begin(world *wd, int32_t k, double dt)

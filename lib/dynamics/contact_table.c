@@ -433,7 +433,7 @@ void contact_table_validate(const world *wd)
         PP_ASSERT(i < t->awake || t->resting_stale ||
                   (!wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake));
     }
-    PP_ASSERT(pair_map_count(&t->index) == keyed);
+    PP_ASSERT(t->index.count == keyed);
 #else
     (void)wd;
 #endif
