@@ -135,8 +135,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
     for (int32_t i = 0, end; i < n; i = end) {
         const pp_contact *ct = &wd->contacts[i];
-        for (end = i + 1; end < n && wd->contacts[end].a.id == ct->a.id && wd->contacts[end].b.id == ct->b.id;)
-            end++;
+        end = contact_pair_end(wd, i);
         const body *a = body_of(wd, ct->a), *b = body_of(wd, ct->b);
         const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
         PP_ASSERT(sa < sb); /* contacts keep the broadphase pair's order */

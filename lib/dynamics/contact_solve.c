@@ -85,9 +85,8 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
 /* The deepest of the pair's points from contact i on (a pair's points come together). */
 static double pair_deepest(const world *wd, int32_t i)
 {
-    const pp_contact *c = &wd->contacts[i];
-    double deepest = c->depth;
-    for (int32_t j = i + 1; j < wd->contact_count && wd->contacts[j].a.id == c->a.id && wd->contacts[j].b.id == c->b.id; j++)
+    double deepest = wd->contacts[i].depth;
+    for (int32_t j = i + 1, end = contact_pair_end(wd, i); j < end; j++)
         deepest = fmax(deepest, wd->contacts[j].depth);
     return deepest;
 }

@@ -317,9 +317,7 @@ void contact_table_store(world *wd)
     contact_table *t = &wd->table;
     for (int32_t i = 0, end; i < wd->contact_count; i = end) {
         const pp_contact *c = &wd->contacts[i];
-        for (end = i + 1; end < wd->contact_count && wd->contacts[end].a.id == c->a.id &&
-                          wd->contacts[end].b.id == c->b.id;)
-            end++;
+        end = contact_pair_end(wd, i);
         if (contact_span(wd, c) == SPAN_SKIP)
             continue; /* it sat the substep out: its last solve stands */
         const int32_t k = lookup(t, pair_key(handle_slot(c->a.id), handle_slot(c->b.id)));

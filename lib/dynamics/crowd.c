@@ -210,20 +210,10 @@ pp_status crowd_order(world *wd, int32_t first, int32_t n, const int32_t **order
 
 /* ---- the solver's budget ------------------------------------------------------------------------- */
 
-/* One past the last contact of the pair whose first contact is i (a pair's contacts are adjacent). */
-static int32_t pair_end(const world *wd, int32_t i)
-{
-    int32_t j = i + 1;
-    while (j < wd->contact_count && wd->contacts[j].a.id == wd->contacts[i].a.id &&
-           wd->contacts[j].b.id == wd->contacts[i].b.id)
-        j++;
-    return j;
-}
-
 static float pair_depth(const world *wd, int32_t i)
 {
     float d = wd->contacts[i].depth;
-    for (int32_t j = i + 1, end = pair_end(wd, i); j < end; j++)
+    for (int32_t j = i + 1, end = contact_pair_end(wd, i); j < end; j++)
         d = wd->contacts[j].depth > d ? wd->contacts[j].depth : d;
     return d;
 }
@@ -257,20 +247,20 @@ pp_status crowd_limit_contacts(world *wd)
     /* Only the slots of this substep's pairs are counted, so a large world pays for its contacts alone. */
     for (int32_t i = 0; i < wd->contact_count; i++)
         reset_slot(wd, slot_a(&wd->contacts[i])), reset_slot(wd, slot_b(&wd->contacts[i]));
-    for (int32_t i = 0; i < wd->contact_count; i = pair_end(wd, i)) {
+    for (int32_t i = 0; i < wd->contact_count; i = contact_pair_end(wd, i)) {
         const pp_contact *ct = &wd->contacts[i];
         crowd_slot *a = &c->slots[slot_a(ct)], *b = &c->slots[slot_b(ct)];
         a->pairs++, b->pairs++;
         a->overlap += ct->pixel_count, b->overlap += ct->pixel_count;
     }
     int32_t lists = 0;
-    for (int32_t i = 0; i < wd->contact_count; i = pair_end(wd, i))
+    for (int32_t i = 0; i < wd->contact_count; i = contact_pair_end(wd, i))
         lists += both_crowded(wd, i);
     if (lists == 0)
         return PP_OK;
     if ((st = reserve_lists(c, 2 * (int64_t)lists < wd->body_ids.live ? 2 * lists : wd->body_ids.live))) /* bodies with a list */
         return st;
-    for (int32_t i = 0; i < wd->contact_count; i = pair_end(wd, i)) {
+    for (int32_t i = 0; i < wd->contact_count; i = contact_pair_end(wd, i)) {
         if (!both_crowded(wd, i))
             continue;
         for (int e = 0; e < 2; e++) {
@@ -282,7 +272,7 @@ pp_status crowd_limit_contacts(world *wd)
     /* Compact in place: a pair's contacts only move down, over pairs already decided. */
     int32_t n = 0;
     for (int32_t i = 0, end; i < wd->contact_count; i = end) {
-        end = pair_end(wd, i);
+        end = contact_pair_end(wd, i);
         if (both_crowded(wd, i) && !among_best(wd, slot_a(&wd->contacts[i]), i) &&
             !among_best(wd, slot_b(&wd->contacts[i]), i))
             continue;

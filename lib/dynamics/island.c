@@ -92,7 +92,7 @@ static pp_status collect_nodes(world *wd)
     is->node_count = 0;
     for (int32_t k = 0; k < wd->awake.count; k++)
         add_node(wd, wd->bodies[wd->awake.slots[k]]);
-    for (int32_t k = 0; k < wd->contact_count; k++) {
+    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         add_node(wd, body_of(wd, wd->contacts[k].a));
         add_node(wd, body_of(wd, wd->contacts[k].b));
     }
@@ -131,7 +131,7 @@ static void set_spans(world *wd, substep_pairing pairing)
         if (node)
             flags[world_group_root(parent, (int32_t)node->index)] |= ROOT_EVERY_SUBSTEP;
     }
-    for (int32_t k = 0; k < wd->contact_count; k++) {
+    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
             fmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * fmin(a->mass.mass, b->mass.mass))
@@ -220,9 +220,11 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
         rows[i] = bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
         dynamic[i] = bd->type == PP_BODY_DYNAMIC;
     }
-    for (int32_t k = 0; k < wd->contact_count; k++)
+    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
+        end = contact_pair_end(wd, k);
         join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
-                    ROWS_PER_CONTACT);
+                    ROWS_PER_CONTACT * (end - k));
+    }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
@@ -287,7 +289,7 @@ bool island_sleep(world *wd, double h)
     int32_t *parent = wd->islands.group, *restless = wd->islands.group + wd->islands.group_capacity;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         parent[wd->islands.nodes[n]] = wd->islands.nodes[n], restless[wd->islands.nodes[n]] = 0;
-    for (int32_t k = 0; k < wd->contact_count; k++) {
+    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);

@@ -95,7 +95,7 @@ pp_status step_save(world *wd)
 
 void step_save_contact_bodies(world *wd)
 {
-    for (int32_t k = 0; k < wd->contact_count; k++) {
+    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
         save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
     }

@@ -221,6 +221,17 @@ body *body_lookup_out(pp_world w, pp_body b, const char *fn, const void *out, co
         return st;                                                                                               \
     }
 
+/* One past the last of the substep's contacts of the pair whose first contact is i: a pair's contacts are
+ * adjacent in wd->contacts, so passes that need a pair once walk it pair by pair. */
+static inline int32_t contact_pair_end(const world *wd, int32_t i)
+{
+    int32_t j = i + 1;
+    while (j < wd->contact_count && wd->contacts[j].a.id == wd->contacts[i].a.id &&
+           wd->contacts[j].b.id == wd->contacts[i].b.id)
+        j++;
+    return j;
+}
+
 /* A point or vector as the ABI gives it, px. */
 static inline pp_vec2 vec2_of(dvec2 v) { return (pp_vec2){(float)v.x, (float)v.y}; }
 
