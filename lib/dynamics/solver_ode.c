@@ -10,6 +10,8 @@
 #include <ode/ode.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +30,8 @@ struct pp_solver {
     int32_t feedback_capacity;
     pending_contact *pending;     /* the next step's contacts, in the world's order */
     int32_t pending_count, pending_capacity;
+    solver_exact_state *exact_from; /* the exact islands' bodies before dWorldStep, should it give up */
+    int32_t exact_from_capacity;
 };
 
 static pthread_once_t ode_once = PTHREAD_ONCE_INIT;
@@ -35,10 +39,25 @@ static bool ode_ok;
 /* ODE's random generator is process-wide: seeding and stepping happen under one lock. */
 static pthread_mutex_t ode_step_lock = PTHREAD_MUTEX_INITIALIZER;
 static _Thread_local bool ode_thread_ready;
+static _Thread_local bool lcp_gave_up; /* ODE's exact LCP gave up during this thread's dWorldStep */
+
+/* ODE's messages (its errors and debug checks abort, and are never reached from valid input) go to the log
+ * hook, never to stderr. The one seen is d_ERR_LCP, "LCP internal error, s <= 0": dWorldStep's Dantzig LCP
+ * meeting degenerate rows; step_exact takes that island to QuickStep. */
+static void ode_message(int num, const char *msg, va_list ap)
+{
+    char text[256];
+    vsnprintf(text, sizeof text, msg, ap);
+    if (num == d_ERR_LCP)
+        lcp_gave_up = true;
+    pp_log(num == d_ERR_LCP ? 1 : 2, "physpix: ODE message %d: %s", num, text);
+}
 
 static void ode_init_once(void)
 {
     ode_ok = dInitODE2(0) && dCheckConfiguration("ODE_double_precision");
+    if (ode_ok)
+        dSetMessageHandler(ode_message);
 }
 
 /* A host that unloads the library (as a plugin) gets ODE's process-wide data back. */
@@ -98,6 +117,7 @@ void solver_destroy(pp_solver *s)
     dWorldDestroy(s->world);
     pp_free(s->feedback);
     pp_free(s->pending);
+    pp_free(s->exact_from);
     pp_free(s);
 }
 
@@ -490,6 +510,24 @@ static void set_enabled(solver_body *const *list, int32_t n, bool enabled)
             dBodyDisable((dBodyID)list[i]->body);
 }
 
+/* The exact islands by dWorldStep. Its LCP can give up on an island's rows (a woken stack of two crates, whose
+ * four contacts come in one order, did every substep) and then applies no contact force at all: the stack fell
+ * through itself. Then the islands start again from where they were and QuickStep solves them, as it does
+ * islands past exact_island_rows. */
+static int step_exact(pp_solver *s, double h, solver_body *const *list, int32_t n)
+{
+    for (int32_t i = 0; i < n; i++)
+        solver_body_save(list[i], &s->exact_from[i]);
+    lcp_gave_up = false;
+    const int ok = dWorldStep(s->world, h);
+    if (!lcp_gave_up)
+        return ok;
+    for (int32_t i = 0; i < n; i++)
+        solver_body_restore(list[i], &s->exact_from[i]);
+    pp_log(1, "physpix: the exact solver gave up on an island this substep (ODE's LCP); QuickStep solved it");
+    return dWorldQuickStep(s->world, h);
+}
+
 /* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding the other lists' bodies
  * while one list's method runs steps each island once, by its own method and time step. The exact lists
  * go first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
@@ -509,7 +547,7 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
         for (int j = 0; j < 3 && runs > 1; j++)
             if (j != i)
                 set_enabled(lists[j], counts[j], false);
-        ok &= i == 0 ? dWorldStep(s->world, h) : dWorldQuickStep(s->world, i == 2 ? 2 * h : h);
+        ok &= i == 0 ? step_exact(s, h, lists[0], counts[0]) : dWorldQuickStep(s->world, i == 2 ? 2 * h : h);
         for (int j = 0; j < 3 && runs > 1; j++)
             if (j != i)
                 set_enabled(lists[j], counts[j], true);
@@ -541,6 +579,10 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
 
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
+    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, islands->exact_count)) {
+        s->pending_count = 0; /* nothing attached: the caller undoes the step */
+        return false;
+    }
     attach_contacts(s, islands);
     if (islands->exact_count + islands->quick_count + islands->quick_two_count == 0) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
