@@ -63,7 +63,7 @@ SHARED   := $(BUILD)/libphyspix.so.$(VERSION)
 STATIC   := $(BUILD)/libphyspix.a
 PLUGIN   := $(BUILD)/libphyspix_plugin.so
 
-.PHONY: all lib print-version deps test test-c test-san test-compile test-plugin test-python test-godot test-demo test-package check-deep \
+.PHONY: all lib print-version deps test test-c test-san test-compile test-plugin test-python test-godot test-demo test-pictures test-package check-deep \
         demo bench install clean fuzz test-fuzz api check-api
 .DEFAULT_GOAL := all
 
@@ -211,6 +211,7 @@ test: deps
 	$(MAKE) test-python
 	$(MAKE) test-godot
 	$(MAKE) test-demo
+	$(MAKE) test-pictures
 	$(MAKE) test-package
 	$(MAKE) check-deep
 

@@ -244,6 +244,11 @@ def test_a_fresh_clone_builds_with_nothing_beside_it(tmp_path):
     built = ["libphyspix.so.0", "libphyspix.a", "physpix.pc", "libphyspix_plugin.so", "libphyspix_godot.so"]
     assert [b for b in built if not (clone / "build" / b).exists()] == []
     assert sorted(p.name for p in clone.parent.iterdir()) == ["physpix"], "the build wrote beside the clone"
+    # The README's first command leaves the clone as it was (-o deps: the packages and venv are this checkout's
+    # business, checked by make deps itself).
+    run(["make", "--no-print-directory", "-o", "deps", "demo"], cwd=clone, env=clean_env(), timeout=600)
+    assert run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone).stdout == "", "make demo changed the clone"
+    assert sorted(p.name for p in clone.parent.iterdir()) == ["physpix"], "the demo wrote beside the clone"
 
 
 # --- the README -----------------------------------------------------------------------------------------
