@@ -23,12 +23,12 @@ render_pictures = rm -rf $(1) && $(DEMO_BIN) --quiet --out $(1) > $(1).log 2>&1 
 
 # The simulation goes through the plugin (dlopen); libphyspix is linked for PNG in and out only.
 $(DEMO_BIN): $(DEMO_SRC) $(DEMO_HDR) $(SHARED)
-	mkdir -p $(BUILD)/demo
-	$(CC) $(PP_CFLAGS) -Idemo -O2 -g $(USER_CFLAGS) -o $@ $(DEMO_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -ldl -lm
+	$(Q)mkdir -p $(BUILD)/demo
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -Idemo -O2 -g $(USER_CFLAGS) -o $@ $(DEMO_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -ldl -lm
 
 $(DEMO_SPRITES): demo/make_sprites.c include/physpix.h $(SHARED)
-	mkdir -p $(BUILD)/demo
-	$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lm
+	$(Q)mkdir -p $(BUILD)/demo
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN/..' -lm
 
 demo-sprites: $(DEMO_SPRITES)
 	$(DEMO_SPRITES) demo
@@ -46,7 +46,7 @@ pictures: all $(DEMO_BIN)
 # Criterion, with ASan+UBSan; the renderer gives the test the sky and the debug view's cell colours.
 $(BUILD)/tests/test_demo: tests/demo/test_demo.c demo/render.c demo/render.h demo/debug_view.c demo/debug_view.h \
   $(SHARED) | $(BUILD)/tests
-	$(CC) $(PP_CFLAGS) -Idemo -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ tests/demo/test_demo.c demo/render.c \
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -Idemo -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ tests/demo/test_demo.c demo/render.c \
 	  demo/debug_view.c $(LDFLAGS) -L$(BUILD) -lphyspix \
 	  -Wl,-rpath,'$$ORIGIN/..' -lcriterion -lm
 
@@ -59,7 +59,7 @@ test-demo: all $(DEMO_BIN) $(BUILD)/tests/test_demo
 	$(call run_san,$(BUILD)/tests/test_demo,$(BUILD)/tests/demo.log)
 
 $(BUILD)/tests/test_pictures: tests/demo/test_pictures.c include/physpix.h $(SHARED) | $(BUILD)/tests
-	$(CC) $(PP_CFLAGS) -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ $< $(LDFLAGS) -L$(BUILD) -lphyspix \
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O1 -g $(SANFLAGS) $(USER_CFLAGS) -o $@ $< $(LDFLAGS) -L$(BUILD) -lphyspix \
 	  -Wl,-rpath,'$$ORIGIN/..' -lcriterion -lm
 
 test-pictures: export PP_PICTURE_COMMITTED := demo/contact_sheet.png

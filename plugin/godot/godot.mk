@@ -21,15 +21,15 @@ godot-api:
 
 # Exports only the three godot_* entry points; finds libphyspix.so.0 beside itself ($ORIGIN).
 $(GODOT_LIB): $(GODOT_SRC) $(wildcard plugin/godot/*.h) plugin/api/def_fields.h include/physpix.h $(SHARED)
-	$(CC) $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden $(USER_CFLAGS) -shared -Wl,--no-undefined \
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden $(USER_CFLAGS) -shared -Wl,--no-undefined \
 	  -o $@ $(GODOT_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN'
 
 # -L: the soname is a symlink in build/; the addon needs the file itself.
 $(GODOT_ADDON)/libphyspix_godot.so: $(GODOT_LIB) $(SHARED) $(GODOT_ADDON_SRC)
-	rm -rf $(GODOT_ADDON) && mkdir -p $(GODOT_ADDON)
-	cp $(GODOT_ADDON_SRC) $(GODOT_ADDON)/
-	cp -L $(BUILD)/$(SONAME) $(GODOT_ADDON)/
-	cp $(GODOT_LIB) $(GODOT_ADDON)/
+	$(Q)rm -rf $(GODOT_ADDON) && mkdir -p $(GODOT_ADDON)
+	$(Q)cp $(GODOT_ADDON_SRC) $(GODOT_ADDON)/
+	$(Q)cp -L $(BUILD)/$(SONAME) $(GODOT_ADDON)/
+	$(Q)cp $(GODOT_LIB) $(GODOT_ADDON)/
 
 # The example with the addon in its addons/, ready to run: godot3 --path build/godot-example (-e: the editor).
 godot-example: $(GODOT_ADDON)/libphyspix_godot.so
@@ -44,7 +44,7 @@ GODOT_ENV = env LANG=en_US.UTF-8 HOME=$(CURDIR)/$(BUILD)/godot-home XDG_CONFIG_H
   XDG_DATA_HOME=$(CURDIR)/$(BUILD)/godot-home XDG_CACHE_HOME=$(CURDIR)/$(BUILD)/godot-home
 godot-pictures: godot-example
 	cp plugin/godot/capture.gd $(BUILD)/godot-example/
-	mkdir -p $(BUILD)/godot-home
+	$(Q)mkdir -p $(BUILD)/godot-home
 	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -e --quit > $(BUILD)/godot-home/import.txt 2>&1
 	$(GODOT_ENV) timeout 300 xvfb-run -a -s "-screen 0 1024x600x24" godot3 --path $(BUILD)/godot-example --fixed-fps 60 \
 	  -s capture.gd -- $(CURDIR)/plugin/godot
@@ -52,7 +52,7 @@ godot-pictures: godot-example
 # One-off: the example's cost per physics frame in godot3-server, in real time (measure.gd).
 godot-frame-cost: godot-example
 	cp plugin/godot/measure.gd $(BUILD)/godot-example/
-	mkdir -p $(BUILD)/godot-home
+	$(Q)mkdir -p $(BUILD)/godot-home
 	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -e --quit > $(BUILD)/godot-home/import.txt 2>&1
 	$(GODOT_ENV) timeout 120 godot3-server --path $(BUILD)/godot-example -s measure.gd
 

@@ -31,7 +31,7 @@ wheel: lib venv
 	@ls $(BUILD)/wheel/*.whl
 
 $(PY_LAYOUT): tests/python/layout.c include/physpix.h | $(BUILD)/tests
-	$(CC) $(PP_CFLAGS) -O0 -o $@ $<
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O0 -o $@ $<
 
 test-python: all venv $(PY_LAYOUT)
 	PHYSPIX_LIBRARY=$(abspath $(SHARED)) PHYSPIX_LAYOUT_HELPER=$(abspath $(PY_LAYOUT)) \
