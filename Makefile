@@ -86,7 +86,7 @@ deps:
 	    echo "  apt-get install -y$$missing"; exit 1; \
 	  fi; \
 	fi
-	@$(MAKE) --no-print-directory venv
+	@$(MAKE) --no-print-directory venv wheel-tools
 
 # The shared library alone (what the Python package's build asks for).
 lib: $(SHARED)
