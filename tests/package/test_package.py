@@ -128,7 +128,7 @@ def prefix(tmp_path_factory):
     return prefix
 
 
-# The Godot addon as DESIGN.md names it, libraries beside its .gdnlib.
+# The Godot addon as plugin/godot/README.md lists it, libraries beside its .gdnlib.
 GODOT_ADDON = ["plugin.cfg", "plugin.gd", "physpix.gdnlib", "physpix_world.gdns", "physpix_world_2d.gd",
                "physpix_body_2d.gd", "libphyspix_godot.so", "libphyspix.so.0"]
 
