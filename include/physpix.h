@@ -316,11 +316,24 @@ typedef struct pp_contact {
 /// Write up to capacity contacts: the last substep's, then the sleeping pairs'; count receives the total.
 PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count);
 
-/* Events queue inside the step and are read after it with pp_world_get_events, oldest first.
+/* Events queue inside a step and inside an edit between steps (an erase, paint, pixel write or explosion
+ * that splits or empties a body or breaks a joint), and wait, across any number of steps, until
+ * pp_world_get_events reads them, oldest first; reading forgets those written, and nothing else does but the
+ * queue's cap (past PP_MAX_QUEUED_EVENTS unread, the oldest are dropped, with a log line). Read them when it
+ * suits, usually after each pp_world_step; a handle in an event may be stale by then (a piece destroyed
+ * since). Contacts, unlike events, are the last substep's and each step replaces them.
  * Splits and destruction: an edit that cuts a dynamic body (or a static one with detach_islands) into
  *   several 8-connected islands keeps the largest under the old handle and makes each other island a new
  *   body moving as its material did (v + ω × r): BODY_SPLIT. A body left without pixels is destroyed:
  *   BODY_DESTROYED.
+ * What a split piece inherits from its parent: its island's pixels (mask,
+ *   weights and sprite); the type (a static parent's piece, cut loose by detach_islands, is dynamic); the
+ *   angle; density, friction, restitution, linear and angular damping, category and mask bits,
+ *   fixed_rotation, detach_islands, bullet, is_sensor, one_way and one_way_direction, user_data, and a
+ *   dynamic piece's gravity scale. Not inherited: the pivot (the centre of the piece's own bitmap, whatever
+ *   the parent's), the velocity (the parent's material's at the piece's centre of mass: v + ω × r, and ω
+ *   itself unless fixed_rotation), forces and torques applied for the next step (they stay on the parent),
+ *   and joints (each stays on the piece that holds its anchor).
  * Contact events (opt-in: pp_world_def.contact_events or pp_world_set_contact_events, since they queue
  *   until read): each substep compares the touching pairs with those of the substep before; a new pair
  *   queues CONTACT_BEGIN, a pair gone CONTACT_END. `body` is the pair's body in the lower slot, as in

@@ -15,7 +15,7 @@
 #define JSON_MAX_EXACT_INT 9007199254740992LL
 
 /* Who is reading which file: every message starts "<fn>: '<file>': ". The PNG paths a file names are read
- * only from beneath its folder (DESIGN.md, "Files a scene or snapshot names"). */
+ * only from beneath its folder (include/physpix.h, above pp_world_load_scene). */
 typedef struct json_ctx {
     const char *fn;
     const char *file;

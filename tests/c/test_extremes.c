@@ -144,7 +144,7 @@ Test(extremes, heavy_on_light_1_to_5_stands_with_the_defaults) {
 }
 
 Test(extremes, heavy_on_light_1_to_1000_stands_with_the_defaults, .disabled = true) {
-    /* The target (DESIGN.md: "mass ratios of 1:1000 stack"); fails today, see the block comment above. */
+    /* The target (the stability bar, tests/bench/README.md: 1000:1 mass ratios stack); fails today, see the block comment above. */
     pp_world_def d = pp_world_def_default();
     assert_stack_stands(&d, "defaults", 1, 1000);
 }
@@ -798,7 +798,7 @@ Test(extremes, short_towers_stand_100000_steps_with_the_defaults, .timeout = 120
 }
 
 Test(extremes, ten_box_tower_stands_with_the_defaults, .timeout = 120) {
-    /* DESIGN.md: "a 10-box tower ... stand[s] for 60 simulated seconds". With the defaults (sleep on)
+    /* The stability bar (tests/bench/README.md): a 10-box tower stands for 60 simulated seconds. With the defaults (sleep on)
      * for 100,000 steps, and awake for 60 s, where only the solver holds it. */
     pp_world_def d = pp_world_def_default();
     const int sizes[] = {16, 32};

@@ -126,8 +126,8 @@ static void report(const char *name, sample_set *s, double *med, double *p95, do
                 name, *med, *p95, s->normal_err[s->n_normal - 1], s->n_normal, *dmed, *dp95);
 }
 
-/* DESIGN.md's accuracy bar on normals: median ≤ 0.5°, 95th percentile ≤ 2°. */
-static void assert_design_normal_bar(double med, double p95) {
+/* The accuracy bar on normals (tests/bench/README.md): median ≤ 0.5°, 95th percentile ≤ 2°. */
+static void assert_normal_bar(double med, double p95) {
     cr_assert_leq(med, 0.5, "normal error median %.3f deg > 0.5", med);
     cr_assert_leq(p95, 2.0, "normal error p95 %.3f deg > 2", p95);
 }
@@ -137,7 +137,7 @@ Test(normals, area_gradient_circle_circle) {
     double med, p95, dmed, dp95;
     run_circles(PP_NORMAL_AREA_GRADIENT, PP_CONTACT_MANIFOLD, &s);
     report("AREA_GRADIENT circle-circle (manifold)", &s, &med, &p95, &dmed, &dp95);
-    assert_design_normal_bar(med, p95);
+    assert_normal_bar(med, p95);
 }
 
 Test(normals, area_gradient_box_ground) {
@@ -145,7 +145,7 @@ Test(normals, area_gradient_box_ground) {
     double med, p95, dmed, dp95;
     run_box_ground(PP_NORMAL_AREA_GRADIENT, PP_CONTACT_MANIFOLD, &s);
     report("AREA_GRADIENT box-ground (manifold)", &s, &med, &p95, &dmed, &dp95);
-    assert_design_normal_bar(med, p95);
+    assert_normal_bar(med, p95);
 }
 
 Test(normals, circle_circle_depth_centroid) {
@@ -153,7 +153,7 @@ Test(normals, circle_circle_depth_centroid) {
     double med, p95, dmed, dp95;
     run_circles(PP_NORMAL_AREA_GRADIENT, PP_CONTACT_CENTROID, &s);
     report("AREA_GRADIENT circle-circle (centroid)", &s, &med, &p95, &dmed, &dp95);
-    assert_design_normal_bar(med, p95);
+    assert_normal_bar(med, p95);
     cr_assert_leq(dmed, 0.5, "depth error median %.3f px > 0.5 (analytic overlap %.1f px)", dmed, PEN);
     cr_assert_leq(dp95, 1.5, "depth error p95 %.3f px > 1.5 (analytic overlap %.1f px)", dp95, PEN);
 }
@@ -163,7 +163,7 @@ Test(normals, box_ground_depth_centroid) {
     double med, p95, dmed, dp95;
     run_box_ground(PP_NORMAL_AREA_GRADIENT, PP_CONTACT_CENTROID, &s);
     report("AREA_GRADIENT box-ground (centroid)", &s, &med, &p95, &dmed, &dp95);
-    assert_design_normal_bar(med, p95);
+    assert_normal_bar(med, p95);
     cr_assert_leq(dmed, 0.5, "depth error median %.3f px > 0.5 (analytic %.1f px)", dmed, PEN);
     cr_assert_leq(dp95, 1.0, "depth error p95 %.3f px > 1 (analytic %.1f px)", dp95, PEN);
 }
@@ -173,7 +173,7 @@ Test(normals, area_gradient_rotated_box_box) {
     double med, p95, dmed, dp95;
     run_box_box(PP_NORMAL_AREA_GRADIENT, PP_CONTACT_CENTROID, &s);
     report("AREA_GRADIENT rotated box-box (centroid)", &s, &med, &p95, &dmed, &dp95);
-    assert_design_normal_bar(med, p95);
+    assert_normal_bar(med, p95);
     cr_assert_leq(dmed, 1.0, "depth error median %.3f px > 1 (analytic %.1f px)", dmed, PEN);
 }
 

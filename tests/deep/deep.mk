@@ -19,17 +19,17 @@ VALGRIND_FLAGS := --tool=memcheck --leak-check=full --show-leak-kinds=definite,i
 .PHONY: check-deep check-tsan check-valgrind
 
 $(BUILD)/tsan:
-	mkdir -p $@
+	$(Q)mkdir -p $@
 
 $(BUILD)/tsan/%.o: lib/%.c
 	@mkdir -p $(@D)
-	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) $(DEPFLAGS) -c $< -o $@
+	$(call quiet,CC,$<)$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) $(DEPFLAGS) -c $< -o $@
 
 $(BUILD)/tsan/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h | $(BUILD)/tsan
-	$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
+	$(call quiet,CC,$<)$(TSAN_CC) $(PP_CFLAGS) -O1 -g -DPHYSPIX_BUILD $(TSAN_FLAGS) -c $< -o $@
 
 $(TSAN_BIN): tests/deep/tsan_worlds.c $(TSAN_OBJ) include/physpix.h
-	$(TSAN_CC) $(PP_CFLAGS) -O1 -g $(TSAN_FLAGS) -o $@ $< $(TSAN_OBJ) $(LIBS)
+	$(call quiet,LD,$@)$(TSAN_CC) $(PP_CFLAGS) -O1 -g $(TSAN_FLAGS) -o $@ $< $(TSAN_OBJ) $(LIBS)
 
 check-tsan: $(TSAN_BIN)
 	$(TSAN_RUN) $(TSAN_BIN)
@@ -42,7 +42,7 @@ $(DEEP_SCENE): demo/scene.json $(wildcard demo/*.png) tests/deep/deep.mk | $(DEE
 	grep -q '"backend": "cpu"' $@
 
 $(DEEP_OUT):
-	mkdir -p $@
+	$(Q)mkdir -p $@
 
 # valgrind's exit status is the check; the log's summary lines are a second one.
 check-valgrind: all $(DEMO_BIN) $(DEEP_SCENE)

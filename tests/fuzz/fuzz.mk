@@ -30,19 +30,19 @@ FUZZ_BAD := ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|ERROR: l
 
 $(FUZZ_DIR)/obj/%.o: lib/%.c
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link $(DEPFLAGS) -c $< -o $@
+	$(call quiet,CC,$<)$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link $(DEPFLAGS) -c $< -o $@
 
 $(FUZZ_DIR)/obj/glsl_sources.o: $(GLSL_GEN) lib/collide/gpu_context.h
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link -c $< -o $@
+	$(call quiet,CC,$<)$(FUZZ_CC) $(FUZZ_CFLAGS) -DPHYSPIX_BUILD -fsanitize=fuzzer-no-link -c $< -o $@
 
 $(FUZZ_DIR)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_HDR) $(FUZZ_OBJ)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_OBJ) $(LIBS)
+	$(call quiet,LD,$@)$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_OBJ) $(LIBS)
 
 # The seed generator (real snapshots, PNG variants): `make fuzz-seeds` rewrites tests/fuzz/corpus/.
 $(FUZZ_DIR)/make_seeds: tests/fuzz/make_seeds.c tests/fuzz/fuzz_archive.h $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(PP_CFLAGS) -O1 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O1 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
 fuzz-seeds: $(FUZZ_DIR)/make_seeds
 	$(FUZZ_DIR)/make_seeds tests/fuzz/corpus

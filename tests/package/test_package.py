@@ -128,7 +128,7 @@ def prefix(tmp_path_factory):
     return prefix
 
 
-# The Godot addon as DESIGN.md names it, libraries beside its .gdnlib.
+# The Godot addon as plugin/godot/README.md lists it, libraries beside its .gdnlib.
 GODOT_ADDON = ["plugin.cfg", "plugin.gd", "physpix.gdnlib", "physpix_world.gdns", "physpix_world_2d.gd",
                "physpix_body_2d.gd", "libphyspix_godot.so", "libphyspix.so.0"]
 
@@ -208,13 +208,45 @@ def test_pip_install_from_a_checkout_imports_anywhere(tmp_path):
     assert probe(python, elsewhere, PHYSPIX_LIBRARY=own)["path"] == own
 
 
-def test_make_wheel_carries_the_library(tmp_path):
+@pytest.fixture(scope="module")
+def wheel():
+    """The one wheel `make wheel` writes."""
     run(["make", "--no-print-directory", "wheel"], env=clean_env())
-    wheels = list((BUILD / "wheel").glob(f"physpix-{header_version()}-py3-none-linux_*.whl"))
+    wheels = list((BUILD / "wheel").glob("*.whl"))
     assert len(wheels) == 1, list((BUILD / "wheel").iterdir())
-    names = zipfile.ZipFile(wheels[0]).namelist()
+    return wheels[0]
+
+
+def test_make_wheel_is_manylinux_and_carries_its_libraries(wheel):
+    assert wheel.name == f"physpix-{header_version()}-py3-none-manylinux_2_35_x86_64.whl"
+    names = zipfile.ZipFile(wheel).namelist()
     for member in ("physpix/libphyspix.so", "physpix/py.typed", "physpix/_version.py", "physpix/LICENSE"):
         assert member in names, names
+    # auditwheel renames what it grafts (libode-<hash>.so.8...), so no system library can stand in for it.
+    bundled = sorted(re.sub(r"-[0-9a-f]{8}\.so[.0-9]*$", "", Path(n).name) for n in names
+                     if n.startswith("physpix.libs/") and not n.endswith("/"))
+    assert bundled == ["libccd", "libcjson", "libode", "libpng16"], names
+
+
+# Reads which libode files the process maps once a world has stepped.
+MAPS_PROBE = PROBE.replace("w.close()", "") + """
+maps = [line.split()[-1] for line in open("/proc/self/maps") if "libode" in line]
+print(json.dumps(sorted(set(maps))))
+"""
+
+
+def test_the_wheel_in_a_fresh_venv_maps_its_own_libode(wheel, tmp_path):
+    python = fresh_venv(tmp_path / "venv")
+    pip_install(python, str(wheel))
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    out = run([str(python), "-c", MAPS_PROBE], cwd=elsewhere, env=clean_env()).stdout.splitlines()
+    got, maps = json.loads(out[0]), json.loads(out[1])
+    site = Path(got["file"]).parent.parent
+    assert Path(got["path"]) == site / "physpix" / "libphyspix.so" and got["y"] > 0, got
+    assert maps and all(Path(m).parent == site / "physpix.libs" for m in maps), maps
+    # The system has its own libode (libode8, which the build links against); the process never maps it.
+    assert not any(m.startswith("/usr/") for m in maps), maps
 
 
 def test_pip_install_from_the_installed_prefix_bundles_its_library(prefix, tmp_path):
@@ -244,6 +276,11 @@ def test_a_fresh_clone_builds_with_nothing_beside_it(tmp_path):
     built = ["libphyspix.so.0", "libphyspix.a", "physpix.pc", "libphyspix_plugin.so", "libphyspix_godot.so"]
     assert [b for b in built if not (clone / "build" / b).exists()] == []
     assert sorted(p.name for p in clone.parent.iterdir()) == ["physpix"], "the build wrote beside the clone"
+    # The README's first command leaves the clone as it was (-o deps: the packages and venv are this checkout's
+    # business, checked by make deps itself).
+    run(["make", "--no-print-directory", "-o", "deps", "demo"], cwd=clone, env=clean_env(), timeout=600)
+    assert run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone).stdout == "", "make demo changed the clone"
+    assert sorted(p.name for p in clone.parent.iterdir()) == ["physpix"], "the demo wrote beside the clone"
 
 
 # --- the README -----------------------------------------------------------------------------------------

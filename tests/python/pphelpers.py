@@ -22,7 +22,9 @@ def raises_from_library(exc_class, words, fn, *args, **kwargs):
     e = info.value
     assert type(e) is exc_class
     assert e.status == exc_class.status
-    assert e.message == str(e) == _native.last_error(), "the exception must carry pp_last_error()'s text"
+    assert e.library_message == _native.last_error(), "the exception must carry pp_last_error()'s text"
+    # The message is the library's, naming the package's call the program made instead of the C function.
+    assert e.message == str(e) and e.call and e.message == e.call + e.library_message[len(e.function):], e.message
     assert any(w.lower() in e.message.lower() for w in words), e.message
     return e
 

@@ -180,3 +180,21 @@ def test_gpu_backend_matches_the_cpu_or_is_unsupported():
     cpu, _ = pair_contacts("cpu")
     assert used == physpix.Backend.GPU
     assert gpu == cpu
+
+
+def test_a_split_piece_inherits_what_the_header_says(world):
+    """include/physpix.h, 'What a split piece inherits': friction, restitution, gravity scale, user_data and
+    type come along; the pivot is the piece's own centre, and the velocity that of the parent's material."""
+    bar = rect(world, 200, 8, position=(300, 300), friction=0.25, restitution=0.5, user_data=77, custom_pivot=1,
+               pivot=(10.0, 4.0))
+    bar.gravity_scale = 0.5
+    bar.velocity = (30.0, 0.0)
+    bar.erase_circle((390.0, 300.0), 5)  # a 10 px piece off the right end
+    (event,) = world.events()
+    piece = event.other
+    assert event.type == "body_split" and piece.type == "dynamic"
+    assert (piece.friction, piece.restitution, piece.user_data) == (pytest.approx(0.25), pytest.approx(0.5), 77)
+    assert piece.gravity_scale == pytest.approx(0.5)
+    w, h = piece.size
+    assert piece.pivot == (w / 2, h / 2) and bar.pivot == (10.0, 4.0)
+    assert piece.velocity[0] == pytest.approx(30.0, abs=1e-3)

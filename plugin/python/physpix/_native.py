@@ -5,6 +5,7 @@ plugin/api/physpix_api.json; the friendly classes live in world.py and image.py.
 """
 import ctypes
 import os
+import sys
 from ctypes.util import find_library
 from pathlib import Path
 
@@ -63,11 +64,37 @@ def status_name(status):
     return lib.pp_status_name(status).decode("ascii", "replace")
 
 
+_PACKAGE = __name__.rpartition(".")[0]
+
+
+def python_call():
+    """The package's call the program made ("load_png", "World.step", "Body.type"): the outermost frame of this
+    package on the stack, as its qualified name (a constructor as its class); None when none is on it."""
+    frame, found = sys._getframe(1), None
+    while frame is not None:
+        module = frame.f_globals.get("__name__", "")
+        if module == _PACKAGE or module.startswith(_PACKAGE + "."):
+            found = frame
+        elif found is not None:
+            break
+        frame = frame.f_back
+    if found is None:
+        return None
+    code = found.f_code
+    name = getattr(code, "co_qualname", None)  # Python 3.11; before it, the class from self or cls
+    if name is None:
+        owner = found.f_locals.get("self", found.f_locals.get("cls"))
+        owner = owner if isinstance(owner, type) or owner is None else type(owner)
+        name = f"{owner.__name__}.{code.co_name}" if owner is not None else code.co_name
+    return name[: -len(".__init__")] if name.endswith(".__init__") else name
+
+
 def check(result, func, args):
-    """ctypes errcheck of every pp_status call: a non-zero status raises its PhysPixError subclass."""
+    """ctypes errcheck of every pp_status call: a non-zero status raises its PhysPixError subclass, its message
+    naming the package's call the program made rather than the C function."""
     if result != Status.OK:
         # Read at once: the message is thread-local and the next failing call overwrites it.
-        raise error_for(result, last_error(), func.__name__, status_name(result))
+        raise error_for(result, last_error(), func.__name__, status_name(result), python_call())
     return result
 
 

@@ -1,8 +1,35 @@
-"""The public enums of physpix.h as IntEnums (members are also accepted as lower-case strings), and its flags."""
+"""The public enums of physpix.h as IntEnums that also equal and print as their lower-case names, and its flags."""
 from enum import IntEnum
 
 
-class Status(IntEnum):
+class NamedEnum(IntEnum):
+    """An IntEnum whose members compare equal to their value and to their lower-case name, as the package takes
+    them: ``body.type == "dynamic"`` and ``body.type == BodyType.DYNAMIC`` and ``body.type == 0`` all hold. str()
+    and format() give the name ("dynamic"); repr() stays ``<BodyType.DYNAMIC: 0>``. The hash is the value's, so
+    a member finds int keys in a dict or set; a name does not (a str's hash is not the int's)."""
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, str):
+            return other.lower() == self.name.lower()
+        return int.__eq__(self, other)  # NotImplemented for what is neither an int nor a str
+
+    def __ne__(self, other: object) -> bool:
+        equal = self.__eq__(other)
+        return equal if equal is NotImplemented else not equal
+
+    __hash__ = IntEnum.__hash__
+
+    def __str__(self) -> str:
+        return self.name.lower()
+
+    def __format__(self, spec: str) -> str:
+        try:
+            return format(str(self), spec)   # "{:>10}" pads the name
+        except ValueError:
+            return int.__format__(self, spec)  # "{:d}", "{:x}": the value
+
+
+class Status(NamedEnum):
     """pp_status: the result of every call that can fail."""
     OK = 0
     INVALID_ARGUMENT = 1
@@ -15,40 +42,40 @@ class Status(IntEnum):
     ABI = 8
 
 
-class Backend(IntEnum):
+class Backend(NamedEnum):
     """pp_backend: which collision backend runs the narrowphase."""
     AUTO = 0
     CPU = 1
     GPU = 2
 
 
-class NormalMethod(IntEnum):
+class NormalMethod(NamedEnum):
     """pp_normal_method: how a contact normal is estimated."""
     AREA_GRADIENT = 0
     KERNEL = 1
 
 
-class ContactMode(IntEnum):
+class ContactMode(NamedEnum):
     """pp_contact_mode: how many contact points a colliding pair produces."""
     MANIFOLD = 0
     CENTROID = 1
 
 
-class Preset(IntEnum):
+class Preset(NamedEnum):
     """pp_preset: a named point on the measured speed/accuracy trade."""
     FAST = 1
     BALANCED = 2
     ACCURATE = 3
 
 
-class BodyType(IntEnum):
+class BodyType(NamedEnum):
     """pp_body_type: how a body moves."""
     DYNAMIC = 0
     STATIC = 1
     KINEMATIC = 2
 
 
-class EventType(IntEnum):
+class EventType(NamedEnum):
     """pp_event_type: what an event reports."""
     BODY_SPLIT = 1
     BODY_DESTROYED = 2
@@ -59,7 +86,7 @@ class EventType(IntEnum):
     JOINT_BROKEN = 7
 
 
-class JointType(IntEnum):
+class JointType(NamedEnum):
     """pp_joint_type: what a joint holds."""
     REVOLUTE = 1
     PRISMATIC = 2
@@ -68,7 +95,7 @@ class JointType(IntEnum):
     MOUSE = 5
 
 
-class EditType(IntEnum):
+class EditType(NamedEnum):
     """pp_edit_type: what a timed edit does."""
     ERASE_CIRCLE = 1
     PAINT_CIRCLE = 2

@@ -8,20 +8,29 @@ from .enums import Status
 
 
 class PhysPixError(Exception):
-    """A call into libphyspix failed; .status is the pp_status, .message pp_last_error()'s text."""
+    """A call into libphyspix failed; .status is the pp_status, .message the library's message naming the call
+    the program made (``load_png: cannot open 'x.png': ...``), .library_message pp_last_error()'s own text (which
+    names the C function, ``pp_image_info: ...``)."""
     #: The pp_status (a Status, or the int of one this package does not know); None on a PhysPixError made without.
     status: Optional[Union[Status, int]] = None
     message: str
     #: The C function that failed ("pp_world_step"), or None.
     function: Optional[str]
+    #: The package's call the program made ("World.step", "load_png"), or None.
+    call: Optional[str]
+    #: pp_last_error()'s text as the library wrote it.
+    library_message: str
 
     def __init__(self, message: str, status: Optional[Union[Status, int]] = None,
-                 function: Optional[str] = None) -> None:
+                 function: Optional[str] = None, call: Optional[str] = None,
+                 library_message: Optional[str] = None) -> None:
         super().__init__(message)
         self.message = message
         if status is not None:
             self.status = status
         self.function = function
+        self.call = call
+        self.library_message = message if library_message is None else library_message
 
 
 class InvalidArgumentError(PhysPixError):
@@ -75,12 +84,17 @@ _BY_STATUS: Dict[Optional[Union[Status, int]], Type[PhysPixError]] = {
                                 UnsupportedError, LimitError, AbiError)}
 
 
-def error_for(status: int, message: Optional[str], function: str, name: str) -> PhysPixError:
-    """The exception for a failed call: its status's subclass (PhysPixError for an unknown status)."""
+def error_for(status: int, message: Optional[str], function: str, name: str,
+              call: Optional[str] = None) -> PhysPixError:
+    """The exception for a failed call: its status's subclass (PhysPixError for an unknown status). The library's
+    message starts with the C function's name; with call (the package's call the program made) it names that."""
     try:
         status = Status(status)
     except ValueError:
         status = int(status)
     if not message:  # the library promises a message; never raise an empty one
         message = f"{function} failed with {name}"
-    return _BY_STATUS.get(int(status), PhysPixError)(message, status, function)
+    shown = message
+    if call:
+        shown = call + message[len(function):] if message.startswith(function + ":") else f"{call}: {message}"
+    return _BY_STATUS.get(int(status), PhysPixError)(shown, status, function, call, message)

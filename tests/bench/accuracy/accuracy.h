@@ -15,7 +15,7 @@
 /// How long each measurement runs (full or --quick).
 typedef struct acc_plan {
     double settle_s;   ///< a stack settles this long before its pose is taken, s
-    double horizon_s;  ///< then it is watched this long, s (DESIGN: 60)
+    double horizon_s;  ///< then it is watched this long, s (the stability bar in tests/bench/README.md: 60)
     double contact_s;  ///< contacts are read over the last this-many seconds, s
     int rain_steps;    ///< steps of the timing-only rain scene
     double budget_s;   ///< wall time a stack run may take before it is cut short (exact solver), s

@@ -26,7 +26,7 @@
 #define ANALYTIC_PI 3.14159265358979323846
 #define ANALYTIC_RAD(d) ((d) * (ANALYTIC_PI / 180.0))
 
-/// The three families of DESIGN.md's accuracy bar.
+/// The three families of the accuracy bar (tests/bench/README.md, "The bars").
 typedef enum analytic_family {
     ANALYTIC_CIRCLES,    ///< disc b around disc a at 36 directions
     ANALYTIC_BOX_GROUND, ///< a 40×40 box at every whole degree 0..90 sunk into a static ground (a = box)

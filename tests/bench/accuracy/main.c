@@ -44,18 +44,18 @@ typedef struct setting {
     int pareto;      ///< nonzero: on the Pareto front of (ms, score)
 } setting;
 
-/* The targets of the combined score: DESIGN.md's where it names one, else ours, each with why. */
+/* The targets of the combined score: the bars' (tests/bench/README.md) where they name one, else ours, each with why. */
 enum { T_NMED, T_NP95, T_DEPTH, T_PYR, T_TOWER, T_DRIFT, T_PENMEAN, T_PENMAX, T_ENERGY, T_MOMENTUM, T_COUNT };
 static const struct target {
     const char *name, *unit;
     double limit;
     const char *why;
 } targets[T_COUNT] = {
-    [T_NMED] = {"normal median", "deg", 0.5, "DESIGN.md (worst of the three analytic families)"},
-    [T_NP95] = {"normal p95", "deg", 2.0, "DESIGN.md (worst of the three analytic families)"},
-    [T_DEPTH] = {"depth median", "px", 0.5, "DESIGN.md (worst of the three analytic families)"},
-    [T_PYR] = {"pyramid stands", "px", ACC_STAND_PX, "DESIGN.md: a 10-row pyramid stands 60 s (see 'standing')"},
-    [T_TOWER] = {"tower stands", "px", ACC_STAND_PX, "DESIGN.md: a 10-box tower stands 60 s (see 'standing')"},
+    [T_NMED] = {"normal median", "deg", 0.5, "accuracy bar (worst of the three analytic families)"},
+    [T_NP95] = {"normal p95", "deg", 2.0, "accuracy bar (worst of the three analytic families)"},
+    [T_DEPTH] = {"depth median", "px", 0.5, "accuracy bar (worst of the three analytic families)"},
+    [T_PYR] = {"pyramid stands", "px", ACC_STAND_PX, "stability bar: a 10-row pyramid stands 60 s (see 'standing')"},
+    [T_TOWER] = {"tower stands", "px", ACC_STAND_PX, "stability bar: a 10-box tower stands 60 s (see 'standing')"},
     [T_DRIFT] = {"tower drift", "px", 1.0, "ours: a standing tower moves less than a pixel in a minute"},
     [T_PENMEAN] = {"rest pen. mean", "px", 1.0, "ours: the slop (0.75 px) plus a quarter pixel"},
     [T_PENMAX] = {"rest pen. max", "px", 2.0, "ours: the slop plus the raster's one-pixel step, rounded up"},
@@ -377,7 +377,7 @@ static void print_machine(const acc_plan *plan, const options *o)
            "  built x, and no box moves more than %.0f px from that settled pose over the next %.0f s%s;\n"
            "  'stand' columns give that largest offset, px (the vertical sag while settling is the resting\n"
            "  penetration's: pen = contact depths of both stacks over their last %.0f s, mean and max, px)\n",
-           plan->settle_s, ACC_STAND_PX, ACC_STAND_PX, plan->horizon_s, o->quick ? " (--quick: DESIGN says 60)" : "",
+           plan->settle_s, ACC_STAND_PX, ACC_STAND_PX, plan->horizon_s, o->quick ? " (--quick: the bar is 60)" : "",
            plan->contact_s);
     printf("drift: the tower's largest displacement of a box from its settled pose over the %.0f s, px; scored\n"
            "  only while the tower stands (a fall is scored as 'tower stands')\n",
@@ -477,7 +477,7 @@ static void write_csv(FILE *f, const setting *list, int n, const acc_plan *plan)
     }
 }
 
-/* What a reader wants first: the default against DESIGN.md, the presets, the front. */
+/* What a reader wants first: the default against the bars, the presets, the front. */
 static void print_summary(const setting *list, int n)
 {
     for (int i = 0; i < n; i++) {
@@ -486,10 +486,10 @@ static void print_summary(const setting *list, int n)
             continue;
         double v[T_COUNT];
         metric_values(&s->m, v);
-        printf("\nthe default against DESIGN.md's numbers:\n");
-        const int design[] = {T_NMED, T_NP95, T_DEPTH, T_PYR, T_TOWER};
-        for (size_t k = 0; k < sizeof design / sizeof design[0]; k++) {
-            int t = design[k];
+        printf("\nthe default against the bars (tests/bench/README.md):\n");
+        const int bars[] = {T_NMED, T_NP95, T_DEPTH, T_PYR, T_TOWER};
+        for (size_t k = 0; k < sizeof bars / sizeof bars[0]; k++) {
+            int t = bars[k];
             printf("  %-15s %8.3f %-3s (target <= %g): %s\n", targets[t].name, v[t], targets[t].unit, targets[t].limit,
                    v[t] <= targets[t].limit ? "holds" : "FAILS");
         }
