@@ -49,10 +49,8 @@ void pp_free(void *ptr)
         current.free(ptr, current.user);
 }
 
-bool array_reserve(void **items, int32_t *capacity, int32_t n, size_t size)
+bool array_grow(void **items, int32_t *capacity, int32_t n, size_t size)
 {
-    if (n <= *capacity)
-        return true;
     int32_t cap = *capacity > 0 ? *capacity : 64;
     while (cap < n)
         cap = cap <= INT32_MAX / 2 ? 2 * cap : n;

@@ -199,7 +199,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     wd->islands.substep_serial++;
     *out = (solver_islands){0};
     wd->islands.node_count = 0;
-    if (wd->body_ids.capacity == 0)
+    /* Nodes come from the awake set and the contacts (joints only extend them): with neither, none. */
+    if (wd->body_ids.capacity == 0 || (wd->awake.count == 0 && wd->contact_count == 0))
         return PP_OK;
     island_set *isl = &wd->islands;
     static const char *what = "the islands";

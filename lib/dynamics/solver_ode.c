@@ -30,6 +30,7 @@ struct pp_solver {
     int32_t feedback_capacity;
     pending_contact *pending;     /* the next step's contacts, in the world's order */
     int32_t pending_count, pending_capacity;
+    int32_t attached;             /* contact joints in the group, emptied after each step */
     solver_exact_state *exact_from; /* the exact islands' bodies before dWorldStep, should it give up */
     int32_t exact_from_capacity;
 };
@@ -303,6 +304,7 @@ static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)
     ct.geom.normal[1] = -c->normal.y;
     ct.geom.depth = c->depth * s->inv_ppm;
     dJointID j = dJointCreateContact(s->world, s->contacts, &ct);
+    s->attached++;
     dJointAttach(j, c->a ? (dBodyID)c->a->body : 0, c->b ? (dBodyID)c->b->body : 0);
     /* A joint ODE leaves out of its step (all its bodies asleep) writes no feedback: it applied nothing. Only f1
      * is read (solver_contact_impulse). */
@@ -577,6 +579,13 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
     s->pending_count = 0;
 }
 
+static void empty_contacts(pp_solver *s)
+{
+    if (s->attached > 0) /* ODE walks the group even when it is empty */
+        dJointGroupEmpty(s->contacts);
+    s->attached = 0;
+}
+
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
     if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, islands->exact_count)) {
@@ -586,7 +595,7 @@ bool solver_step(pp_solver *s, double h, const solver_islands *islands)
     attach_contacts(s, islands);
     if (islands->exact_count + islands->quick_count + islands->quick_two_count == 0) {
         s->steps++; /* the count still orders the joints and seeds the shuffle of later steps */
-        dJointGroupEmpty(s->contacts);
+        empty_contacts(s);
         return true;
     }
     pthread_mutex_lock(&ode_step_lock);
@@ -594,6 +603,6 @@ bool solver_step(pp_solver *s, double h, const solver_islands *islands)
     const int ok = step_methods(s, h, islands);
     pthread_mutex_unlock(&ode_step_lock);
     s->steps++;
-    dJointGroupEmpty(s->contacts);
+    empty_contacts(s);
     return ok != 0;
 }

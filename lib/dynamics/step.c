@@ -325,6 +325,35 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
     return PP_OK;
 }
 
+/* Nothing awake or changed (the awake set is empty), no contact, carried pair, force, joint or pending END: a
+ * step of such a world finds nothing, solves nothing and moves nothing. */
+static bool world_is_quiet(const world *wd)
+{
+    return wd->awake.count == 0 && wd->contact_count == 0 && wd->carry.pair_count == 0 && wd->forced.count == 0 &&
+           wd->joints.ids.live == 0 && wd->table.gone == 0 && !wd->table.resting_stale;
+}
+
+/* A quiet world's step: only the clocks the stages stamp their records with advance, as the full step would
+ * advance them (so the next step is the one it would have been), through the stages' own calls. */
+static pp_status quiet_substeps(world *wd, float dt)
+{
+    for (int32_t k = 0; k < wd->def.substeps; k++) {
+        pp_status st = carry_begin(wd, k, dt);
+        if (st)
+            return pp_fail_in("pp_world_step", st);
+        if (k == 0) { /* the first substep looks for pairs; the others are still */
+            contact_table_begin_substep(wd);
+            wd->broad.pair_count = 0;
+            wd->stats.backend = choose_backend(wd, 0);
+        }
+        solver_islands islands;
+        if ((st = island_plan(wd, PAIR_NONE, &islands)) || !solver_step(wd->solver, 0, &islands))
+            return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
+    }
+    carry_end_step(wd);
+    return PP_OK;
+}
+
 /* Timed edits due now are applied first, each whole or not at all, and stay applied; then the step
  * runs whole or, if memory runs out, not at all. */
 PP_API pp_status pp_world_step(pp_world w, float dt)
@@ -338,12 +367,19 @@ PP_API pp_status pp_world_step(pp_world w, float dt)
     double t_broad = 0, t_narrow = 0, t_solver = 0;
     events_trim(wd);
     pp_status st = timed_edits_apply_due(wd, dt);
-    if (st || (st = step_save(wd)))
+    if (st)
+        return st;
+    const bool quiet = world_is_quiet(wd);
+    if (!quiet && (st = step_save(wd)))
         return st;
     wd->stats.pixels_tested = 0;
     wd->stats.swept_stops = 0;
     wd->stats.threads = 0;
-    if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
+    if (quiet) {
+        if ((st = quiet_substeps(wd, dt)))
+            return st;
+        wd->stats.pairs = wd->stats.contacts = 0;
+    } else if ((st = run_substeps(wd, dt, &t_broad, &t_narrow, &t_solver))) {
         step_restore(wd);
         forces_step_undone(wd);
         return st;

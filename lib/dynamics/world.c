@@ -291,7 +291,7 @@ void world_free(world *wd)
     pp_free(wd);
 }
 
-pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
+pp_status world_slot_array_grow(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
 {
     if (!array_reserve(items, capacity, wd->body_ids.capacity, per_slot))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %s", what);

@@ -276,7 +276,11 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
                           int32_t *threads);
 
 /* Grow a per-slot array (*items, per_slot bytes a slot) to the world's body capacity. */
-pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
+pp_status world_slot_array_grow(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
+static inline pp_status world_slot_array(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
+{
+    return wd->body_ids.capacity <= *capacity ? PP_OK : world_slot_array_grow(wd, items, capacity, per_slot, what);
+}
 
 /* PP_ERR_INVALID_ARGUMENT, naming the field, for a velocity past PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED. */
 /* PP_ERR_INVALID_ARGUMENT naming the first of a body's surface and damping values out of its range. */

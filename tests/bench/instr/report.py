@@ -27,7 +27,7 @@ STAGES = {
     "workers.c": "narrowphase", "corner.c": "narrowphase",
     "carry.c": "carry/held pairs",
     "contact_table.c": "contact table/events",
-    "pair_map.c": "pair maps (table, carry)",
+    "pair_map.c": "pair maps",
     "crowd.c": "crowd budget",
     "island.c": "islands+sleep",
     "contact_solve.c": "contact building",
