@@ -27,15 +27,25 @@ render_color debug_cell_color(uint8_t f)
     return (render_color){44, 48, 58, 255};
 }
 
-static void draw_legend(render_image *im, int32_t y)
+/* The legend names only the colours the window shows (a view whose every intersection cell is critical has
+ * no plain intersection colour), and the bodies by the names in the title. */
+static void draw_legend(render_image *im, int32_t y, const debug_capture *c, const uint8_t shown[4])
 {
-    static const struct {
+    char first[96] = "FIRST BODY", second[96] = "SECOND BODY";
+    const char *sep = strstr(c->what, " / ");
+    if (c->cells && sep) {
+        snprintf(first, sizeof first, "%.*s", (int)(sep - c->what), c->what);
+        snprintf(second, sizeof second, "%s", sep + 3);
+    }
+    const struct {
         uint8_t flags;
         const char *text;
-    } items[] = {{PP_CELL_A, "FIRST BODY"},  {PP_CELL_B, "SECOND BODY"}, {PP_CELL_A | PP_CELL_B, "INTERSECTION"},
+    } items[] = {{PP_CELL_A, first}, {PP_CELL_B, second}, {PP_CELL_A | PP_CELL_B, "INTERSECTION"},
                  {PP_CELL_CRITICAL, "CRITICAL"}};
     int32_t x = 20;
     for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+        if (!shown[i])
+            continue;
         render_rect(im, x, y, 16, 16, debug_cell_color(items[i].flags));
         render_text(im, x + 24, y + 3, 2, items[i].text, (render_color){230, 230, 230, 255});
         x += 40 + 8 * (int32_t)strlen(items[i].text);
@@ -112,17 +122,43 @@ static void draw_global_normal(render_image *im, const debug_capture *c, const g
                  (render_color){240, 80, 240, 255});
 }
 
+/* Which legend colours the window shows: first body, second, plain intersection, critical. */
+static void shown_colours(const debug_capture *c, const grid_window *g, uint8_t shown[4])
+{
+    for (int32_t j = g->j0; j < g->j0 + g->h; j++)
+        for (int32_t i = g->i0; i < g->i0 + g->w; i++) {
+            const uint8_t f = c->cells[(size_t)j * c->width + i];
+            if (f & PP_CELL_CRITICAL)
+                shown[3] = 1;
+            else if (f & 3)
+                shown[(f & 3) - 1] = 1;
+        }
+}
+
+void debug_view_title(const debug_capture *c, char *out, size_t size)
+{
+    if (!c->cells) {
+        snprintf(out, size, "NO PAIR WAS IN CONTACT");
+        return;
+    }
+    /* The picture is a window on the pair's grid: say how much of it, so the count matches what is drawn. */
+    const grid_window g = debug_window(c, 0, 0, 1, 1);
+    snprintf(out, size, "COLLISION AT T = %.2f S: %s, %d X %d OF %d X %d CELLS", c->time, c->what, (int)g.w, (int)g.h,
+             (int)c->width, (int)c->height);
+}
+
 void debug_view_draw(render_image *im, const debug_capture *c)
 {
     render_fill(im, (render_color){24, 26, 32, 255});
-    char title[160];
-    snprintf(title, sizeof title, "COLLISION AT T = %.2f S: %s, %d X %d CELLS", c->time, c->what, (int)c->width,
-             (int)c->height);
-    render_text(im, 20, 14, 2, c->cells ? title : "NO PAIR WAS IN CONTACT", (render_color){240, 240, 240, 255});
-    draw_legend(im, im->height - 30);
+    char title[200];
+    debug_view_title(c, title, sizeof title);
+    render_text(im, 20, 14, 2, title, (render_color){240, 240, 240, 255});
+    uint8_t shown[4] = {0};
     if (c->cells) {
         const grid_window g = debug_window(c, 20, 40, im->width - 40, im->height - 90);
+        shown_colours(c, &g, shown);
         draw_cells(im, c, &g);
         draw_global_normal(im, c, &g, 0.3f * (float)(im->height - 90));
     }
+    draw_legend(im, im->height - 30, c, shown);
 }

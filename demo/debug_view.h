@@ -6,6 +6,8 @@
 
 #include "render.h"
 
+#include <stddef.h>
+
 /// A pair's grid as PhysPixWorld.debug_collision and the get_debug_* calls give it.
 typedef struct debug_capture {
     uint8_t *cells;                 ///< width·height PP_CELL_* flags; NULL: no pair was captured
@@ -18,6 +20,8 @@ typedef struct debug_capture {
 
 /// The colour of a cell with these flags (first body, second body, intersection, critical, empty).
 render_color debug_cell_color(uint8_t flags);
+/// The view's title: the time (s), the pair, and the cells drawn of the pair's grid; size bytes at most.
+void debug_view_title(const debug_capture *c, char *out, size_t size);
 /// Draw the view over the whole image: title, legend, the zoomed grid and the normals.
 void debug_view_draw(render_image *im, const debug_capture *c);
 

@@ -169,7 +169,8 @@ void render_arrow(render_image *im, pp_vec2 a, pp_vec2 b, float thickness, float
     }
 }
 
-/* 3×5 glyphs, rows top to bottom, '#' lit. */
+/* 3×5 glyphs, rows top to bottom, '#' lit. S has a full middle stroke: drawn as a thin diagonal it read as a
+ * slash at caption size, and with square corners it would be a 5. */
 static const char *glyph(char ch)
 {
     static const struct {
@@ -183,7 +184,7 @@ static const char *glyph(char ch)
         {'G', " ###  # ## # ##"}, {'H', "# ## ##### ## #"}, {'I', "### #  #  # ###"}, {'J', "  #  #  ## # # "},
         {'K', "# ## ### # ## #"}, {'L', "#  #  #  #  ###"}, {'M', "# ######## ## #"}, {'N', "## # ## ## ## #"},
         {'O', " # # ## ## # # "}, {'P', "## # ### #  #  "}, {'Q', " # # ## ###  ##"}, {'R', "## # ### # ## #"},
-        {'S', " ###   #   ### "}, {'T', "### #  #  #  # "}, {'U', "# ## ## ## ####"}, {'V', "# ## ## ## # # "},
+        {'S', " ###  ###  ### "}, {'T', "### #  #  #  # "}, {'U', "# ## ## ## ####"}, {'V', "# ## ## ## # # "},
         {'W', "# ## ######## #"}, {'X', "# ## # # # ## #"}, {'Y', "# ## # #  #  # "}, {'Z', "###  # # #  ###"},
         {'.', "             # "}, {':', "    #     #    "}, {'=', "   ###   ###   "}, {'-', "      ###      "},
         {'/', "  #  # # #  #  "}, {'(', " # #  #  #   # "}, {')', " #   #  #  # # "}, {'+', "    # ### #    "},

@@ -491,6 +491,7 @@ typedef struct pp_body_state {
     pp_vec2 linear_velocity;   ///< of the centre of mass, px/s (0 for a static body)
     float angular_velocity;    ///< rad/s
     uint32_t awake;            ///< 1 awake, 0 asleep (a static body is never awake)
+    uint64_t user_data;        ///< the host's value (pp_body_get_user_data); last, so older fields keep their offsets
 } pp_body_state;
 
 /// Every live body's state in one call, in slot order (pp_world_get_bodies' order); count receives how many

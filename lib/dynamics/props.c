@@ -183,7 +183,7 @@ PP_API pp_status pp_world_get_body_states(pp_world w, pp_body_state *out, int32_
         if (n < capacity) {
             pp_body_state *s = &out[n];
             *s = (pp_body_state){.body = bd->handle, .position = {(float)bd->pos.x, (float)bd->pos.y},
-                                 .angle = (float)bd->angle};
+                                 .angle = (float)bd->angle, .user_data = bd->user_data};
             if (bd->sb.body) {
                 solver_body_state v;
                 solver_body_get_state(wd->solver, &bd->sb, &v);

@@ -515,12 +515,16 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder)
         snprintf(parent_path, sizeof parent_path, "%.*s", slash == dest ? 1 : (int)(slash - dest), dest);
     else
         strcpy(parent_path, ".");
+    /* The parent is never created: a mistyped path would otherwise grow a tree of folders. Saying which
+     * folder is missing tells the user what to create (or fix) without guessing from the whole path. */
     const int parent = open(parent_path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    const int tmp_fd = parent >= 0 ? files_make_temp_folder(parent, base, tmp, sizeof tmp) : -1;
+    if (parent < 0)
+        return pp_fail(PP_ERR_IO, "%s: cannot save '%s': its parent folder '%s' %s", fn, folder, parent_path,
+                       errno == ENOENT ? "does not exist" : errno == ENOTDIR ? "is not a folder" : strerror(errno));
+    const int tmp_fd = files_make_temp_folder(parent, base, tmp, sizeof tmp);
     if (tmp_fd < 0) {
         st = pp_fail(PP_ERR_IO, "%s: cannot create a folder beside '%s': %s", fn, dest, strerror(errno));
-        if (parent >= 0)
-            close(parent);
+        close(parent);
         return st;
     }
     snprintf(tmp_shown, sizeof tmp_shown, "%.*s%s", (int)(base - dest), dest, tmp);

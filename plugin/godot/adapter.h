@@ -65,6 +65,9 @@ __attribute__((format(printf, 4, 5))) bool fail_at(const char *file, int line, c
 /* True on PP_OK; otherwise records the status and PhysPix's own message. */
 bool ok_at(const char *file, int line, call *c, pp_status s);
 
+/* A res:// or user:// path through ProjectSettings.globalize_path into out: its length (size or more: it did not
+ * fit), 0 if the engine could not globalize it. */
+size_t globalize_path(const char *given, char *out, size_t size);
 /* A body's int for GDScript (0 stays 0: "no body" in events). */
 godot_variant body_int(pp_body b);
 /* True if w × h is a bitmap size PhysPix takes; otherwise records why. */

@@ -24,8 +24,12 @@ $(GODOT_LIB): $(GODOT_SRC) $(wildcard plugin/godot/*.h) plugin/api/def_fields.h 
 	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g -fPIC -fvisibility=hidden $(USER_CFLAGS) -shared -Wl,--no-undefined \
 	  -o $@ $(GODOT_SRC) $(LDFLAGS) -L$(BUILD) -lphyspix -Wl,-rpath,'$$ORIGIN'
 
-# -L: the soname is a symlink in build/; the addon needs the file itself.
+# -L: the soname is a symlink in build/; the addon needs the file itself. plugin.cfg is committed (a project may
+# copy the addon from the source tree), so the build checks that its version is the header's, the one version source.
+GODOT_PLUGIN_CFG := plugin/godot/addons/physpix/plugin.cfg
 $(GODOT_ADDON)/libphyspix_godot.so: $(GODOT_LIB) $(SHARED) $(GODOT_ADDON_SRC)
+	$(Q)grep -qx 'version="$(VERSION)"' $(GODOT_PLUGIN_CFG) || { echo "$(GODOT_PLUGIN_CFG): expected" \
+	  'version="$(VERSION)"' "(PHYSPIX_VERSION_* in include/physpix.h), found $$(grep '^version=' $(GODOT_PLUGIN_CFG))"; exit 1; }
 	$(Q)rm -rf $(GODOT_ADDON) && mkdir -p $(GODOT_ADDON)
 	$(Q)cp $(GODOT_ADDON_SRC) $(GODOT_ADDON)/
 	$(Q)cp -L $(BUILD)/$(SONAME) $(GODOT_ADDON)/

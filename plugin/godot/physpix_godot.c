@@ -73,6 +73,23 @@ static bool is_absolute(const char *p)
     return p[0] == '/' || p[0] == '\\' || (drive && (p[2] == '/' || p[2] == '\\'));
 }
 
+size_t globalize_path(const char *given, char *out, size_t size)
+{
+    char singleton[] = "ProjectSettings";
+    godot_object *settings = gdn->godot_global_get_singleton(singleton);
+    if (!settings)
+        return 0;
+    godot_variant in = gdn_string(given), result;
+    const godot_variant *args[] = {&in};
+    const bool called = gdn_call(globalize_path_mb, settings, args, 1, &result);
+    const size_t m = called && gdn->godot_variant_get_type(&result) == GDN_STRING
+                         ? gdn_string_to_utf8(&result, out, size)
+                         : 0;
+    gdn->godot_variant_destroy(&result);
+    gdn->godot_variant_destroy(&in);
+    return m;
+}
+
 /* A path argument into c->path: as given, or, for res:// and user://, through
  * ProjectSettings.globalize_path. That gives an absolute path where the project is a folder (the
  * editor, godot --path); in an exported game res:// is inside the .pck, which PhysPix cannot read,
@@ -87,20 +104,9 @@ static bool read_path(call *c, int i)
     c->a[i].path = c->path;
     if (strncmp(c->path, "res://", 6) != 0 && strncmp(c->path, "user://", 7) != 0)
         return true;
-    char singleton[] = "ProjectSettings";
-    godot_object *settings = gdn->godot_global_get_singleton(singleton);
-    if (!settings)
-        return fail(c, "cannot globalize '%s': no ProjectSettings singleton (pass a filesystem path)", c->path);
     char given[PATH_SIZE];
     memcpy(given, c->path, n + 1);
-    godot_variant in = gdn_string(given), out;
-    const godot_variant *args[] = {&in};
-    const bool called = gdn_call(globalize_path_mb, settings, args, 1, &out);
-    const size_t m = called && gdn->godot_variant_get_type(&out) == GDN_STRING
-                         ? gdn_string_to_utf8(&out, c->path, PATH_SIZE)
-                         : 0;
-    gdn->godot_variant_destroy(&out);
-    gdn->godot_variant_destroy(&in);
+    const size_t m = globalize_path(given, c->path, PATH_SIZE);
     if (m == 0)
         return fail(c, "ProjectSettings.globalize_path(\"%s\") failed", given);
     if (m >= PATH_SIZE)
@@ -174,6 +180,10 @@ static bool read_arg(call *c, int i, char letter)
     case 'p':
         return t == GDN_STRING ? read_path(c, i) : wrong_type(c, i, "String (a path)");
     case 'I':
+        /* Null is most often a load() that failed: point at its path rather than name a type. */
+        if (t == GDN_NIL)
+            return fail(c, "argument %d is null, expected Image or Texture (did a load() fail? check its path)",
+                        i + 1);
         if (t != GDN_OBJECT)
             return wrong_type(c, i, "Image or Texture");
         a->object = gdn->godot_variant_as_object(a->var);

@@ -1,10 +1,12 @@
 /* Pixels between Godot and PhysPix: bodies from an Image or a Texture of any format (converted to RGBA8 on a
  * copy, the caller's left as it was), and a body's mask and look read out as PoolByteArrays and written in.
  * A Texture with no readable image is refused with the reason, never made into a body of the wrong pixels. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "adapter.h"
 
@@ -78,12 +80,16 @@ static int64_t get_int(godot_object *object, godot_method_bind *getter)
     return r;
 }
 
-/* An ImageTexture loaded from an image file was never imported: under godot3-server its image is an 8×8
- * placeholder. Imported files load as StreamTexture. */
-static bool unimported(godot_object *texture, char *path, size_t path_size)
+/* Where an ImageTexture's image came from. One loaded from an image file has no image of its own under
+ * godot3-server, only an 8×8 placeholder: either the file was never imported (imported files load as
+ * StreamTexture) or there is no file at all, since load() of a missing image path gives such a texture too.
+ * The two want different fixes (import the project, or correct the path), so they are told apart. */
+typedef enum texture_source { TEXTURE_OWN, TEXTURE_UNIMPORTED, TEXTURE_MISSING } texture_source;
+
+static texture_source texture_source_of(godot_object *texture, char *path, size_t path_size)
 {
     if (!is_a(texture, api.image_texture_tag))
-        return false;
+        return TEXTURE_OWN;
     godot_variant v;
     path[0] = '\0';
     if (call0(api.get_path, texture, &v))
@@ -91,12 +97,19 @@ static bool unimported(godot_object *texture, char *path, size_t path_size)
     gdn->godot_variant_destroy(&v);
     static const char *const exts[] = {".png", ".jpg", ".jpeg", ".webp", ".bmp", ".tga", ".svg", ".hdr", ".exr"};
     const size_t n = strlen(path);
+    bool image_file = false;
     for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++) {
         const size_t e = strlen(exts[i]);
-        if (n > e && strcasecmp(path + n - e, exts[i]) == 0)
-            return true;
+        image_file |= n > e && strcasecmp(path + n - e, exts[i]) == 0;
     }
-    return false;
+    if (!image_file)
+        return TEXTURE_OWN;
+    char file[PATH_SIZE];
+    const bool godot_path = strncmp(path, "res://", 6) == 0 || strncmp(path, "user://", 7) == 0;
+    const size_t m =
+        godot_path ? globalize_path(path, file, sizeof file) : (size_t)snprintf(file, sizeof file, "%s", path);
+    struct stat st;
+    return m > 0 && m < sizeof file && stat(file, &st) != 0 && errno == ENOENT ? TEXTURE_MISSING : TEXTURE_UNIMPORTED;
 }
 
 /* The RGBA8 bytes (a PoolByteArray in *data) and size of an Image or a Texture's image. *hold keeps a
@@ -108,7 +121,11 @@ static bool rgba_of(call *c, godot_object *object, godot_variant *data, godot_va
     godot_object *image = object;
     if (!is_a(object, api.image_tag)) {
         char path[512];
-        if (unimported(object, path, sizeof path))
+        const texture_source source = texture_source_of(object, path, sizeof path);
+        if (source == TEXTURE_MISSING)
+            return fail(c, "the texture '%s' does not exist: no file at that path, so load() gave an empty "
+                           "placeholder (check the path)", path);
+        if (source == TEXTURE_UNIMPORTED)
             return fail(c, "the texture '%s' was never imported, so it has no image (only an 8×8 placeholder): open "
                            "the project in the Godot editor once (or run godot3 -e --quit), or load the file with "
                            "Image.load()", path);

@@ -3,6 +3,7 @@
  * with the world unchanged. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "helpers.h"
@@ -261,6 +262,26 @@ Test(props, body_states_match_the_getters_for_every_body_in_slot_order)
     const unsigned char *tail = (const unsigned char *)&two[2];
     for (size_t k = 0; k < sizeof two[2]; k++)
         cr_assert_eq(tail[k], 0xab, "wrote past capacity");
+    pp_world_destroy(w);
+}
+
+Test(props, body_states_carry_each_body_s_user_data_after_the_older_fields)
+{
+    /* user_data was appended, so a binding built against the older layout still finds every other field. */
+    cr_assert_eq(offsetof(pp_body_state, awake), 32);
+    cr_assert_eq(offsetof(pp_body_state, user_data), 40);
+    cr_assert_eq(sizeof(pp_body_state), 48);
+    pp_world w = make_world(0, 980);
+    pp_body_def d = body_def(PP_BODY_STATIC, 400, 500, 0);
+    d.user_data = 0xfeedface12345678u;
+    pp_body ground = add_rect(w, d, 800, 40);
+    pp_body plain = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, 300, 0), 16, 16);
+    pp_body_state s[2];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, s, 2, &n));
+    cr_assert_eq(n, 2);
+    cr_assert(s[0].body.id == ground.id && s[0].user_data == 0xfeedface12345678u, "the ground's user_data");
+    cr_assert(s[1].body.id == plain.id && s[1].user_data == 0, "a body made without user_data reads 0");
     pp_world_destroy(w);
 }
 

@@ -178,10 +178,37 @@ Test(snapshot, saving_over_a_snapshot_replaces_it_and_other_folders_are_refused)
     EXPECT_ERR(pp_world_save_snapshot(w, other), PP_ERR_IO, "not a snapshot");
     cr_assert_eq(count_entries(other), 1, "the folder that is not a snapshot was touched");
     cr_assert_eq(count_entries(dir), 2, "a refused save left its temporary behind");
-    EXPECT_ERR(pp_world_save_snapshot(w, "/nonexistent-dir/snap"), PP_ERR_IO, "cannot create");
+    EXPECT_ERR(pp_world_save_snapshot(w, "/nonexistent-dir/snap"), PP_ERR_IO, "'/nonexistent-dir' does not exist");
     EXPECT_ERR(pp_world_save_snapshot(w, NULL), PP_ERR_INVALID_ARGUMENT, "NULL");
     pp_world_destroy(w);
     EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_INVALID_HANDLE, "stale");
+    remove_tree(dir);
+}
+
+/* A save never creates the folder's parent; the message names that parent, the part of the path to fix. */
+Test(snapshot, a_save_whose_parent_folder_is_missing_names_the_parent)
+{
+    char dir[64], snap[160], parent[128], file[96], under_file[128];
+    temp_dir(dir);
+    snprintf(parent, sizeof parent, "%s/missing/deeper", dir);
+    snprintf(snap, sizeof snap, "%s/snap/", parent); /* a trailing slash is still the folder "snap" */
+    pp_world w = build_scene();
+    EXPECT_ERR(pp_world_save_snapshot(w, snap), PP_ERR_IO, "does not exist");
+    char want[192];
+    snprintf(want, sizeof want, "its parent folder '%s' does not exist", parent);
+    cr_assert(strstr(pp_last_error(), want), "\"%s\" does not name the parent '%s'", pp_last_error(), parent);
+    cr_assert_eq(count_entries(dir), 0, "a failed save created something");
+
+    snprintf(file, sizeof file, "%s/notes.txt", dir);
+    FILE *f = fopen(file, "w");
+    fclose(f);
+    snprintf(under_file, sizeof under_file, "%s/snap", file);
+    EXPECT_ERR(pp_world_save_snapshot(w, under_file), PP_ERR_IO, "is not a folder");
+    cr_assert(strstr(pp_last_error(), file), "\"%s\" does not name '%s'", pp_last_error(), file);
+
+    snprintf(snap, sizeof snap, "%s/snap", dir); /* and where the parent exists, the save succeeds */
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    pp_world_destroy(w);
     remove_tree(dir);
 }
 

@@ -114,3 +114,63 @@ Test(demo, the_contact_sheet_and_the_debug_view_have_their_sizes)
               "debug view: %lld, %lld and %lld pixels of the first body, the second and critical cells",
               (long long)count[0], (long long)count[1], (long long)count[2]);
 }
+
+/* The lit cells of one glyph drawn at scale 1, rows top to bottom, '#' lit (as render.c's font writes them). */
+static void glyph_cells(char ch, char out[16])
+{
+    render_image im;
+    cr_assert(render_image_init(&im, 3, 5));
+    render_fill(&im, (render_color){0, 0, 0, 255});
+    render_text(&im, 0, 0, 1, (char[]){ch, '\0'}, (render_color){255, 255, 255, 255});
+    for (int k = 0; k < 15; k++)
+        out[k] = im.rgba[4 * k] ? '#' : ' ';
+    out[15] = '\0';
+    render_image_free(&im);
+}
+
+Test(render, captions_draw_an_s_with_three_strokes_unlike_a_5)
+{
+    char s[16], five[16], lower[16];
+    glyph_cells('S', s);
+    glyph_cells('5', five);
+    glyph_cells('s', lower);
+    for (int row = 0; row < 5; row += 2)
+        cr_assert((s[3 * row] == '#') + (s[3 * row + 1] == '#') + (s[3 * row + 2] == '#') >= 2,
+                  "S \"%s\": row %d is not a stroke", s, row);
+    cr_assert(s[3] == '#' && s[11] == '#', "S \"%s\": its upper left and lower right sides", s);
+    cr_assert(strcmp(s, five) != 0, "S and 5 are the same glyph \"%s\"", s);
+    cr_assert_str_eq(lower, s, "a lower-case s draws as S");
+}
+
+/* A pair's grid of 100 × 100 cells whose 20 × 2 intersection is all critical: the view shows a 56 × 38 window. */
+Test(demo, the_debug_view_s_legend_and_title_match_its_picture)
+{
+    enum { N = 100 };
+    debug_capture c = {.width = N, .height = N, .step_x = {1, 0}, .step_y = {0, 1}, .normal = {0, -1}, .time = 1.5};
+    snprintf(c.what, sizeof c.what, "TERRAIN / CRATE 3");
+    c.cells = calloc(N * N, 1);
+    c.normals = calloc(N * N, sizeof(pp_vec2));
+    cr_assert(c.cells && c.normals);
+    for (int j = 0; j < N; j++)
+        for (int i = 40; i < 60; i++) {
+            uint8_t f = (uint8_t)((j >= 50 ? PP_CELL_A : 0) | (j < 52 ? PP_CELL_B : 0));
+            c.cells[j * N + i] = f == (PP_CELL_A | PP_CELL_B) ? f | PP_CELL_CRITICAL : f;
+        }
+    char title[200];
+    debug_view_title(&c, title, sizeof title);
+    cr_assert_str_eq(title, "COLLISION AT T = 1.50 S: TERRAIN / CRATE 3, 56 X 38 OF 100 X 100 CELLS");
+    render_image im;
+    cr_assert(render_image_init(&im, CAMERA_W, CAMERA_H));
+    debug_view_draw(&im, &c);
+    const render_color plain = debug_cell_color(PP_CELL_A | PP_CELL_B), critical = debug_cell_color(PP_CELL_CRITICAL);
+    int64_t plain_px = 0, critical_px = 0;
+    for (int64_t i = 0; i < (int64_t)CAMERA_W * CAMERA_H; i++) {
+        plain_px += memcmp(im.rgba + 4 * i, &plain, 4) == 0;
+        critical_px += memcmp(im.rgba + 4 * i, &critical, 4) == 0;
+    }
+    cr_assert_eq(plain_px, 0, "the legend shows the plain intersection colour, which no cell has");
+    cr_assert(critical_px > 256, "the critical cells and their legend square");
+    render_image_free(&im);
+    free(c.cells);
+    free(c.normals);
+}

@@ -89,6 +89,8 @@ def test_every_version_is_the_headers():
     pc = (BUILD / "physpix.pc").read_text()
     assert re.search(rf"^Version: {re.escape(version)}$", pc, re.M), pc
     pyproject = (ROOT / "plugin" / "python" / "pyproject.toml").read_text()
+    for cfg in (ROOT / "plugin/godot/addons/physpix/plugin.cfg", BUILD / "addons/physpix/plugin.cfg"):
+        assert re.search(rf'^version="{re.escape(version)}"$', cfg.read_text(), re.M), f"the Godot addon's {cfg}"
     assert 'dynamic = ["version"]' in pyproject and not re.search(r"^version\s*=", pyproject, re.M)
     init = (ROOT / "plugin" / "python" / "physpix" / "__init__.py").read_text()
     assert not re.search(r"__version__\s*=\s*['\"]\d", init), "a version literal in __init__.py"

@@ -86,7 +86,7 @@ int main(void)
 
     S(pp_body_state);
     F(pp_body_state, body); F(pp_body_state, position); F(pp_body_state, angle); F(pp_body_state, linear_velocity);
-    F(pp_body_state, angular_velocity); F(pp_body_state, awake);
+    F(pp_body_state, angular_velocity); F(pp_body_state, awake); F(pp_body_state, user_data);
     end();
 
     S(pp_joint_def);

@@ -31,7 +31,7 @@ def test_body_states_are_one_structured_array_matching_the_properties(world):
     for _ in range(20):
         world.step(DT)
     s = world.body_states()
-    assert s.dtype.names == ("body", "position", "angle", "linear_velocity", "angular_velocity", "awake")
+    assert s.dtype.names == ("body", "position", "angle", "linear_velocity", "angular_velocity", "awake", "user_data")
     assert len(s) == 4 and [int(i) for i in s["body"]] == [b.id for b in world.bodies()]
     for row, box in zip(s[1:], boxes):
         assert tuple(row["position"]) == pytest.approx(box.position, abs=0)
@@ -40,6 +40,25 @@ def test_body_states_are_one_structured_array_matching_the_properties(world):
         assert row["angular_velocity"] == pytest.approx(box.angular_velocity, abs=0)
         assert bool(row["awake"]) == box.is_awake
     assert not s["awake"][0] and tuple(s["linear_velocity"][0]) == (0, 0)  # the static ground
+
+
+def test_body_states_carry_user_data_and_world_body_turns_an_id_back_into_its_body(world):
+    big = 0xFEEDFACE12345678  # above 2^63: the field is unsigned
+    tagged, plain = rect(world, 16, 16, position=(300, 300), user_data=big), rect(world, 16, 16, position=(340, 300))
+    s = world.body_states()
+    assert [int(u) for u in s["user_data"]] == [big, 0]
+    found = world.body(int(s["body"][0]))
+    assert found == tagged and found.user_data == big and world.body(plain.id) == plain
+    other = physpix.World()
+    try:
+        foreign = rect(other, 16, 16).id
+        raises_from_library(physpix.InvalidHandleError, ["World.body"], world.body, foreign)
+    finally:
+        other.close()
+    plain.destroy()
+    raises_from_library(physpix.InvalidHandleError, ["World.body"], world.body, plain.id)
+    with pytest.raises(physpix.IntegerRangeError):
+        world.body(-1)
 
 
 def test_a_box_put_to_sleep_in_the_air_hangs_then_falls_when_woken(world):

@@ -205,6 +205,7 @@ class pp_body_state(ctypes.Structure):
         ("linear_velocity", pp_vec2),
         ("angular_velocity", c_float),
         ("awake", c_uint32),
+        ("user_data", c_uint64),
     ]
 
 

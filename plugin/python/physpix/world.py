@@ -138,7 +138,7 @@ def _dtype_of(struct: Type[ctypes.Structure], shapes: Mapping[str, Tuple[str, Tu
 
 BODY_STATE_DTYPE = _dtype_of(N.pp_body_state, {
     "body": ("<u8", ()), "position": ("<f4", (2,)), "angle": ("<f4", ()), "linear_velocity": ("<f4", (2,)),
-    "angular_velocity": ("<f4", ()), "awake": ("<u4", ())})
+    "angular_velocity": ("<f4", ()), "awake": ("<u4", ()), "user_data": ("<u8", ())})
 
 
 def _read_list(fn: Callable[..., Any], item_type: Type[_S], *args: Any, guess: int = 0) -> List[_S]:
@@ -397,9 +397,17 @@ class World:
         """Every live body."""
         return [Body(self, h.id) for h in _read_list(lib.pp_world_get_bodies, N.pp_body, self._handle)]
 
+    def body(self, body_id: int) -> Body:
+        """The Body of a handle id (body_states()'s "body", Body.id); InvalidHandleError if no live body of this
+        world has it."""
+        body = Body(self, body_id)
+        body._call(lib.pp_body_is_awake, byref(c_int32()))  # the library knows stale and foreign ids
+        return body
+
     def body_states(self) -> npt.NDArray[Any]:
         """Every live body's state in one call, in bodies() order: a numpy structured array with fields body (id),
-        position (pivot, 2 floats, px), angle (rad), linear_velocity (2, px/s), angular_velocity (rad/s), awake."""
+        position (pivot, 2 floats, px), angle (rad), linear_velocity (2, px/s), angular_velocity (rad/s), awake,
+        user_data."""
         count = c_int32(0)
         lib.pp_world_get_body_states(self._handle, None, 0, byref(count))
         while True:
