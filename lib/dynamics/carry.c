@@ -188,11 +188,12 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
     return still; /* then it made no contact last substep, and nothing has moved since */
 }
 
-/* How far the material point of a body that was at p when the contact was found has moved, px. */
-static dvec2 moved(const body *bd, dvec2 com0, double c0, double s0, dvec2 p)
+/* How far the material point of a body that was at p when the contact was found has moved, px; com is the
+ * body's centre of mass now (body_com_world, found once for all of a pair's points). */
+static dvec2 moved(const body *bd, dvec2 com, dvec2 com0, double c0, double s0, dvec2 p)
 {
     const dvec2 local = dv_unrot(dv_sub(p, com0), c0, s0);
-    return dv_sub(dv_add(body_com_world(bd), dv_rot(local, bd->cos_a, bd->sin_a)), p);
+    return dv_sub(dv_add(com, dv_rot(local, bd->cos_a, bd->sin_a)), p);
 }
 
 /* A carried pair's contacts at the bodies' poses now: each point at the midpoint of where its two material
@@ -201,12 +202,14 @@ static void move_pair(const world *wd, const carried_pair *p, np_result *r)
 {
     r->count = 0;
     r->samples = 0;
+    const body *a = wd->bodies[p->a], *b = wd->bodies[p->b];
+    const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
     for (int32_t k = 0; k < p->count; k++) {
         const carried_contact *cc = &wd->carry.contacts[p->first + k];
-        const body *a = body_of(wd, cc->c.a), *b = body_of(wd, cc->c.b);
+        PP_ASSERT(cc->c.a.id == a->handle.id && cc->c.b.id == b->handle.id);
         const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y), n = dv(cc->c.normal.x, cc->c.normal.y);
-        const dvec2 ua = moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0);
-        const dvec2 ub = moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0);
+        const dvec2 ua = moved(a, com_a, cc->com_a, cc->cos_a, cc->sin_a, p0);
+        const dvec2 ub = moved(b, com_b, cc->com_b, cc->cos_b, cc->sin_b, p0);
         const double depth = cc->c.depth - dv_dot(dv_sub(ub, ua), n);
         if (!(depth >= -CARRY_GAP_PX))
             continue;
@@ -277,10 +280,11 @@ static bool still_held(const world *wd, const carried_pair *p, const void *step_
     if (!turned_little(a, cc->cos_a, cc->sin_a) || !turned_little(b, cc->cos_b, cc->sin_b))
         return false;
     double drift = 0;
+    const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
     for (int32_t k = 0; k < p->count; k++, cc++) {
         const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y);
-        const dvec2 ua = moved(a, cc->com_a, cc->cos_a, cc->sin_a, p0);
-        const dvec2 ub = moved(b, cc->com_b, cc->cos_b, cc->sin_b, p0);
+        const dvec2 ua = moved(a, com_a, cc->com_a, cc->cos_a, cc->sin_a, p0);
+        const dvec2 ub = moved(b, com_b, cc->com_b, cc->cos_b, cc->sin_b, p0);
         drift = fmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
     }
     drift = sqrt(drift);

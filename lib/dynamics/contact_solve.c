@@ -99,25 +99,27 @@ int contact_span(const world *wd, const pp_contact *c)
 
 void contact_joints_add(world *wd, double h)
 {
-    const contact_record *t = NULL; /* the last pair's, found once for its points (they come together) */
-    uint64_t ta = 0, tb = 0;
-    double deepest = 0;
-    for (int32_t i = 0; i < wd->contact_count; i++) {
-        const pp_contact *c = &wd->contacts[i];
-        const int span = contact_span(wd, c);
+    /* A pair's points come together: what they share is found once a pair. */
+    for (int32_t first = 0, end; first < wd->contact_count; first = end) {
+        end = contact_pair_end(wd, first);
+        const pp_contact *c0 = &wd->contacts[first];
+        const int span = contact_span(wd, c0);
         if (span == SPAN_SKIP)
             continue;
         const double hs = span * h; /* the time step of the contact's island */
-        const body *a = body_of(wd, c->a), *b = body_of(wd, c->b);
-        if (c->a.id != ta || c->b.id != tb)
-            t = contact_table_find(wd, c->a.id, c->b.id), ta = c->a.id, tb = c->b.id, deepest = pair_deepest(wd, i);
-        const double e = fmax(a->restitution, b->restitution);
-        const solver_contact sc = {
-            a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, inv_mass(a), inv_mass(b),
-            dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
-            sqrt(a->friction * b->friction), bounce_for(wd, a, b, c, e),
-            anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), span == SPAN_TWO,
-        };
-        solver_add_contact(wd->solver, &sc, i);
+        const body *a = body_of(wd, c0->a), *b = body_of(wd, c0->b);
+        const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
+        const double deepest = pair_deepest(wd, first), e = fmax(a->restitution, b->restitution);
+        const double friction = sqrt(a->friction * b->friction), ia = inv_mass(a), ib = inv_mass(b);
+        for (int32_t i = first; i < end; i++) {
+            const pp_contact *c = &wd->contacts[i];
+            const solver_contact sc = {
+                a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, ia, ib,
+                dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
+                friction, bounce_for(wd, a, b, c, e),
+                anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), span == SPAN_TWO,
+            };
+            solver_add_contact(wd->solver, &sc, i);
+        }
     }
 }
