@@ -270,6 +270,28 @@ func test_joints():
 
 
 # Issue 25: world settings at creation, poses, pixels in and out, states in one call, runtime properties.
+# Issue 39: a world's first body and first joint share slot 0, and had one int: destroy_joint(body) removed the
+# joint. Each is now refused where the other is expected, with a message saying what it is.
+func test_handle_kinds():
+	var k = PhysPixWorld.new()
+	var box = k.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(100, 100))
+	var hinge = k.create_joint({"type": "revolute", "body_b": box, "anchor_a": Vector2(100, 92)})
+	check(is_int(box) and is_int(hinge) and box != hinge, "the first body and joint have different ints: %s %s" % [box, hinge])
+	check(k.destroy_joint(box) == null and k.get_last_error().find("is a body handle, not a joint") >= 0,
+		"destroy_joint(a body) refused: %s" % k.get_last_error())
+	check(k.get_joint_value(box) == null and k.get_last_error().find("is a body handle, not a joint") >= 0,
+		"get_joint_value(a body) refused: %s" % k.get_last_error())
+	check(k.get_position(hinge) == null and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"get_position(a joint) refused: %s" % k.get_last_error())
+	check(k.destroy_body(hinge) == null and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"destroy_body(a joint) refused: %s" % k.get_last_error())
+	check(k.create_joint({"type": "weld", "body_b": hinge}) == null
+		and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"a joint as a joint's body refused: %s" % k.get_last_error())
+	check(k.get_joints() == [hinge] and k.get_bodies() == [box], "both still there: %s %s" % [k.get_joints(), k.get_bodies()])
+	return true
+
+
 func test_native_gains():
 	var g = PhysPixWorld.new()
 	check(g.create({"preset": "fast", "gravity": Vector2(0, 500), "backend": "cpu", "contact_events": true,
@@ -665,6 +687,7 @@ func _init():
 	test_one_way()
 	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
 	check(test_joints() == true, "test_joints ran to its end (no script error)")
+	check(test_handle_kinds() == true, "test_handle_kinds ran to its end (no script error)")
 	check(test_settings_at_creation() == true, "test_settings_at_creation ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
