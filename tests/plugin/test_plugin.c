@@ -741,6 +741,44 @@ Test(methods, a_body_is_not_a_joint_and_a_joint_is_not_a_body)
     plugin.api.object_destroy(world, &ret);
 }
 
+/* Issue 39: each pixel call fed huge, negative and 32-bit-wrapping ints (2^32 + 16 would wrap to 16) is refused
+ * naming the call and the argument, and makes nothing; so is a plane whose byte count no bitmap has. */
+Test(methods, pixel_calls_refuse_huge_and_negative_sizes_and_weights)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    const int64_t bodies = call(world, "get_body_count", NULL, 0).as.integer;
+    static const int64_t bad[] = {INT64_MAX, INT64_MIN, -1, 0, 4294967312LL, 2147483648LL, -2147483649LL};
+    static const char *const adds[] = {"add_body", "add_body_rgba"};
+    char says[128];
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        const pp_variant n = V_INT(bad[k]), four = V_INT(4);
+        for (int add = 0; add < 2; add++)
+            for (int side = 0; side < 2; side++) {
+                pp_variant ret = call(world, adds[add],
+                                      (pp_variant[]){V_BYTES(box_rgba, 16 << 2 * add), side ? four : n, side ? n : four,
+                                                     V_VEC2(0, 0), V_STR("dynamic")},
+                                      5);
+                snprintf(says, sizeof says, "PhysPixWorld.%s: %s must be in 1..%d, got %lld", adds[add],
+                         side ? "height" : "width", PP_MAX_BITMAP_SIDE, (long long)bad[k]);
+                expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
+            }
+        pp_variant ret = call(box, "paint_circle", (pp_variant[]){V_VEC2(50, 91), V_FLOAT(3), n}, 3);
+        snprintf(says, sizeof says, "PhysPixBody.paint_circle: weight must be in 1..255, got %lld", (long long)bad[k]);
+        expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
+    }
+    pp_variant ret = call(world, "add_body",
+                          (pp_variant[]){V_BYTES(box_mask, INT64_MAX), V_INT(BOX), V_INT(BOX), V_VEC2(0, 0),
+                                         V_STR("dynamic")},
+                          5);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "needs 400 bytes, got 9223372036854775807");
+    ret = call(world, "add_body_rgba",
+               (pp_variant[]){V_BYTES(box_rgba, -1), V_INT(BOX), V_INT(BOX), V_VEC2(0, 0), V_STR("dynamic")}, 5);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "argument 1 (rgba) has no data");
+    cr_assert_eq(call(world, "get_body_count", NULL, 0).as.integer, bodies, "a refused call made a body");
+    plugin.api.object_destroy(world, &ret);
+}
+
 /* The body of a loaded scene whose user_data is `tag`. */
 static uint64_t body_tagged(uint64_t world, int64_t tag)
 {
