@@ -84,6 +84,8 @@ extern "C" {
 #define PP_MAX_ANGULAR_SPEED 1.0e5f
 /// Largest magnitude of a world's gravity, px/s².
 #define PP_MAX_ACCELERATION 1.0e8f
+/// Largest magnitude of a body's gravity scale (pp_body_set_gravity_scale): 1000 g is still a fall a step can take.
+#define PP_MAX_GRAVITY_SCALE 1000.0f
 
 /// Result of every call that can fail; PP_OK is 0.
 typedef enum pp_status {
@@ -524,6 +526,7 @@ PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bit
 /// body touching it wakes it again at the next step. PP_ERR_INVALID_ARGUMENT for a static body.
 PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake);
 /// Scale the world's gravity on this body (default 1; 0 floats, −1 rises); kept until set again. Dynamic only.
+/// Range: finite, −PP_MAX_GRAVITY_SCALE..PP_MAX_GRAVITY_SCALE (±1000); outside it PP_ERR_INVALID_ARGUMENT.
 PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale);
 /// The body's friction coefficient.
 PP_API pp_status pp_body_get_friction(pp_world w, pp_body b, float *out);

@@ -179,6 +179,8 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
         return st;
     if (bd->type != PP_BODY_DYNAMIC)
         return json_fail(c, PP_ERR_FORMAT, at, "forces", "only a dynamic body takes forces");
+    if (!(fabs(forces[3]) <= PP_MAX_GRAVITY_SCALE))
+        return json_fail(c, PP_ERR_FORMAT, at, "forces", "a gravity scale past PP_MAX_GRAVITY_SCALE");
     bd->force = dv(forces[0], forces[1]), bd->torque = forces[2], bd->gravity_scale = forces[3];
     return forces_list(wd, bd, "pp_world_load_snapshot");
 }
