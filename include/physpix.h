@@ -6,9 +6,10 @@
  * to (0, 980) px/s². A body's pose maps bitmap coordinates (origin at the bitmap's top-left corner,
  * pixel (i, j) covering [i, i+1) × [j, j+1)) to the world: world = position + R(angle)·(local − pivot),
  * the pivot defaulting to the bitmap centre; the pose does not jump when an edit moves the centre of
- * mass. Velocities are those of the centre of mass. Handles (pp_world, pp_body) are values carrying a
- * slot and a generation, and a body's names its world too: a destroyed or stale one, or a body of another
- * world, is answered with PP_ERR_INVALID_HANDLE, never a crash.
+ * mass. Velocities are those of the centre of mass. Handles (pp_world, pp_body, pp_joint) are values carrying
+ * their kind, a slot and a generation, and a body's or joint's names its world too: a destroyed or stale one,
+ * one of another world, or one of another kind (a joint handle passed as a body) is answered with
+ * PP_ERR_INVALID_HANDLE, never a crash.
  * Every call that can fail returns a pp_status and writes results through out-pointers; on failure
  * pp_last_error() says why, naming the argument, and the outputs are untouched. Def structs come from
  * their default function, which sets struct_size (a binding with a wrong layout gets PP_ERR_ABI). The
@@ -83,12 +84,14 @@ extern "C" {
 #define PP_MAX_ANGULAR_SPEED 1.0e5f
 /// Largest magnitude of a world's gravity, px/s².
 #define PP_MAX_ACCELERATION 1.0e8f
+/// Largest magnitude of a body's gravity scale (pp_body_set_gravity_scale): 1000 g is still a fall a step can take.
+#define PP_MAX_GRAVITY_SCALE 1000.0f
 
 /// Result of every call that can fail; PP_OK is 0.
 typedef enum pp_status {
     PP_OK = 0,                   ///< success
     PP_ERR_INVALID_ARGUMENT = 1, ///< NULL, NaN, out-of-range or inconsistent argument
-    PP_ERR_INVALID_HANDLE = 2,   ///< a null, destroyed or stale world or body handle
+    PP_ERR_INVALID_HANDLE = 2,   ///< a null, destroyed, stale or wrong-kind world, body or joint handle
     PP_ERR_OUT_OF_MEMORY = 3,    ///< an allocation failed; nothing was changed
     PP_ERR_IO = 4,               ///< a file could not be read or written
     PP_ERR_FORMAT = 5,           ///< a file's contents are malformed
@@ -106,17 +109,18 @@ typedef struct pp_vec2 {
 
 /// A world handle; id 0 is never valid.
 typedef struct pp_world {
-    uint64_t id; ///< slot index and generation; opaque
+    uint64_t id; ///< kind, slot index and generation; opaque
 } pp_world;
 
-/// A body handle; id 0 is never valid. It names its world: used with another, it is PP_ERR_INVALID_HANDLE.
+/// A body handle; id 0 is never valid. It names its world and its kind: used with another world, or where a
+/// joint is expected, it is PP_ERR_INVALID_HANDLE.
 typedef struct pp_body {
-    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
+    uint64_t id; ///< kind, slot index, generation and its world's slot and generation; opaque
 } pp_body;
 
-/// A joint handle; id 0 is never valid. It names its world, as a body's does.
+/// A joint handle; id 0 is never valid. It names its world and its kind, as a body's does.
 typedef struct pp_joint {
-    uint64_t id; ///< slot index, generation and its world's slot and generation; opaque
+    uint64_t id; ///< kind, slot index, generation and its world's slot and generation; opaque
 } pp_joint;
 
 /// Log hook: level 0 debug, 1 info, 2 warning, 3 error; msg is valid during the call only.
@@ -523,6 +527,7 @@ PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bit
 /// body touching it wakes it again at the next step. PP_ERR_INVALID_ARGUMENT for a static body.
 PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake);
 /// Scale the world's gravity on this body (default 1; 0 floats, −1 rises); kept until set again. Dynamic only.
+/// Range: finite, −PP_MAX_GRAVITY_SCALE..PP_MAX_GRAVITY_SCALE (±1000); outside it PP_ERR_INVALID_ARGUMENT.
 PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale);
 /// The body's friction coefficient.
 PP_API pp_status pp_body_get_friction(pp_world w, pp_body b, float *out);

@@ -122,8 +122,11 @@ static void add_body(plugin_object *self, pp_body_def *d, const pp_variant *pos,
 static int plane_sized(const pp_variant *bytes, const pp_variant *w, const pp_variant *h, int channels,
                        const char *m, pp_body_def *d, pp_variant *ret)
 {
-    if (!int_in(w, 1, PP_MAX_BITMAP_SIDE, "width", &d->width, ret) ||
-        !int_in(h, 1, PP_MAX_BITMAP_SIDE, "height", &d->height, ret))
+    char width[96], height[96]; /* each checked in 64 bits before anything multiplies it */
+    snprintf(width, sizeof width, "%s: width", m);
+    snprintf(height, sizeof height, "%s: height", m);
+    if (!int_in(w, 1, PP_MAX_BITMAP_SIDE, width, &d->width, ret) ||
+        !int_in(h, 1, PP_MAX_BITMAP_SIDE, height, &d->height, ret))
         return 0;
     const int64_t need = (int64_t)d->width * d->height * channels;
     if (bytes->as.bytes.length != need) {

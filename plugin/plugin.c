@@ -102,10 +102,20 @@ static void variant_clear(pp_variant *v)
 
 /* ---- the object table ---- */
 
+/* Object ids carry the kind of handle their object wraps (handle.h), so that a joint int passed as an object
+ * is known for one. */
+static handle_kind object_handle_kind(object_kind kind) { return kind == OBJECT_WORLD ? HANDLE_WORLD : HANDLE_BODY; }
+
+static uint64_t object_id(uint32_t slot)
+{
+    return slot_id_make(object_handle_kind(objects[slot].kind), slot, object_ids.generations[slot]);
+}
+
 plugin_object *object_get(uint64_t id)
 {
     const uint32_t slot = world_id_slot(id), gen = world_id_gen(id);
-    if (id == 0 || !id_pool_current(&object_ids, slot, gen) || objects[slot].kind == OBJECT_FREE)
+    if (!id_pool_current(&object_ids, slot, gen) || objects[slot].kind == OBJECT_FREE ||
+        handle_kind_of(id) != object_handle_kind(objects[slot].kind))
         return NULL;
     return &objects[slot];
 }
@@ -118,7 +128,7 @@ uint64_t object_new(object_kind kind, plugin_object **out)
     plugin_object *o = &objects[slot];
     *o = (plugin_object){.kind = kind};
     *out = o;
-    return world_id_make(slot, object_ids.generations[slot]);
+    return object_id(slot);
 }
 
 static void world_cache_free(world_cache *c)
@@ -216,7 +226,7 @@ static void plugin_deinitialize(pp_plugin_level level)
             for (int32_t i = 0; i < object_ids.capacity; i++)
                 if (objects[i].kind == OBJECT_WORLD) {
                     pp_world_destroy(objects[i].world);
-                    object_free(world_id_make((uint32_t)i, object_ids.generations[i]));
+                    object_free(object_id((uint32_t)i));
                 }
         }
         if (level == PP_PLUGIN_LEVEL_CORE) {
@@ -314,6 +324,12 @@ static const char *type_name(pp_variant_type t)
     return (uint32_t)t < sizeof names / sizeof names[0] ? names[t] : "unknown";
 }
 
+/* What an error about an id that is no object adds when the id is a joint's (an int, not an object). */
+static const char *joint_note(uint64_t id)
+{
+    return handle_kind_of(id) == HANDLE_JOINT ? "; it is a joint handle (an int)" : "";
+}
+
 /* Check one argument and convert INT to FLOAT; 0 and ret set to ERROR if it does not fit. */
 static int check_arg(const char *cls, const pp_plugin_method *m, int i, const pp_variant *in, pp_variant *out,
                      pp_variant *ret)
@@ -337,8 +353,8 @@ static int check_arg(const char *cls, const pp_plugin_method *m, int i, const pp
         const plugin_object *o = object_get(in->as.object);
         if (!o || (a->class_name && strcmp(class_of(o->kind)->desc.name, a->class_name) != 0)) {
             ret_error(ret, o ? PP_ERR_INVALID_ARGUMENT : PP_ERR_INVALID_HANDLE,
-                      "%s.%s: argument %d (%s) must be a live %s object", cls, m->name, i + 1, a->name,
-                      a->class_name ? a->class_name : "plugin");
+                      "%s.%s: argument %d (%s) must be a live %s object%s", cls, m->name, i + 1, a->name,
+                      a->class_name ? a->class_name : "plugin", o ? "" : joint_note(in->as.object));
             return 0;
         }
     }
@@ -359,8 +375,8 @@ static void plugin_call(uint64_t id, const char *method, const pp_variant *args,
     pp_variant checked[MAX_ARGS];
     if (!scene_ready(ret)) {
     } else if (!o) {
-        ret_error(ret, PP_ERR_INVALID_HANDLE, "call %s: object %#llx is null, destroyed or stale",
-                  method ? method : "(null)", (unsigned long long)id);
+        ret_error(ret, PP_ERR_INVALID_HANDLE, "call %s: object %#llx is null, destroyed or stale%s",
+                  method ? method : "(null)", (unsigned long long)id, joint_note(id));
     } else if (!m) {
         ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s has no method '%s'", c->desc.name, method ? method : "(null)");
     } else if (argc != m->desc.arg_count || (argc > 0 && !args)) {

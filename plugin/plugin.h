@@ -35,7 +35,8 @@ typedef struct world_cache {
     uint32_t has_joint_options;
 } world_cache;
 
-/* One slot of the table; ids are (generation << 32) | (slot + 1), so a stale id is detected. */
+/* One slot of the table; ids are (kind << 61) | (generation << 32) | (slot + 1) (handle.h's slot_id_make, the
+ * kind a world's or a body's), so a stale id, or a joint int in its place, is detected. */
 typedef struct plugin_object {
     object_kind kind;      /* OBJECT_FREE in a free slot */
     pp_world world;        /* both kinds */

@@ -29,7 +29,8 @@ PP_API pp_body_def pp_body_def_default(void)
 body *body_find(const world *wd, pp_body b)
 {
     const uint32_t slot = handle_slot(b.id);
-    if (b.id == 0 || handle_tag(b.id) != wd->tag || !id_pool_current(&wd->body_ids, slot, handle_gen(b.id)))
+    if (handle_kind_of(b.id) != HANDLE_BODY || handle_tag(b.id) != wd->tag ||
+        !id_pool_current(&wd->body_ids, slot, handle_gen(b.id)))
         return NULL;
     return wd->bodies[slot];
 }
@@ -40,7 +41,10 @@ body *body_lookup(world *wd, pp_body b, const char *fn)
     if (bd)
         return bd;
     const uint64_t owner = b.id && handle_tag(b.id) != wd->tag ? world_id_of_tag(handle_tag(b.id)) : 0;
-    if (owner)
+    if (handle_is_other_kind(b.id, HANDLE_BODY))
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: %#llx is %s handle, not a body", fn, (unsigned long long)b.id,
+                handle_kind_name(b.id));
+    else if (owner)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: body %#llx belongs to world %#llx, not %#llx", fn, (unsigned long long)b.id,
                 (unsigned long long)owner, (unsigned long long)wd->handle.id);
     else if (b.id && handle_tag(b.id) != wd->tag)
@@ -285,7 +289,7 @@ pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const 
         return st;
     }
     bd->index = slot;
-    bd->handle.id = handle_make(wd->tag, slot, wd->body_ids.generations[slot]);
+    bd->handle.id = handle_make(HANDLE_BODY, wd->tag, slot, wd->body_ids.generations[slot]);
     wd->bodies[slot] = bd;
     bd->serial = wd->next_serial++;
     awake_add(wd, bd); /* its proxy is new */

@@ -137,6 +137,9 @@ PP_API pp_status pp_body_set_gravity_scale(pp_world w, pp_body b, float scale)
     world *wd;
     body *bd;
     pp_status st = check_finite(fn, "scale", &v, 1);
+    if (!st && !(fabsf(scale) <= PP_MAX_GRAVITY_SCALE)) /* at 1e10 a body crossed 6.8e8 px in one step */
+        st = pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: scale must be in -%g..%g (PP_MAX_GRAVITY_SCALE), got %g", fn,
+                     PP_MAX_GRAVITY_SCALE, PP_MAX_GRAVITY_SCALE, scale);
     if (st || (st = forced_body(w, b, fn, &wd, &bd)))
         return st;
     bd->gravity_scale = scale;

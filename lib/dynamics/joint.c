@@ -32,7 +32,8 @@ joint *joint_find(const world *wd, pp_joint j)
 {
     const joint_table *t = &wd->joints;
     const uint32_t slot = handle_slot(j.id);
-    if (j.id == 0 || handle_tag(j.id) != wd->tag || !id_pool_current(&t->ids, slot, handle_gen(j.id)))
+    if (handle_kind_of(j.id) != HANDLE_JOINT || handle_tag(j.id) != wd->tag ||
+        !id_pool_current(&t->ids, slot, handle_gen(j.id)))
         return NULL;
     return t->items[slot];
 }
@@ -45,7 +46,10 @@ static joint *joint_lookup(pp_world w, pp_joint j, const char *fn, world **wd)
     if (jt)
         return jt;
     const uint64_t owner = j.id && handle_tag(j.id) != (*wd)->tag ? world_id_of_tag(handle_tag(j.id)) : 0;
-    if (owner)
+    if (handle_is_other_kind(j.id, HANDLE_JOINT))
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: %#llx is %s handle, not a joint", fn, (unsigned long long)j.id,
+                handle_kind_name(j.id));
+    else if (owner)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: joint %#llx belongs to world %#llx, not %#llx", fn,
                 (unsigned long long)j.id, (unsigned long long)owner, (unsigned long long)(*wd)->handle.id);
     else
@@ -251,7 +255,7 @@ pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint *
     }
     joint_table *t = &wd->joints;
     jt->index = slot;
-    jt->handle = (pp_joint){handle_make(wd->tag, slot, t->ids.generations[slot])};
+    jt->handle = (pp_joint){handle_make(HANDLE_JOINT, wd->tag, slot, t->ids.generations[slot])};
     jt->def = *def;
     jt->local_a = local_a, jt->local_b = local_b;
     jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);

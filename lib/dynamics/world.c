@@ -15,7 +15,7 @@
 #include <string.h>
 
 /* Worlds live in a process-wide table of fixed size, its slots from an id pool; a world id is
- * (generation << 32) | (slot + 1) (handle.h). Everything here is read and written under the lock. */
+ * (kind << 61) | (generation << 32) | (slot + 1) (handle.h). Everything here is read and written under the lock. */
 static world *worlds[PP_MAX_WORLDS];
 static uint32_t world_generations[PP_MAX_WORLDS], world_free_slots[PP_MAX_WORLDS];
 static id_pool world_ids;
@@ -42,10 +42,13 @@ world *world_lookup(pp_world w, const char *fn)
     const uint32_t slot = world_id_slot(w.id), gen = world_id_gen(w.id);
     world *wd = NULL;
     worlds_enter();
-    if (w.id != 0 && id_pool_current(&world_ids, slot, gen))
+    if (handle_kind_of(w.id) == HANDLE_WORLD && id_pool_current(&world_ids, slot, gen))
         wd = worlds[slot];
     pthread_mutex_unlock(&worlds_lock);
-    if (!wd)
+    if (!wd && handle_is_other_kind(w.id, HANDLE_WORLD))
+        pp_fail(PP_ERR_INVALID_HANDLE, "%s: %#llx is %s handle, not a world", fn, (unsigned long long)w.id,
+                handle_kind_name(w.id));
+    else if (!wd)
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: world handle %#llx is null, destroyed or stale", fn,
                 (unsigned long long)w.id);
     return wd;

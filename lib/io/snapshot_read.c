@@ -52,15 +52,27 @@ static pp_status read_handle(const json_ctx *c, const cJSON *obj, const char *wh
     return PP_OK;
 }
 
-/* A body handle as saved (handle.h), made one of the loaded world's. */
-static pp_status read_body_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
-                                  bool optional, const world *wd, uint64_t *out)
+/* A body or joint handle as saved (handle.h), made one of the loaded world's, of that kind. */
+static pp_status read_saved_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                   bool optional, const world *wd, handle_kind kind, uint64_t *out)
 {
     uint64_t saved = 0;
     pp_status st = read_handle(c, obj, where, key, optional, &saved);
-    if (!st && !handle_from_saved(saved, wd->tag, out))
-        st = json_fail(c, PP_ERR_FORMAT, where, key, "no body handle has that slot and generation");
+    if (!st && !handle_from_saved(saved, kind, wd->tag, out))
+        st = json_fail(c, PP_ERR_FORMAT, where, key,
+                       kind == HANDLE_JOINT ? "no joint handle has that slot and generation"
+                                            : "no body handle has that slot and generation");
     return st;
+}
+static pp_status read_body_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                  bool optional, const world *wd, uint64_t *out)
+{
+    return read_saved_handle(c, obj, where, key, optional, wd, HANDLE_BODY, out);
+}
+static pp_status read_joint_handle(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
+                                   bool optional, const world *wd, uint64_t *out)
+{
+    return read_saved_handle(c, obj, where, key, optional, wd, HANDLE_JOINT, out);
 }
 
 static pp_status read_required_int(const json_ctx *c, const cJSON *obj, const char *where, const char *key,
@@ -167,6 +179,8 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
         return st;
     if (bd->type != PP_BODY_DYNAMIC)
         return json_fail(c, PP_ERR_FORMAT, at, "forces", "only a dynamic body takes forces");
+    if (!(fabs(forces[3]) <= PP_MAX_GRAVITY_SCALE))
+        return json_fail(c, PP_ERR_FORMAT, at, "forces", "a gravity scale past PP_MAX_GRAVITY_SCALE");
     bd->force = dv(forces[0], forces[1]), bd->torque = forces[2], bd->gravity_scale = forces[3];
     return forces_list(wd, bd, "pp_world_load_snapshot");
 }
@@ -264,7 +278,7 @@ static pp_status restore_events(const json_ctx *c, const cJSON *root, world *wd)
         if (!(st = check_keys(c, it, where, NULL, keys)) && !(st = read_enum(c, it, where, "type", event_names, &type)) &&
             !(st = read_body_handle(c, it, where, "body", false, wd, &ev.body.id)) &&
             !(st = read_body_handle(c, it, where, "other", false, wd, &ev.other.id)) &&
-            !(st = read_body_handle(c, it, where, "joint", true, wd, &ev.joint.id))) {
+            !(st = read_joint_handle(c, it, where, "joint", true, wd, &ev.joint.id))) {
             ev.type = (pp_event_type)type;
             if (!type)
                 st = json_fail(c, PP_ERR_FORMAT, where, "type", "missing");
@@ -449,7 +463,7 @@ static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *
     pp_joint_def d;
     pp_status st;
     if ((st = parse_joint_def(c, obj, where, extra, &d)) ||
-        (st = read_body_handle(c, obj, where, "handle", false, wd, &id)) ||
+        (st = read_joint_handle(c, obj, where, "handle", false, wd, &id)) ||
         (st = read_body_handle(c, obj, where, "body_a", true, wd, &d.body_a.id)) ||
         (st = read_body_handle(c, obj, where, "body_b", true, wd, &d.body_b.id)) ||
         (st = read_doubles(c, obj, where, "state", v, JOINT_STATE_DOUBLES - 1)) ||

@@ -287,8 +287,10 @@ godot_variant read_rgba(call *c)
     if (!body_size(c, &w, &h))
         return gdn_nil();
     const int64_t y = c->argc > 1 ? c->a[1].i : 0, rows = c->argc > 2 ? c->a[2].i : h - y;
-    if (y < 0 || rows < 1 || y + rows > h) {
-        fail(c, "rows %lld..%lld are outside the bitmap's 0..%d", (long long)y, (long long)(y + rows - 1), (int)h - 1);
+    /* Checked without y + rows, which overflows for rows near INT64_MAX (a crash before issue 39). */
+    if (y < 0 || y >= h || rows < 1 || rows > h - y) {
+        fail(c, "%lld rows from row %lld are outside the bitmap's rows 0..%d", (long long)rows, (long long)y,
+             (int)h - 1);
         return gdn_nil();
     }
     return read_pool(c, pp_body_read_rgba, (int64_t)w * h * 4, y * w * 4, rows * w * 4);

@@ -149,6 +149,18 @@ Test(handles, a_handle_of_a_destroyed_world_is_stale_in_the_world_that_takes_its
     PP_OK_OR_FAIL(pp_world_destroy(next));
 }
 
+/* w saved as a snapshot in a new folder made from the template `dir` (remove_tree it after) and loaded again. */
+static pp_world saved_and_loaded(pp_world w, char *dir)
+{
+    char snap[64];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(snap, sizeof snap, "%s/snap", dir);
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
+    pp_world l;
+    PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &l));
+    return l;
+}
+
 /* A loaded snapshot keeps each body's slot and generation (a destroyed body's slot included), in the same
  * order; its handles name the loaded world, so the saved world's are refused there. */
 Test(handles, a_loaded_snapshot_keeps_slots_and_generations_but_not_the_world)
@@ -160,12 +172,8 @@ Test(handles, a_loaded_snapshot_keeps_slots_and_generations_but_not_the_world)
     PP_OK_OR_FAIL(pp_body_destroy(w, made[1]));
     made[1] = add_rect(w, body_def(PP_BODY_DYNAMIC, 40, 0, 0), 8, 8); /* slot 1 again, generation 2 */
     cr_assert_eq(handle_gen(made[1].id), 2);
-    char dir[] = "/tmp/pp_handles_XXXXXX", snap[64];
-    cr_assert_not_null(mkdtemp(dir));
-    snprintf(snap, sizeof snap, "%s/snap", dir);
-    PP_OK_OR_FAIL(pp_world_save_snapshot(w, snap));
-    pp_world l;
-    PP_OK_OR_FAIL(pp_world_load_snapshot(snap, &l));
+    char dir[] = "/tmp/pp_handles_XXXXXX";
+    const pp_world l = saved_and_loaded(w, dir);
     pp_body loaded[4];
     int32_t n = 0;
     PP_OK_OR_FAIL(pp_world_get_bodies(l, loaded, 4, &n));
@@ -177,6 +185,76 @@ Test(handles, a_loaded_snapshot_keeps_slots_and_generations_but_not_the_world)
         EXPECT_ERR(pp_body_get_position(l, made[i], &(pp_vec2){0}), PP_ERR_INVALID_HANDLE, "belongs to world");
         EXPECT_ERR(pp_body_get_position(w, loaded[i], &(pp_vec2){0}), PP_ERR_INVALID_HANDLE, "belongs to world");
     }
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+    PP_OK_OR_FAIL(pp_world_destroy(l));
+    remove_tree(dir);
+}
+
+/* A world's first body (a box) and first joint (a hinge from the static world to it): both take slot 0. */
+static pp_world box_and_hinge(pp_body *box, pp_joint *j, pp_joint_def *d)
+{
+    pp_world w = make_world(0, 980);
+    *box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), BOX, BOX);
+    *d = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    d->body_b = *box;
+    d->anchor_a = v2(100, 92);
+    PP_OK_OR_FAIL(pp_joint_create(w, d, j));
+    return w;
+}
+
+/* A world's first body and first joint both take slot 0 of their tables. Before ids carried their kind the two
+ * had one id: pp_joint_destroy(w, (pp_joint){body.id}) answered PP_OK and removed the joint. */
+Test(handles, a_body_handle_is_not_a_joint_and_a_joint_handle_is_not_a_body)
+{
+    pp_body box;
+    pp_joint j;
+    pp_joint_def d;
+    pp_world w = box_and_hinge(&box, &j, &d);
+    cr_assert_eq(handle_slot(j.id), handle_slot(box.id), "the first joint and the first body should share a slot");
+    const pp_joint box_as_joint = {box.id};
+    const pp_body joint_as_body = {j.id};
+    pp_vec2 v;
+    float f;
+    EXPECT_ERR(pp_joint_destroy(w, box_as_joint), PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    EXPECT_ERR(pp_joint_get_reaction(w, box_as_joint, &v, &f), PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    EXPECT_ERR(pp_joint_set_motor(w, box_as_joint, 1, 1, 1), PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    EXPECT_ERR(pp_body_destroy(w, joint_as_body), PP_ERR_INVALID_HANDLE, "is a joint handle, not a body");
+    EXPECT_ERR(pp_body_get_position(w, joint_as_body, &v), PP_ERR_INVALID_HANDLE, "is a joint handle, not a body");
+    EXPECT_ERR(pp_body_set_velocity(w, joint_as_body, v2(10, 0), 0), PP_ERR_INVALID_HANDLE, "is a joint handle");
+    d.body_b = joint_as_body;
+    EXPECT_ERR(pp_joint_create(w, &d, &(pp_joint){0}), PP_ERR_INVALID_HANDLE, "is a joint handle, not a body");
+    EXPECT_ERR(pp_world_step((pp_world){box.id}, 1.0f / 60), PP_ERR_INVALID_HANDLE, "is a body handle, not a world");
+    EXPECT_ERR(pp_body_get_position(w, (pp_body){w.id}, &v), PP_ERR_INVALID_HANDLE, "is a world handle, not a body");
+    /* Both are still there, and each works as what it is. */
+    int32_t bodies = 0, joints = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, NULL, 0, &bodies));
+    PP_OK_OR_FAIL(pp_world_get_joints(w, NULL, 0, &joints));
+    cr_assert(bodies == 1 && joints == 1, "a refused call removed something: %d bodies, %d joints", bodies, joints);
+    cr_assert(body_vel(w, box).x == 0, "a refused call moved the box");
+    PP_OK_OR_FAIL(pp_joint_destroy(w, j));
+    PP_OK_OR_FAIL(pp_body_destroy(w, box));
+    PP_OK_OR_FAIL(pp_world_destroy(w));
+}
+
+/* A loaded snapshot's handles keep their kinds: its joint is a joint and its body a body. */
+Test(handles, a_loaded_snapshot_keeps_the_kinds_of_its_handles)
+{
+    pp_body box;
+    pp_joint j;
+    pp_joint_def d;
+    pp_world w = box_and_hinge(&box, &j, &d);
+    char dir[] = "/tmp/pp_handles_XXXXXX";
+    const pp_world l = saved_and_loaded(w, dir);
+    pp_body lb;
+    pp_joint lj;
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(l, &lb, 1, &n));
+    PP_OK_OR_FAIL(pp_world_get_joints(l, &lj, 1, &n));
+    pp_vec2 v;
+    PP_OK_OR_FAIL(pp_body_get_position(l, lb, &v));
+    PP_OK_OR_FAIL(pp_joint_get_reaction(l, lj, &v, NULL));
+    EXPECT_ERR(pp_joint_destroy(l, (pp_joint){lb.id}), PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    EXPECT_ERR(pp_body_destroy(l, (pp_body){lj.id}), PP_ERR_INVALID_HANDLE, "is a joint handle, not a body");
     PP_OK_OR_FAIL(pp_world_destroy(w));
     PP_OK_OR_FAIL(pp_world_destroy(l));
     remove_tree(dir);

@@ -2,6 +2,7 @@
  * created with it, the physics follows the new value, what it touches wakes, and bad values are refused
  * with the world unchanged. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -417,6 +418,29 @@ Test(props, gravity_scale_0_floats_2_doubles_the_fall_and_minus_1_rises)
     PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, b[0], 1));
     step_n(w, DT, 30);
     cr_assert_float_eq(body_pos(w, b[0]).y - 1000, fall(980, 30), 0.01);
+    pp_world_destroy(w);
+}
+
+/* Issue 39: at a scale of 1e10 a body crossed 6.8e8 px in one step, and at FLT_MAX most steps failed with
+ * PP_ERR_LIMIT. The scale's range is ±PP_MAX_GRAVITY_SCALE; past it, or not finite, is refused and changes nothing,
+ * and the largest accepted scale still steps. */
+Test(props, gravity_scale_has_a_range_and_the_largest_still_steps)
+{
+    pp_world w = make_world(0, 980);
+    const pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
+    const float bad[] = {1e10f, -1e10f, FLT_MAX, -FLT_MAX, INFINITY, NAN, nextafterf(PP_MAX_GRAVITY_SCALE, INFINITY),
+                         -nextafterf(PP_MAX_GRAVITY_SCALE, INFINITY)};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        EXPECT_ERR(pp_body_set_gravity_scale(w, box, bad[i]), PP_ERR_INVALID_ARGUMENT, "scale");
+    EXPECT_ERR(pp_body_set_gravity_scale(w, box, 1e10f), PP_ERR_INVALID_ARGUMENT, "-1000..1000");
+    float scale = 0;
+    PP_OK_OR_FAIL(pp_body_get_gravity_scale(w, box, &scale));
+    cr_assert_eq(scale, 1.0f, "a refused scale was kept: %g", scale);
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, box, -PP_MAX_GRAVITY_SCALE));
+    PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, box, PP_MAX_GRAVITY_SCALE));
+    for (int i = 0; i < 60; i++)
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+    cr_assert(body_pos(w, box).y > 100 && isfinite(body_pos(w, box).y), "the box fell: y %g", body_pos(w, box).y);
     pp_world_destroy(w);
 }
 

@@ -270,6 +270,68 @@ func test_joints():
 
 
 # Issue 25: world settings at creation, poses, pixels in and out, states in one call, runtime properties.
+# Issue 39: every pixel call fed huge, negative and 32-bit-wrapping ints is refused with a message, never a crash
+# (read_rgba(body, 1, 9223372036854775807) overflowed its row check and killed godot3-server).
+const INT64_MAX = 9223372036854775807
+const INT64_MIN = -9223372036854775807 - 1
+const BAD_INTS = [INT64_MAX, INT64_MIN, -1, 4294967312, 2147483648, -2147483649]
+
+
+func test_pixel_calls_with_huge_arguments():
+	var p = PhysPixWorld.new()
+	var box = p.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(50, 50), "static")
+	var refused = 0
+	var calls = 0
+	for n in BAD_INTS:
+		var results = [
+			p.add_body_mask(solid_mask(4, 4), n, 1, Vector2()),
+			p.add_body_mask(solid_mask(4, 4), 1, n, Vector2()),
+			p.write_pixels(box, n, 0, 1, 1, solid_mask(1, 1)),
+			p.write_pixels(box, 0, n, 1, 1, solid_mask(1, 1)),
+			p.write_pixels(box, 0, 0, n, 1, solid_mask(1, 1)),
+			p.write_pixels(box, 0, 0, 1, n, solid_mask(1, 1)),
+			p.write_pixels(box, 0, 0, n, n, solid_mask(1, 1)),
+			p.read_rgba(box, n),
+			p.read_rgba(box, 1, n),
+			p.read_rgba(box, n, n),
+			p.read_rgba(box, n, 1),
+			p.read_mask(n),
+			p.paint_circle(box, Vector2(50, 50), 2.0, n),
+			p.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "dynamic", {"weights": PoolByteArray([n & 255])}),
+		]
+		for r in results:
+			calls += 1
+			if r == null and p.get_last_error() != "":
+				refused += 1
+			else:
+				print("not refused: %s (argument %d)" % [r, n])
+	check(refused == calls, "%d of %d pixel calls with huge or negative ints refused" % [refused, calls])
+	check(p.read_rgba(box, 1, 3).size() == 48 and p.read_mask(box).size() == 16, "and the body still reads back")
+	return true
+
+
+# Issue 39: a world's first body and first joint share slot 0, and had one int: destroy_joint(body) removed the
+# joint. Each is now refused where the other is expected, with a message saying what it is.
+func test_handle_kinds():
+	var k = PhysPixWorld.new()
+	var box = k.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(100, 100))
+	var hinge = k.create_joint({"type": "revolute", "body_b": box, "anchor_a": Vector2(100, 92)})
+	check(is_int(box) and is_int(hinge) and box != hinge, "the first body and joint have different ints: %s %s" % [box, hinge])
+	check(k.destroy_joint(box) == null and k.get_last_error().find("is a body handle, not a joint") >= 0,
+		"destroy_joint(a body) refused: %s" % k.get_last_error())
+	check(k.get_joint_value(box) == null and k.get_last_error().find("is a body handle, not a joint") >= 0,
+		"get_joint_value(a body) refused: %s" % k.get_last_error())
+	check(k.get_position(hinge) == null and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"get_position(a joint) refused: %s" % k.get_last_error())
+	check(k.destroy_body(hinge) == null and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"destroy_body(a joint) refused: %s" % k.get_last_error())
+	check(k.create_joint({"type": "weld", "body_b": hinge}) == null
+		and k.get_last_error().find("is a joint handle, not a body") >= 0,
+		"a joint as a joint's body refused: %s" % k.get_last_error())
+	check(k.get_joints() == [hinge] and k.get_bodies() == [box], "both still there: %s %s" % [k.get_joints(), k.get_bodies()])
+	return true
+
+
 func test_native_gains():
 	var g = PhysPixWorld.new()
 	check(g.create({"preset": "fast", "gravity": Vector2(0, 500), "backend": "cpu", "contact_events": true,
@@ -675,6 +737,8 @@ func _init():
 	test_one_way()
 	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
 	check(test_joints() == true, "test_joints ran to its end (no script error)")
+	check(test_handle_kinds() == true, "test_handle_kinds ran to its end (no script error)")
+	check(test_pixel_calls_with_huge_arguments() == true, "test_pixel_calls_with_huge_arguments ran to its end")
 	check(test_settings_at_creation() == true, "test_settings_at_creation ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)

@@ -706,6 +706,79 @@ Test(methods, a_hinge_swings_with_the_physical_pendulum_period_and_breaks_when_i
     cr_assert(call(rod, "get_position", NULL, 0).as.vec2.y > y0 + 50, "the rod fell from %g", y0);
 }
 
+/* Issue 39: a world's first body and first joint share slot 0 of their tables; a body object passed as a joint
+ * int, or a joint int passed as a body object, is refused saying what it is, and neither goes away. */
+Test(methods, a_body_is_not_a_joint_and_a_joint_is_not_a_body)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t world = ok_object(made);
+    memset(box_mask, 1, sizeof box_mask);
+    const uint64_t box = ok_object(call(world, "add_body",
+                                        (pp_variant[]){V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX),
+                                                       V_VEC2(100, 100), V_STR("dynamic")},
+                                        5));
+    pp_variant j = call(world, "add_joint",
+                        (pp_variant[]){V_STR("revolute"), V_OBJ(world), V_OBJ(box), V_VEC2(100, 92), V_VEC2(0, 0),
+                                       V_VEC2(1, 0)},
+                        6);
+    cr_assert_eq(j.type, PP_VARIANT_INT, "%s", j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
+    const pp_variant box_as_joint = V_INT((int64_t)box), joint_as_box = V_OBJ((uint64_t)j.as.integer);
+    pp_variant ret = call(world, "destroy_joint", &box_as_joint, 1);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    ret = call(world, "get_joint_value", &box_as_joint, 1);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "is a body handle, not a joint");
+    ret = call(world, "add_joint",
+               (pp_variant[]){V_STR("weld"), V_OBJ(world), joint_as_box, V_VEC2(100, 92), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "argument 3 (body_b) must be a live plugin object; it is a joint handle");
+    ret = call(joint_as_box.as.object, "get_position", NULL, 0);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "it is a joint handle (an int)");
+    plugin.api.object_destroy(joint_as_box.as.object, &ret);
+    expect_error(&ret, PP_ERR_INVALID_HANDLE, "object_destroy: object");
+    /* Both still answer as what they are. */
+    cr_assert_eq(call(world, "get_joint_value", (pp_variant[]){V_INT(j.as.integer)}, 1).type, PP_VARIANT_FLOAT);
+    cr_assert_eq(call(box, "get_position", NULL, 0).type, PP_VARIANT_VEC2);
+    plugin.api.object_destroy(world, &ret);
+}
+
+/* Issue 39: each pixel call fed huge, negative and 32-bit-wrapping ints (2^32 + 16 would wrap to 16) is refused
+ * naming the call and the argument, and makes nothing; so is a plane whose byte count no bitmap has. */
+Test(methods, pixel_calls_refuse_huge_and_negative_sizes_and_weights)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    const int64_t bodies = call(world, "get_body_count", NULL, 0).as.integer;
+    static const int64_t bad[] = {INT64_MAX, INT64_MIN, -1, 0, 4294967312LL, 2147483648LL, -2147483649LL};
+    static const char *const adds[] = {"add_body", "add_body_rgba"};
+    char says[128];
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        const pp_variant n = V_INT(bad[k]), four = V_INT(4);
+        for (int add = 0; add < 2; add++)
+            for (int side = 0; side < 2; side++) {
+                pp_variant ret = call(world, adds[add],
+                                      (pp_variant[]){V_BYTES(box_rgba, 16 << 2 * add), side ? four : n, side ? n : four,
+                                                     V_VEC2(0, 0), V_STR("dynamic")},
+                                      5);
+                snprintf(says, sizeof says, "PhysPixWorld.%s: %s must be in 1..%d, got %lld", adds[add],
+                         side ? "height" : "width", PP_MAX_BITMAP_SIDE, (long long)bad[k]);
+                expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
+            }
+        pp_variant ret = call(box, "paint_circle", (pp_variant[]){V_VEC2(50, 91), V_FLOAT(3), n}, 3);
+        snprintf(says, sizeof says, "PhysPixBody.paint_circle: weight must be in 1..255, got %lld", (long long)bad[k]);
+        expect_error(&ret, PP_ERR_INVALID_ARGUMENT, says);
+    }
+    pp_variant ret = call(world, "add_body",
+                          (pp_variant[]){V_BYTES(box_mask, INT64_MAX), V_INT(BOX), V_INT(BOX), V_VEC2(0, 0),
+                                         V_STR("dynamic")},
+                          5);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "needs 400 bytes, got 9223372036854775807");
+    ret = call(world, "add_body_rgba",
+               (pp_variant[]){V_BYTES(box_rgba, -1), V_INT(BOX), V_INT(BOX), V_VEC2(0, 0), V_STR("dynamic")}, 5);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "argument 1 (rgba) has no data");
+    cr_assert_eq(call(world, "get_body_count", NULL, 0).as.integer, bodies, "a refused call made a body");
+    plugin.api.object_destroy(world, &ret);
+}
+
 /* The body of a loaded scene whose user_data is `tag`. */
 static uint64_t body_tagged(uint64_t world, int64_t tag)
 {

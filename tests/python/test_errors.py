@@ -37,6 +37,21 @@ def test_a_body_of_another_world_is_an_invalid_handle(world):
         assert world.scheduled_edits() == [] and theirs.position == (0.0, 0.0)
 
 
+def test_a_joint_handle_is_not_a_body_and_a_body_handle_is_not_a_joint(world):
+    # The world's first body and first joint share slot 0: before handles carried their kind they had one id, and
+    # Joint(world, body.id).destroy() removed the joint.
+    box = rect(world, 16, 16, position=(100, 100))
+    hinge = world.create_joint("revolute", body_b=box, anchor_a=(100, 92))
+    box_as_joint, hinge_as_body = physpix.Joint(world, box.id), physpix.Body(world, hinge.id)
+    raises_from_library(physpix.InvalidHandleError, ["is a body handle, not a joint"], box_as_joint.destroy)
+    raises_from_library(physpix.InvalidHandleError, ["is a body handle, not a joint"], lambda: box_as_joint.value)
+    raises_from_library(physpix.InvalidHandleError, ["is a joint handle, not a body"], hinge_as_body.destroy)
+    raises_from_library(physpix.InvalidHandleError, ["is a joint handle, not a body"], lambda: hinge_as_body.position)
+    raises_from_library(physpix.InvalidHandleError, ["is a joint handle, not a body"], world.create_joint,
+                        "revolute", body_b=hinge_as_body, anchor_a=(100, 92))
+    assert world.bodies() == [box] and world.joints() == [hinge]
+
+
 def test_context_manager_destroys_the_world():
     with physpix.World() as w:
         b = rect(w, 8, 8)

@@ -6,6 +6,7 @@ plugin/api/physpix_api.json; the friendly classes live in world.py and image.py.
 import ctypes
 import os
 import sys
+import threading
 from ctypes.util import find_library
 from pathlib import Path
 
@@ -14,7 +15,7 @@ from .errors import error_for
 
 # The structs, callbacks and signatures are generated from plugin/api/physpix_api.json (plugin/api/gen_api.py).
 from ._api import *  # noqa: F401,F403  (re-exported: world.py reads N.pp_vec2, N.u8p, …)
-from ._api import SIGNATURES, STATUS, c_enum, pp_body_def, pp_world_def
+from ._api import SIGNATURES, STATUS, c_enum, pp_body_def, pp_world, pp_world_def
 
 
 def _candidates():
@@ -98,6 +99,30 @@ def check(result, func, args):
     return result
 
 
+# A World may be shared between threads, and its calls then run one at a time. The library's worlds are used from
+# one thread at a time, and ctypes lets go of the GIL during a call, so two threads inside one world at once
+# corrupted it (issue 39). Every call whose first argument is a pp_world holds that world's lock; different worlds
+# still run in parallel. The lock is reentrant, so a log hook may call into the world whose call logged.
+_world_locks = {}
+
+
+def _world_lock(world_id):
+    return _world_locks.get(world_id) or _world_locks.setdefault(world_id, threading.RLock())
+
+
+def _one_at_a_time(fn):
+    """fn, whose first argument is a pp_world, called under that world's lock."""
+    def call(world, *args):
+        with _world_lock(world.id):
+            try:
+                return fn(world, *args)
+            finally:
+                if fn.__name__ == "pp_world_destroy":
+                    _world_locks.pop(world.id, None)  # a destroyed world's id never comes back
+    call.__name__ = fn.__name__
+    return call
+
+
 lib, path = _load()
 for _name, (_res, _args) in SIGNATURES.items():
     try:
@@ -110,6 +135,8 @@ for _name, (_res, _args) in SIGNATURES.items():
         _fn.errcheck = check
     else:
         _fn.restype = _res
+    if _args and _args[0] is pp_world:
+        setattr(lib, _name, _one_at_a_time(_fn))
 
 version = lib.pp_version()
 if version // 10000 != 0:

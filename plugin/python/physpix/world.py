@@ -153,12 +153,21 @@ def _read_list(fn: Callable[..., Any], item_type: Type[_S], *args: Any, guess: i
         capacity = count.value
 
 
+def _check_plane_size(a: np.ndarray, name: str) -> None:
+    """A plane whose height or width the C int32 fields cannot hold is an IntegerRangeError (a ValueError) naming
+    it, raised before anything copies it: ctypes would wrap a width of 2**32 + 16 to 16, and a broadcast array
+    that size would be 4 GiB once made contiguous."""
+    for axis, size in zip(("height", "width"), a.shape[:2]):
+        _c_int(size, c_int32, f"{name} {axis}")
+
+
 def _as_u8(array: npt.ArrayLike, name: str, ndim: int, channels: Optional[int] = None) -> npt.NDArray[np.uint8]:
     """A C-contiguous uint8 copy-free view where possible; integer arrays must hold 0..255."""
     a = np.asarray(array)
     if a.ndim != ndim or (channels is not None and a.shape[-1] != channels):
         want = "(height, width, 4)" if channels else "(height, width)"
         raise ValueError(f"{name}: expected an array of shape {want}, got shape {a.shape}")
+    _check_plane_size(a, name)
     if a.dtype != np.uint8:
         if a.dtype.kind not in "iu" or (a.size and (a.min() < 0 or a.max() > 255)):
             raise ValueError(f"{name}: expected uint8 values 0..255, got dtype {a.dtype}")
@@ -171,6 +180,7 @@ def _mask_u8(mask: npt.ArrayLike) -> npt.NDArray[np.uint8]:
     m = np.asarray(mask)
     if m.ndim != 2:
         raise ValueError(f"mask: expected an array of shape (height, width), got shape {m.shape}")
+    _check_plane_size(m, "mask")
     return np.ascontiguousarray(m != 0, dtype=np.uint8)
 
 
