@@ -20,6 +20,11 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
 enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4 };
 enum { HARD_MASS_RATIO = 4 };
 
+/* Past this mass ratio between two bodies of an island, the exact solver's factorisation loses its pivots and
+ * ODE aborts the process (dxLDLTRemove's or dxNormalize4's assertion: a 16 px crate of density 1e-13 under
+ * one of 1) where QuickStep only answers loosely: such an island is QuickStep's. 1000:1 stacks stand exactly. */
+#define EXACT_MASS_RATIO 1e6
+
 static bool within_reach(const world *wd, const body *bd)
 {
     const double reach = 1.0 + (double)bd->raster.width + (double)bd->raster.height;
@@ -208,10 +213,13 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
     if (st || (st = world_slot_array(wd, (void **)&isl->bodies, &isl->bodies_capacity, sizeof *isl->bodies, what)) ||
         (st = world_slot_array(wd, (void **)&isl->kind, &isl->kind_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->span, &isl->span_capacity, 1, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->heaviest, &isl->heaviest_capacity, sizeof *isl->heaviest, what)) ||
         (st = collect_nodes(wd)))
         return st;
-    /* Per root: the island's rows (the group array's second third) and its dynamic bodies. */
+    /* Per root: the island's rows (the group array's second third), whether it may not be solved exactly (the
+     * last third, until set_spans takes it) and its dynamic bodies. */
     int32_t *parent = wd->islands.group, *rows = wd->islands.group + wd->islands.group_capacity;
+    int32_t *not_exact = wd->islands.group + 2 * wd->islands.group_capacity;
     int32_t *dynamic = (int32_t *)wd->islands.bodies; /* scratch until the lists are written */
     PP_ASSERT(sizeof *wd->islands.bodies >= sizeof *dynamic);
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
@@ -219,6 +227,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
         const body *bd = wd->bodies[i];
         parent[i] = i;
         rows[i] = bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0;
+        not_exact[i] = 0;
+        wd->islands.heaviest[i] = 0;
         dynamic[i] = bd->type == PP_BODY_DYNAMIC;
     }
     for (int32_t k = 0, end; k < wd->contact_count; k = end) {
@@ -239,8 +249,17 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
         if (!within_reach(wd, wd->bodies[wd->islands.nodes[n]]))
             dynamic[world_group_root(parent, wd->islands.nodes[n])] = INT32_MIN / 2;
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int32_t i = wd->islands.nodes[n];
-        wd->islands.kind[i] = dynamic[world_group_root(parent, i)] < 2 ? ISLAND_QUICK_ALONE : ISLAND_QUICK_STACK;
+        const body *bd = wd->bodies[wd->islands.nodes[n]];
+        double *heaviest = &wd->islands.heaviest[world_group_root(parent, wd->islands.nodes[n])];
+        if (bd->type == PP_BODY_DYNAMIC && bd->mass.mass > *heaviest)
+            *heaviest = bd->mass.mass;
+    }
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n], root = world_group_root(parent, i);
+        const body *bd = wd->bodies[i];
+        if (bd->type == PP_BODY_DYNAMIC && wd->islands.heaviest[root] > EXACT_MASS_RATIO * bd->mass.mass)
+            not_exact[root] = 1;
+        wd->islands.kind[i] = dynamic[root] < 2 ? ISLAND_QUICK_ALONE : ISLAND_QUICK_STACK;
     }
     /* An island is stepped if any of its bodies is awake (ODE wakes the rest); mark those roots. */
     for (int32_t n = 0; n < wd->islands.node_count; n++)
@@ -248,8 +267,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
             rows[world_group_root(parent, wd->islands.nodes[n])] |= INT32_MIN;
     const int32_t limit = wd->def.exact_island_rows;
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int32_t i = wd->islands.nodes[n], r = rows[world_group_root(parent, i)];
-        if (r < 0 && (wd->def.exact_solver || (wd->islands.kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
+        const int32_t i = wd->islands.nodes[n], root = world_group_root(parent, i), r = rows[root];
+        if (r < 0 && !not_exact[root] && (wd->def.exact_solver || (wd->islands.kind[i] == ISLAND_QUICK_STACK && (r & INT32_MAX) <= limit)))
             wd->islands.kind[i] = wd->islands.kind[i] == ISLAND_QUICK_ALONE ? ISLAND_EXACT_ALONE : ISLAND_EXACT;
     }
     set_spans(wd, pairing);
@@ -327,5 +346,6 @@ void island_free(island_set *is)
     pp_free(is->bodies);
     pp_free(is->kind);
     pp_free(is->span);
+    pp_free(is->heaviest);
     *is = (island_set){0};
 }

@@ -122,6 +122,8 @@ typedef struct island_set {
     int32_t kind_capacity;
     uint8_t *span;           /* … and by slot, the substeps of time it advances (SPAN_*) */
     int32_t span_capacity;
+    double *heaviest;        /* by root: its heaviest dynamic body's mass (island_plan's scratch) */
+    int32_t heaviest_capacity;
     uint64_t substep_serial; /* counts island_plan's calls: which substep a body's sat_out names */
 } island_set;
 
