@@ -1,8 +1,8 @@
 #!/bin/sh
 # Runs the Godot tests in godot3-server against the freshly built addon (make test-godot): test.gd (the
-# native PhysPixWorld) and test_nodes.gd (the PhysPixWorld2D and PhysPixBody2D nodes) in tests/godot, and
-# test_example.gd in a copy of the example `make godot-example` made. Each project is copied under $BUILD/godot with
-# addons/physpix from $BUILD/addons/physpix; each script runs under timeout and passes only on exit code 0,
+# native PhysPixWorld), test_nodes.gd (the PhysPixWorld2D and PhysPixBody2D nodes) and test_joint.gd (the
+# PhysPixJoint2D node) in tests/godot, and test_example.gd in a copy of the example `make godot-example` made.
+# Each project is copied under $BUILD/godot with addons/physpix from $BUILD/addons/physpix; each script runs under timeout and passes only on exit code 0,
 # the line "RESULT: PASS" and no "SCRIPT ERROR" (a runtime error in a frame does not stop the engine).
 set -u
 cd "$(dirname "$0")/../.." || exit 1
@@ -59,6 +59,7 @@ run_script() {
 make_project tests/godot tests
 run_script tests test.gd
 run_script tests test_nodes.gd
+run_script tests test_joint.gd
 
 # The example as `make godot-example` left it, imported and ready to run: no import step here, so a target that
 # forgot it fails ("No loader found for resource: res://terrain.png").

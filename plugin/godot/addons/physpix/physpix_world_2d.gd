@@ -16,6 +16,7 @@ signal joint_broken(a, b)  # a joint between a and b (null: the static world) br
 # the body script is still loading, and a preload then fails ("possible cyclic reference").
 const NATIVE_PATH = "res://addons/physpix/physpix_world.gdns"
 const BODY_PATH = "res://addons/physpix/physpix_body_2d.gd"
+const JOINTS_PENDING = "physpix_pending_joints"  # PhysPixJoint2D nodes waiting for their bodies (its PENDING)
 
 export var gravity = Vector2(0, 980) setget set_gravity  # px/s²
 export(String, "fast", "balanced", "accurate") var preset = "balanced"
@@ -28,6 +29,7 @@ export var settings = {}  # pp_world_def fields by their C names, e.g. {"allow_s
 var world = null  # the native PhysPixWorld, made when the first body or call needs it
 var last_step_ms = 0.0  # what the last physics frame cost: step, events and node updates
 var _nodes = {}  # body int -> PhysPixBody2D
+var _joints = {}  # joint int -> PhysPixJoint2D
 
 
 # The native world, created from the exported settings on first use.
@@ -60,6 +62,8 @@ func set_contact_events(on):
 
 func _physics_process(delta):
 	var start = OS.get_ticks_usec()
+	# Joint nodes whose bodies are made by now make their joints (REALTIME: call_group alone defers the calls).
+	get_tree().call_group_flags(SceneTree.GROUP_CALL_REALTIME, JOINTS_PENDING, "_try_make", false)
 	get_world().step(delta)
 	_drain_events()
 	var frame = global_transform
@@ -123,6 +127,14 @@ func _unregister(node):
 	_nodes.erase(node.body)
 
 
+func _register_joint(node):
+	_joints[node.joint] = node
+
+
+func _unregister_joint(node):
+	_joints.erase(node.joint)
+
+
 # Events become signals; a split adds the piece's node first, a destroyed body's node goes after its signal.
 func _drain_events():
 	for e in world.get_events():
@@ -150,6 +162,10 @@ func _drain_events():
 			"sensor_end":
 				emit_signal("sensor_end", a, b)
 			"joint_broken":
+				var j = _joints.get(e["joint"])
+				_joints.erase(e["joint"])
+				if j != null and is_instance_valid(j):
+					j._broke()
 				emit_signal("joint_broken", a, b)
 
 
