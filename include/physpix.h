@@ -213,7 +213,11 @@ typedef enum pp_preset {
  * bounce_threshold; contact_cfm is relative to the pair's reduced mass, so it does not depend on body size.
  * Each contact is two rows (the normal and one in-plane friction direction). An island of two or more
  * dynamic bodies with at most exact_island_rows rows is solved by ODE's exact dWorldStep (towers, heavy on
- * light), larger ones by QuickStep. A pile would creep on either (QuickStep's solve stops short, and the
+ * light), larger ones by QuickStep, and so is one whose bodies' masses differ over 1e6 times (the exact
+ * factorisation loses its pivots there). ODE's messages reach the log hook, never stderr. "ODE message 3: LCP
+ * internal error" (level 1) means the exact solver gave up on an island's rows, as a stack woken all at once
+ * can make it; that substep solves the island by QuickStep instead and the step returns PP_OK: nothing to do,
+ * unless it repeats every step, when a smaller exact_island_rows avoids it. A pile would creep on either (QuickStep's solve stops short, and the
  * exact solve gives at contact_cfm under a steady sideways load), so in every island of two or more dynamic
  * bodies each touching pair keeps a friction anchor, and friction takes back what a contact slipped since
  * (within Coulomb's bound; a slip over 2 px or a turn over 0.05 rad re-anchors).
