@@ -593,7 +593,7 @@ typedef struct pp_joint_def {
     float lower;                 ///< lowest angle (rad, within −π..π) or translation (px), ≤ upper
     float upper;                 ///< highest angle (rad) or translation (px)
     uint32_t enable_motor;       ///< nonzero: drive toward motor_speed under max_motor_force (REVOLUTE, PRISMATIC)
-    float motor_speed;           ///< rad/s (REVOLUTE) or px/s (PRISMATIC), b relative to a
+    float motor_speed;           ///< rad/s (REVOLUTE, within ±PP_MAX_ANGULAR_SPEED) or px/s (PRISMATIC, ±PP_MAX_SPEED)
     float max_motor_force;       ///< ≥ 0: mass·px/s² (PRISMATIC) or a torque in mass·px²/s² (REVOLUTE)
     float min_length;            ///< DISTANCE: shortest anchor distance, px, ≥ 0; min 0 and max 0 keep it rigid
     float max_length;            ///< DISTANCE: longest anchor distance, px, ≥ min_length (a rope has min 0)
@@ -620,7 +620,8 @@ PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, f
 /// REVOLUTE: angle of b relative to a since creation, rad (−π..π), and its rate, rad/s; PRISMATIC:
 /// translation of b along the axis since creation, px, px/s; DISTANCE: anchor distance, px, px/s; others 0.
 PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float *speed);
-/// REVOLUTE, PRISMATIC: switch the motor; speed in rad/s or px/s, max_force ≥ 0 (torque for REVOLUTE).
+/// REVOLUTE, PRISMATIC: switch the motor; speed in rad/s (±PP_MAX_ANGULAR_SPEED) or px/s (±PP_MAX_SPEED),
+/// max_force finite and ≥ 0 (a torque for REVOLUTE).
 PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, float speed, float max_force);
 /// REVOLUTE (rad, −π..π), PRISMATIC (px), DISTANCE (min and max length, px): switch and set the limits.
 PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, float lower, float upper);

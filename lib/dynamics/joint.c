@@ -95,6 +95,18 @@ static dvec2 world_to_local(const body *bd, dvec2 p) { return bd ? body_world_to
 
 static bool finite_f(double x) { return fabs(x) <= FLT_MAX; }
 
+/* PP_ERR_INVALID_ARGUMENT naming `name` unless a motor's speed is within what a body may reach: PP_MAX_ANGULAR_SPEED
+ * for a revolute joint's rad/s, PP_MAX_SPEED for a prismatic's px/s (FLT_MAX drove a pair 4.6e14 px in a step). */
+static pp_status check_motor_speed(const char *fn, const char *name, pp_joint_type type, double speed)
+{
+    const bool turns = type == PP_JOINT_REVOLUTE;
+    const double most = turns ? PP_MAX_ANGULAR_SPEED : PP_MAX_SPEED;
+    if (!(fabs(speed) <= most))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s must be within ±%g %s (%s), got %g", fn, name, most,
+                       turns ? "rad/s" : "px/s", turns ? "PP_MAX_ANGULAR_SPEED" : "PP_MAX_SPEED", speed);
+    return PP_OK;
+}
+
 /* PP_ERR_INVALID_ARGUMENT naming the first field of a def out of its range. */
 static pp_status check_def_values(const char *fn, const pp_joint_def *d)
 {
@@ -112,8 +124,9 @@ static pp_status check_def_values(const char *fn, const pp_joint_def *d)
         if (!(nonneg[i].v >= 0) || !finite_f(nonneg[i].v))
             return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s must be finite and ≥ 0, got %g", fn, nonneg[i].name,
                            nonneg[i].v);
-    if (!finite_f(d->motor_speed))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: motor_speed must be finite, got %g", fn, d->motor_speed);
+    pp_status st = check_motor_speed(fn, "motor_speed", d->type, d->motor_speed);
+    if (st)
+        return st;
     if (d->type == PP_JOINT_PRISMATIC && !(finite_f(d->axis.x) && finite_f(d->axis.y) && hypot(d->axis.x, d->axis.y) > 0))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: axis must be finite and not zero, got (%g, %g)", fn, d->axis.x,
                        d->axis.y);
@@ -376,9 +389,11 @@ PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, fl
         return PP_ERR_INVALID_HANDLE;
     if (jt->def.type != PP_JOINT_REVOLUTE && jt->def.type != PP_JOINT_PRISMATIC)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute and prismatic joints have motors", fn);
-    if (!finite_f(speed) || !finite_f(max_force) || !(max_force >= 0))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: speed must be finite and max_force finite and ≥ 0, got %g and %g",
-                       fn, speed, max_force);
+    if (!finite_f(max_force) || !(max_force >= 0))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: max_force must be finite and ≥ 0, got %g", fn, max_force);
+    pp_status st = check_motor_speed(fn, "speed", jt->def.type, speed);
+    if (st)
+        return st;
     jt->def.enable_motor = enabled != 0;
     jt->def.motor_speed = speed, jt->def.max_motor_force = max_force;
     solver_joint_set_motor(wd->solver, jt->def.type, &jt->sj, enabled, speed, max_force);

@@ -2,6 +2,7 @@
  * limits, lengths, a hanging box's reaction), breaking by force and by an erase, and the exact status of
  * every misuse. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -773,5 +774,47 @@ Test(joints, a_soft_weld_deflects_by_weight_over_stiffness)
     const double sag = body_pos(w, tip).y - 100, analytic = mb * G / k;
     cr_log_info("soft weld 2 Hz: the tip sags %.4f px, m·g/k = %.4f px", sag, analytic);
     cr_assert(fabs(sag / analytic - 1) < 0.02, "sag %g px, m·g/k %g px", sag, analytic);
+    pp_world_destroy(w);
+}
+
+/* A motor's speed is within what a body may reach (issue 39): FLT_MAX was accepted and drove the pair 4.6e14 px
+ * in a step, each step taking seconds. Past the limit is refused, naming the argument and the range; at the
+ * limit, with the largest force, the pair turns at no more than PP_MAX_ANGULAR_SPEED and stays finite. */
+Test(joints, a_motor_speed_past_what_a_body_may_reach_is_refused, .timeout = 60)
+{
+    pp_world w = make_world(0, 0);
+    pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 200, 0), 20, 20);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 240, 200, 0), 20, 20);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_a = a, jd.body_b = b, jd.anchor_a = v2(220, 200);
+    pp_joint j = make_joint(w, &jd);
+    EXPECT_ERR(pp_joint_set_motor(w, j, 1, FLT_MAX, FLT_MAX), PP_ERR_INVALID_ARGUMENT, "speed|PP_MAX_ANGULAR_SPEED");
+    EXPECT_ERR(pp_joint_set_motor(w, j, 1, -1.01f * PP_MAX_ANGULAR_SPEED, 1), PP_ERR_INVALID_ARGUMENT, "speed");
+    EXPECT_ERR(pp_joint_set_motor(w, j, 1, 1, FLT_MAX * 2.0f), PP_ERR_INVALID_ARGUMENT, "max_force");
+    jd.enable_motor = 1, jd.motor_speed = 2 * PP_MAX_ANGULAR_SPEED;
+    pp_joint k;
+    EXPECT_ERR(pp_joint_create(w, &jd, &k), PP_ERR_INVALID_ARGUMENT, "motor_speed|PP_MAX_ANGULAR_SPEED");
+    pp_joint_def pd = pp_joint_def_default(PP_JOINT_PRISMATIC);
+    pd.body_a = a, pd.body_b = b, pd.anchor_a = v2(220, 200), pd.axis = v2(1, 0);
+    pd.enable_motor = 1, pd.motor_speed = -2 * PP_MAX_SPEED;
+    EXPECT_ERR(pp_joint_create(w, &pd, &k), PP_ERR_INVALID_ARGUMENT, "motor_speed|PP_MAX_SPEED");
+    PP_OK_OR_FAIL(pp_joint_set_motor(w, j, 1, PP_MAX_ANGULAR_SPEED, FLT_MAX));
+    for (int i = 0; i < 120; i++) {
+        const pp_status st = pp_world_step(w, DT);
+        cr_assert(st == PP_OK, "step %d: %s (%s)", i, pp_status_name(st), pp_last_error());
+    }
+    /* At 1e5 rad/s the hinge cannot hold a 20 px arm (2e11 px/s² outward), but no body passes the motion limits:
+     * each stays within PP_MAX_SPEED × the 2 s run of where it was, turning at most PP_MAX_ANGULAR_SPEED. */
+    const pp_body bodies[2] = {a, b};
+    const pp_vec2 from[2] = {v2(200, 200), v2(240, 200)};
+    for (int i = 0; i < 2; i++) {
+        pp_vec2 p = body_pos(w, bodies[i]), v;
+        float spin = 0;
+        PP_OK_OR_FAIL(pp_body_get_velocity(w, bodies[i], &v, &spin));
+        cr_assert(isfinite(p.x) && isfinite(p.y) && dist(p, from[i]) <= PP_MAX_SPEED * 120 * DT,
+                  "body %d at (%g, %g)", i, p.x, p.y);
+        cr_assert(fabsf(spin) <= PP_MAX_ANGULAR_SPEED && hypot(v.x, v.y) <= PP_MAX_SPEED, "body %d moves at "
+                  "(%g, %g) px/s, %g rad/s", i, v.x, v.y, spin);
+    }
     pp_world_destroy(w);
 }
