@@ -108,7 +108,8 @@ static int32_t insert_record(contact_table *t, const contact_record *rec)
     const int32_t i = t->awake++;
     t->count++;
     *edit(t, i) = *rec;
-    pair_map_set(&t->index, key_of(rec), i);
+    if (!(rec->flags & CT_GONE))
+        pair_map_set(&t->index, key_of(rec), i);
     return i;
 }
 
@@ -357,7 +358,10 @@ void contact_table_body_removed(world *wd, uint64_t id)
 pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn, const char *where)
 {
     contact_table *t = &wd->table;
-    if (lookup(t, key_of(rec)) >= 0)
+    /* A snapshot saved between a body's removal and the next step lists its pairs (writers before the table
+     * did): they end at the next substep, as they would have. */
+    const bool live = body_find(wd, (pp_body){rec->a}) && body_find(wd, (pp_body){rec->b});
+    if (live && lookup(t, key_of(rec)) >= 0)
         return pp_fail(PP_ERR_FORMAT, "%s: %s: the pair is listed twice", fn, where);
     pp_status st = reserve(t, t->count + 1, fn);
     if (st)
@@ -365,6 +369,10 @@ pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn
     contact_record r = *rec;
     anchor_turn(&r);
     r.found = t->substep - 1; /* not found at the last substep: a resting pair lists its own points */
+    if (!live) {
+        r.flags |= CT_GONE, r.point_count = 0;
+        t->gone++;
+    }
     insert_record(t, &r);
     return PP_OK;
 }

@@ -90,7 +90,7 @@ dvec2 contact_anchor_slip(const contact_record *t, const struct body *a, const s
 void contact_table_body_removed(struct world *wd, uint64_t id);
 
 /* Add a record read from a snapshot (a in the lower slot), before any step; PP_ERR_FORMAT names `where` when
- * the pair is listed twice. */
+ * the pair is listed twice. A pair naming a body the world does not hold is gone: it ends at the next substep. */
 pp_status contact_table_add(struct world *wd, const contact_record *rec, const char *fn, const char *where);
 
 /* The contacts a sleeping pair keeps: its manifold, when neither of its bodies is awake; else 0. */
