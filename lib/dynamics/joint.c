@@ -127,9 +127,13 @@ static pp_status check_def_values(const char *fn, const pp_joint_def *d)
     pp_status st = check_motor_speed(fn, "motor_speed", d->type, d->motor_speed);
     if (st)
         return st;
-    if (d->type == PP_JOINT_PRISMATIC && !(finite_f(d->axis.x) && finite_f(d->axis.y) && hypot(d->axis.x, d->axis.y) > 0))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: axis must be finite and not zero, got (%g, %g)", fn, d->axis.x,
-                       d->axis.y);
+    /* Every type keeps its def (snapshots and scenes write it whole), so a field it ignores is finite too. */
+    if (!finite_f(d->axis.x) || !finite_f(d->axis.y) || (d->type == PP_JOINT_PRISMATIC && !(hypot(d->axis.x, d->axis.y) > 0)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: axis must be finite%s, got (%g, %g)", fn,
+                       d->type == PP_JOINT_PRISMATIC ? " and not zero" : "", d->axis.x, d->axis.y);
+    if (!finite_f(d->lower) || !finite_f(d->upper))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got %g and %g", fn, d->lower,
+                       d->upper);
     if (d->max_length < d->min_length)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: min_length %g is more than max_length %g", fn, d->min_length,
                        d->max_length);
@@ -272,7 +276,11 @@ pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint *
     jt->def = *def;
     jt->local_a = local_a, jt->local_b = local_b;
     jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);
-    const dvec2 axis = dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y));
+    /* Only a prismatic joint has an axis (checked non-zero); another keeps the default's, so that a zero one it
+     * ignores leaves no NaN in its state (fuzz_api: a revolute joint of axis (0, 0) could not be saved). */
+    const dvec2 axis = def->type == PP_JOINT_PRISMATIC
+                           ? dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y))
+                           : dv(1, 0);
     jt->axis_local = a ? dv_unrot(axis, a->cos_a, a->sin_a) : axis;
     t->items[slot] = jt;
     if (a)

@@ -818,3 +818,36 @@ Test(joints, a_motor_speed_past_what_a_body_may_reach_is_refused, .timeout = 60)
     }
     pp_world_destroy(w);
 }
+
+/* Only a prismatic joint has an axis: another's ignored axis of (0, 0) was normalised into NaN in its state, and
+ * the world could no longer be saved (fuzz_api: PP_ERR_LIMIT, "joint … holds nan"). */
+Test(joints, a_revolute_joint_with_a_zero_axis_saves_and_loads)
+{
+    pp_world w = make_world(0, 980);
+    pp_body rod = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 200, 0), 10, 60);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = rod, jd.anchor_a = v2(200, 175), jd.axis = v2(0, 0);
+    make_joint(w, &jd);
+    step_n(w, DT, 10);
+    pp_world back = snapshot_round_trip(w);
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_joints(back, NULL, 0, &n));
+    cr_assert_eq(n, 1, "the loaded world holds the joint");
+    pp_world_destroy(back);
+    pp_world_destroy(w);
+}
+
+/* Every type keeps its def whole (snapshots and scenes write it), so a field a type ignores is finite too: a
+ * revolute joint of axis (NaN, NaN) was accepted and its world's snapshot was invalid JSON (fuzz_api). */
+Test(joints, a_field_a_type_ignores_is_still_finite)
+{
+    pp_world w = make_world(0, 980);
+    pp_body rod = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 200, 0), 10, 60);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_b = rod, jd.anchor_a = v2(200, 175), jd.axis = v2(NAN, NAN);
+    pp_joint j;
+    EXPECT_ERR(pp_joint_create(w, &jd, &j), PP_ERR_INVALID_ARGUMENT, "axis");
+    jd.axis = v2(1, 0), jd.upper = INFINITY;
+    EXPECT_ERR(pp_joint_create(w, &jd, &j), PP_ERR_INVALID_ARGUMENT, "upper");
+    pp_world_destroy(w);
+}
