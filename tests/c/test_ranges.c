@@ -1,6 +1,7 @@
 /* A range for every number (issue 39): each numeric argument and def field the API description gives a range is
  * fed its boundary values (tests/c/ranges_gen.h, generated from plugin/api/physpix_api.json's "ranges"): inside
- * is PP_OK, outside PP_ERR_INVALID_ARGUMENT (or the range's "past_max" status), on a fresh small world each time.
+ * is PP_OK, outside PP_ERR_INVALID_ARGUMENT (or the range's "past_max" status) with a message naming the argument,
+ * on a fresh small world each time.
  * The arguments left out are listed with a reason in the description's "ranges"."untested". */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -86,6 +87,16 @@ static pp_status range_try_timed_edit(range_fixture *f, const pp_timed_edit *e)
 
 #include "ranges_gen.h"
 
+/* The C name of a case's argument: "pp_body_def.pivot.x" -> "pivot". */
+static const char *arg_name(const char *arg, char name[64])
+{
+    snprintf(name, 64, "%s", strchr(arg, '.') + 1);
+    char *component = strchr(name, '.');
+    if (component)
+        *component = 0;
+    return name;
+}
+
 static void fixture_make(range_fixture *f, int kind)
 {
     memset(f, 0, sizeof *f);
@@ -104,7 +115,8 @@ static void fixture_make(range_fixture *f, int kind)
 Test(ranges, every_boundary_value_of_every_ranged_argument_gets_the_status_its_range_gives)
 {
     const int n = (int)(sizeof range_cases / sizeof *range_cases);
-    int wrong = 0;
+    int wrong = 0, unnamed = 0;
+    char name[64];
     for (int i = 0; i < n; i++) {
         const range_case *c = &range_cases[i];
         range_fixture f;
@@ -114,9 +126,13 @@ Test(ranges, every_boundary_value_of_every_ranged_argument_gets_the_status_its_r
             cr_log_error("%s = %a (%g): %s, want %s (%s)", c->arg, c->value, c->value, pp_status_name(st),
                          pp_status_name(c->want), pp_last_error());
             wrong++;
+        } else if (st == PP_ERR_INVALID_ARGUMENT && !strstr(pp_last_error(), arg_name(c->arg, name))) {
+            cr_log_error("%s = %g: the message does not name %s: %s", c->arg, c->value, name, pp_last_error());
+            unnamed++;
         }
         PP_OK_OR_FAIL(pp_world_destroy(f.w));
     }
+    cr_assert_eq(unnamed, 0, "%d refusals do not name their argument (see the log)", unnamed);
     cr_assert_eq(wrong, 0, "%d of %d boundary cases got another status (see the log)", wrong, n);
     cr_assert_gt(n, 1000, "the generated table has only %d cases", n);
 }
