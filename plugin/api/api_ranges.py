@@ -189,7 +189,7 @@ def ranges_test_header(desc):
     from api_targets import BANNER  # noqa: E402  (beside this file; imported late: api_targets imports this module)
     spec = desc["ranges"]
     fixtures = spec["fixtures"]
-    kinds = sorted(set(fixtures.values()))
+    kinds = sorted(set(fixtures.values()) | {r["test_fixture"] for r in spec["args"].values() if "test_fixture" in r})
     rows, calls = [], []
     types = {f"{fn}.{n}": t for fn, (_, args) in desc["functions"].items() for n, t in args}
     types.update({f"{s}.{n}": t for s in spec["structs"] for n, t in desc["structs"][s]})
@@ -199,13 +199,14 @@ def ranges_test_header(desc):
         if (ctype is None or "not_a_range" in rng or owner not in fixtures or owner in spec["untested"]
                 or key in spec["untested"]):
             continue
+        fixture = rng.get("test_fixture", fixtures[owner])
         for comp in (["x", "y"] if ctype == "pp_vec2" else [""]):
             target = len(calls)
-            body = (_set_field(desc, owner, key, ctype, comp, fixtures[owner]) if owner in spec["structs"] else
+            body = (_set_field(desc, owner, key, ctype, comp, fixture) if owner in spec["structs"] else
                     _call(desc, owner, key, ctype, comp))
             calls.append(f"    case {target}: {{ {body} }}")
             name = key + (f".{comp}" if comp else "")
-            rows += [f"    {{\"{name}\", RANGE_{fixtures[owner].upper()}, {target}, {lit}, {want}}},"
+            rows += [f"    {{\"{name}\", RANGE_{fixture.upper()}, {target}, {lit}, {want}}},"
                      for c, _, lit, want in cases(key, ctype, rng) if c == comp]
     enum = ", ".join(f"RANGE_{k.upper()}" for k in kinds)
     return "\n".join([

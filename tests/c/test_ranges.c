@@ -4,6 +4,7 @@
  * on a fresh small world each time.
  * The arguments left out are listed with a reason in the description's "ranges"."untested". */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -19,6 +20,7 @@ typedef struct range_fixture {
     pp_body b, other;
     pp_joint j;
     uint8_t mask[8 * 8];
+    uint8_t rgba[8 * 8 * 4];
 } range_fixture;
 
 static pp_world_def range_world_def(range_fixture *f)
@@ -65,6 +67,40 @@ static pp_status range_try_joint_def(range_fixture *f, const pp_joint_def *d)
     return pp_joint_create(f->w, d, &j);
 }
 
+/* A body drawn from an opaque 8 × 8 sprite, no mask: its alpha_threshold is checked. */
+static pp_body_def range_body_def_sprite(range_fixture *f)
+{
+    pp_body_def d = range_body_def(f);
+    d.mask = NULL;
+    d.rgba = f->rgba;
+    return d;
+}
+
+static pp_status range_try_body_def_sprite(range_fixture *f, const pp_body_def *d) { return range_try_body_def(f, d); }
+
+/* A prismatic joint holding b to the world along x. */
+static pp_joint_def range_prismatic_def(range_fixture *f)
+{
+    pp_joint_def d = pp_joint_def_default(PP_JOINT_PRISMATIC);
+    d.body_b = f->b;
+    d.anchor_a = d.anchor_b = v2(100, 100);
+    return d;
+}
+
+static pp_status range_try_prismatic_def(range_fixture *f, const pp_joint_def *d) { return range_try_joint_def(f, d); }
+
+/* A rope from the world point (100, 50) to b's centre. */
+static pp_joint_def range_distance_def(range_fixture *f)
+{
+    pp_joint_def d = pp_joint_def_default(PP_JOINT_DISTANCE);
+    d.body_b = f->b;
+    d.anchor_a = v2(100, 50);
+    d.anchor_b = v2(100, 100);
+    return d;
+}
+
+static pp_status range_try_distance_def(range_fixture *f, const pp_joint_def *d) { return range_try_joint_def(f, d); }
+
 static pp_camera range_camera(range_fixture *f)
 {
     pp_camera c;
@@ -101,6 +137,7 @@ static void fixture_make(range_fixture *f, int kind)
 {
     memset(f, 0, sizeof *f);
     memset(f->mask, 1, sizeof f->mask);
+    memset(f->rgba, 255, sizeof f->rgba);
     f->w = make_world(0, 980);
     f->b = add_rect(f->w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
     f->other = add_rect(f->w, body_def(PP_BODY_STATIC, 300, 100, 0), 16, 16);
