@@ -14,7 +14,7 @@
 PP_TEST_SUITE(ranges);
 
 /* A default world holding a 16 px dynamic box `b` at (100, 100), a 16 px static box `other` at (300, 100) and,
- * for the joint fixtures, a revolute joint or a mouse joint holding b at its centre. */
+ * for the joint fixtures, a revolute, prismatic or mouse joint holding b at its centre. */
 typedef struct range_fixture {
     pp_world w;
     pp_body b, other;
@@ -141,8 +141,10 @@ static void fixture_make(range_fixture *f, int kind)
     f->w = make_world(0, 980);
     f->b = add_rect(f->w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
     f->other = add_rect(f->w, body_def(PP_BODY_STATIC, 300, 100, 0), 16, 16);
-    if (kind == RANGE_REVOLUTE || kind == RANGE_MOUSE) {
-        pp_joint_def d = pp_joint_def_default(kind == RANGE_MOUSE ? PP_JOINT_MOUSE : PP_JOINT_REVOLUTE);
+    if (kind == RANGE_REVOLUTE || kind == RANGE_MOUSE || kind == RANGE_PRISMATIC) {
+        pp_joint_def d = kind == RANGE_MOUSE       ? pp_joint_def_default(PP_JOINT_MOUSE)
+                         : kind == RANGE_PRISMATIC ? range_prismatic_def(f)
+                                                   : pp_joint_def_default(PP_JOINT_REVOLUTE);
         d.body_b = f->b;
         d.anchor_a = v2(100, 100);
         PP_OK_OR_FAIL(pp_joint_create(f->w, &d, &f->j));
