@@ -403,7 +403,7 @@ PP_API pp_status pp_world_set_contact_events(pp_world w, uint32_t enabled);
 
 /// A renderer's view of a world: the world point at the image centre, the scale and the image size.
 typedef struct pp_camera {
-    pp_vec2 center; ///< world point shown at the image centre, px (default 480, 270)
+    pp_vec2 center; ///< world point shown at the image centre, px, finite (default 480, 270)
     float zoom;     ///< image pixels per world pixel, > 0 (default 1)
     int32_t width;  ///< image width, image px, 1..PP_MAX_BITMAP_SIDE (default 960)
     int32_t height; ///< image height, image px, 1..PP_MAX_BITMAP_SIDE (default 540)
@@ -428,12 +428,12 @@ typedef enum pp_body_type {
 typedef struct pp_body_def {
     uint32_t struct_size;     ///< sizeof(pp_body_def), set by pp_body_def_default
     pp_body_type type;        ///< dynamic, static or kinematic (default DYNAMIC)
-    pp_vec2 position;         ///< world position of the pivot, px
-    float angle;              ///< rotation, radians (positive turns +x toward +y)
+    pp_vec2 position;         ///< world position of the pivot, px, finite
+    float angle;              ///< rotation, radians, finite (positive turns +x toward +y)
     uint32_t custom_pivot;    ///< nonzero: use `pivot`; zero: the pivot is the bitmap centre
     pp_vec2 pivot;            ///< pivot in bitmap coordinates (origin at the top-left corner), px
-    pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s
-    float angular_velocity;   ///< initial angular velocity, rad/s
+    pp_vec2 linear_velocity;  ///< initial velocity of the centre of mass, px/s, at most PP_MAX_SPEED long
+    float angular_velocity;   ///< initial angular velocity, rad/s, within ±PP_MAX_ANGULAR_SPEED
     float density;            ///< mass of one solid pixel of weight 255, mass units, > 0 (default 1)
     float friction;           ///< Coulomb coefficient, ≥ 0 (default 0.6); pairs use sqrt(fa·fb)
     float restitution;        ///< bounciness 0..1 (default 0); pairs use max(ra, rb)
@@ -477,11 +477,12 @@ PP_API pp_status pp_body_get_position(pp_world w, pp_body b, pp_vec2 *out);
 PP_API pp_status pp_body_get_angle(pp_world w, pp_body b, float *out);
 /// Pivot of the body in bitmap coordinates, px.
 PP_API pp_status pp_body_get_pivot(pp_world w, pp_body b, pp_vec2 *out);
-/// Teleport the body: pivot to position (px), rotation to angle (radians); wakes it.
+/// Teleport the body: pivot to position (px), rotation to angle (radians), both finite; wakes it.
 PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, float angle);
 /// Velocity of the centre of mass (px/s) and angular velocity (rad/s); either pointer may be NULL.
 PP_API pp_status pp_body_get_velocity(pp_world w, pp_body b, pp_vec2 *linear, float *angular);
-/// Set the velocity of the centre of mass (px/s) and angular velocity (rad/s); wakes it.
+/// Set the velocity of the centre of mass (px/s, at most PP_MAX_SPEED long) and angular velocity (rad/s, within
+/// ±PP_MAX_ANGULAR_SPEED); wakes it.
 PP_API pp_status pp_body_set_velocity(pp_world w, pp_body b, pp_vec2 linear, float angular);
 /// Mass (mass units), centre of mass in bitmap coordinates (px) and inertia about it (mass·px²); any pointer may be NULL.
 PP_API pp_status pp_body_get_mass(pp_world w, pp_body b, float *mass, pp_vec2 *local_center, float *inertia);
@@ -546,14 +547,16 @@ PP_API pp_status pp_body_get_fixed_rotation(pp_world w, pp_body b, uint32_t *out
 /// Type of the body (dynamic, static or kinematic).
 PP_API pp_status pp_body_get_type(pp_world w, pp_body b, pp_body_type *out);
 
-/// Apply an impulse (mass·px/s) at a world point (px); wakes the body. Dynamic bodies only.
+/// Apply an impulse (mass·px/s) at a world point (px), both finite, giving a velocity within PP_MAX_SPEED and
+/// PP_MAX_ANGULAR_SPEED; wakes the body. Dynamic bodies only.
 PP_API pp_status pp_body_apply_impulse(pp_world w, pp_body b, pp_vec2 impulse, pp_vec2 world_point);
 /// Change the angular velocity by impulse / inertia at once (mass·px²/s); wakes the body. Dynamic bodies only.
 PP_API pp_status pp_body_apply_angular_impulse(pp_world w, pp_body b, float impulse);
-/// Apply a force (mass·px/s²) at a world point (px) through every substep of the next step; forces add up
-/// and are spent by the step. Wakes the body. Dynamic bodies only.
+/// Apply a force (mass·px/s²) at a world point (px), both finite, through every substep of the next step; forces
+/// add up and are spent by the step. Wakes the body. Dynamic bodies only.
 PP_API pp_status pp_body_apply_force(pp_world w, pp_body b, pp_vec2 force, pp_vec2 world_point);
-/// Apply a torque (mass·px²/s², +x turning toward +y) through the next step, as pp_body_apply_force. Dynamic only.
+/// Apply a torque (mass·px²/s², finite, +x turning toward +y) through the next step, as pp_body_apply_force.
+/// Dynamic only.
 PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
 
 /* ---- Joints: types, settings, creation, reactions, motors, limits ---- */
@@ -625,7 +628,7 @@ PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float 
 PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, float speed, float max_force);
 /// REVOLUTE (rad, −π..π), PRISMATIC (px), DISTANCE (min and max length, px): switch and set the limits.
 PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, float lower, float upper);
-/// MOUSE: move the target, world px. Wakes the body.
+/// MOUSE: move the target, world px, finite. Wakes the body.
 PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target);
 /// The joint's type.
 PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out);
@@ -712,11 +715,14 @@ PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint
  * a body left without pixels is destroyed (PP_EVENT_BODY_SPLIT, PP_EVENT_BODY_DESTROYED). A circle changes
  * the pixels whose centres lie within its radius. */
 
-/// Erase the body's pixels whose centres lie within radius (px) of a world point (px); changed receives how many (may be NULL).
+/// Erase the body's pixels whose centres lie within radius (px, finite, ≥ 0) of a world point (px, finite);
+/// changed receives how many (may be NULL).
 PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, int32_t *changed);
-/// Erase every body's pixels within radius (px) of a world point (px); changed receives the pixels erased (may be NULL).
+/// Erase every body's pixels within radius (px, finite, ≥ 0) of a world point (px, finite);
+/// changed receives the pixels erased (may be NULL).
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
-/// Make solid, with weight 1..255, the pixels whose centres lie within radius (px) of a world point (px); changed receives how many changed.
+/// Make solid, with weight 1..255, the pixels whose centres lie within radius (px, finite, ≥ 0) of a world point
+/// (px, finite); changed receives how many changed.
 PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
                                       int32_t *changed);
 /// Overwrite a width×height rectangle at bitmap pixel (x, y): mask bytes non-zero are solid, weights (may be NULL: 255)
@@ -738,7 +744,7 @@ typedef enum pp_edit_type {
 
 /// An edit the world applies by itself at the start of the step nearest `time` (the first starting after time − dt/2).
 typedef struct pp_timed_edit {
-    double time;       ///< world time at which it applies, s
+    double time;       ///< world time at which it applies, s, finite
     pp_edit_type type; ///< erase or paint
     uint32_t weight;   ///< PAINT: weight of the painted pixels, 1..255; ERASE: ignored
     pp_body body;      ///< the body edited; zero for ERASE means every body

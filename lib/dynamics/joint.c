@@ -147,7 +147,7 @@ static pp_status check_limits(const char *fn, pp_joint_type type, double lower, 
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower %g and upper %g must be finite, lower ≤ upper", fn, lower,
                        upper);
     if (type == PP_JOINT_REVOLUTE && !(lower >= -PP_PI && upper <= PP_PI))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a revolute joint's limits must lie within −π..π, got %g..%g", fn,
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a revolute joint's lower and upper must lie within −π..π, got %g..%g", fn,
                        lower, upper);
     if (type == PP_JOINT_DISTANCE && !(lower >= 0))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a distance joint's lengths must be ≥ 0, got %g..%g", fn, lower,

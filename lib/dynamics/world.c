@@ -185,9 +185,14 @@ static pp_status check_world_def(const pp_world_def *d, const char *fn)
         return pp_fail(PP_ERR_INVALID_ARGUMENT,
                        "%s: max_correction_speed must be > 0 and at most PP_MAX_SPEED (%g px/s), got %g", fn,
                        PP_MAX_SPEED, d->max_correction_speed);
-    if (!(d->sleep_linear_speed >= 0 && d->sleep_angular_speed >= 0 && d->sleep_time >= 0) ||
-        !isfinite(d->sleep_linear_speed) || !isfinite(d->sleep_angular_speed) || !isfinite(d->sleep_time))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: sleep thresholds must be finite and ≥ 0", fn);
+    const struct { const char *name; float v; } sleep[] = {
+        {"sleep_linear_speed", d->sleep_linear_speed}, {"sleep_angular_speed", d->sleep_angular_speed},
+        {"sleep_time", d->sleep_time},
+    };
+    for (size_t i = 0; i < sizeof sleep / sizeof *sleep; i++)
+        if (!(sleep[i].v >= 0) || !isfinite(sleep[i].v))
+            return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s must be finite and ≥ 0, got %g", fn, sleep[i].name,
+                           sleep[i].v);
     return PP_OK;
 }
 

@@ -24,8 +24,8 @@ pp_status camera_set(const world *wd, const pp_camera *c, const char *fn)
     if (!isfinite(c->center.x) || !isfinite(c->center.y) || !(c->zoom > 0) || !isfinite(c->zoom))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: center must be finite and zoom finite and > 0", fn);
     if (c->width < 1 || c->height < 1 || c->width > PP_MAX_BITMAP_SIDE || c->height > PP_MAX_BITMAP_SIDE)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: size %dx%d must be within 1..%d px", fn, (int)c->width,
-                       (int)c->height, PP_MAX_BITMAP_SIDE);
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: size %dx%d (width × height) must be within 1..%d px", fn,
+                       (int)c->width, (int)c->height, PP_MAX_BITMAP_SIDE);
     cameras[wd->slot].world_id = wd->handle.id;
     cameras[wd->slot].camera = *c;
     return PP_OK;

@@ -6,7 +6,8 @@ usage: gen_api.py [--check] [--root DIR] [--header PATH] [--description PATH]
 Without --check it writes the generated files (GENERATED below) from the description. With --check (make
 check-api, run by make test) it writes them into a temporary folder and compares them with the committed ones,
 checks the description against include/physpix.h (every PP_API function with its argument names and types, every
-struct field, every enum value, the callback typedefs), that every field of a def in "def_fields" has a kind or a
+struct field, every enum value, the callback typedefs), that every numeric argument and def field has a range (or a
+reason it has none) in "ranges", that every field of a def in "def_fields" has a kind or a
 reason not to be set, and that each function reaches the plugin and the Godot adapter or is listed in "not_exposed"
 with a reason. Python 3 standard library only.
 """
@@ -20,6 +21,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import api_header  # noqa: E402  (beside this file)
+from api_ranges import check_ranges  # noqa: E402
 from api_targets import GENERATED, check_def_fields, host_sources  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -145,6 +147,7 @@ def main(argv=None):
                 print(f"gen_api: wrote {rel}")
             return 0
         errors = check_header(desc, args.header or root / "include/physpix.h")
+        errors += check_ranges(desc, api_header.parse(Path(args.header or root / "include/physpix.h").read_text(encoding="utf-8")))
         unclassified = check_def_fields(desc)  # the def fields' file cannot be generated then
         errors += unclassified + (check_generated(desc, root) if not unclassified else []) + check_hosts(desc, root)
     except ValueError as exc:  # a description the generator cannot turn into bindings

@@ -1,7 +1,7 @@
 """plugin/api/gen_api.py --check catches drift: a call, a field or an enum value added to the header without being
 described, an argument whose type changed, a def field with neither a kind nor a reason not to be set, a generated
-file left stale, a function that reaches no host, and a function listed as not exposed that a host uses. Each case
-runs the checker on a changed copy in a temporary folder and asserts the message; the committed tree itself passes.
+file left stale, a numeric argument or def field without a range, a function that reaches no host, and a function
+listed as not exposed that a host uses. Each case runs the checker on a changed copy in a temporary folder and asserts the message; the committed tree itself passes.
 Standard library only (make check-api runs it)."""
 import contextlib
 import io
@@ -121,6 +121,38 @@ class Drift(unittest.TestCase):
         self.assert_fails_saying("pp_world_step is used by the godot host but listed",
                                  description=self.description_with(change))
 
+
+    def test_a_numeric_argument_without_a_range_is_named(self):
+        header = self.header_with("/// Set the world's gravity",
+                                  "PP_API pp_status pp_body_set_bounce_speed(pp_world w, pp_body b, float speed);\n"
+                                  "/// Set the world's gravity")
+
+        def change(d):
+            d["functions"]["pp_body_set_bounce_speed"] = ["pp_status", [["w", "pp_world"], ["b", "pp_body"],
+                                                                         ["speed", "float"]]]
+        self.assert_fails_saying("pp_body_set_bounce_speed.speed (float) has no range", header=header,
+                                 description=self.description_with(change))
+
+    def test_a_def_field_whose_range_was_dropped_is_named(self):
+        description = self.description_with(lambda d: d["ranges"]["args"].pop("pp_body_def.density"))
+        self.assert_fails_saying("pp_body_def.density (float) has no range", description=description)
+
+    def test_a_flag_without_a_reason_is_no_range(self):
+        def change(d):
+            d["ranges"]["args"]["pp_body_set_awake.awake"] = {"not_a_range": " "}
+        self.assert_fails_saying("pp_body_set_awake.awake: its entry in \"ranges\".\"args\" of plugin/api/"
+                                 "physpix_api.json gives neither a range", description=self.description_with(change))
+
+    def test_a_range_naming_no_argument_is_named(self):
+        def change(d):
+            d["ranges"]["args"]["pp_body_set_density.dens"] = {"min": 0}
+        self.assert_fails_saying("has pp_body_set_density.dens, which is no numeric argument",
+                                 description=self.description_with(change))
+
+    def test_a_changed_range_leaves_the_generated_boundary_test_stale(self):
+        def change(d):
+            d["ranges"]["args"]["pp_body_set_gravity_scale.scale"]["max"] = 2000
+        self.assert_fails_saying("tests/c/ranges_gen.h is stale", description=self.description_with(change))
 
 if __name__ == "__main__":
     unittest.main()
