@@ -113,6 +113,9 @@ static pp_status restore_slots(const json_ctx *c, const cJSON *root, world *wd)
     pp_status st = read_int_array(c, root, "generations", 1, HANDLE_GEN_MAX, &gens, &n);
     if (!st)
         st = read_int_array(c, root, "free_slots", 0, n - 1, &list, &n_free);
+    /* The pool's stack holds the slots once each: a longer list cannot be one (it overran the stack). */
+    if (!st && n_free > n)
+        st = json_fail(c, PP_ERR_FORMAT, "free_slots", "", "lists %d slots of %d", (int)n_free, (int)n);
     if (!st && (!(wd->bodies = pp_calloc((size_t)n + 1, sizeof *wd->bodies)) ||
                 !id_pool_restore(&wd->body_ids, gens, n, list, n_free, pp_realloc)))
         st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d body slots", c->fn, (int)n);
