@@ -189,12 +189,13 @@ def ranges_test_header(desc):
     from api_targets import BANNER  # noqa: E402  (beside this file; imported late: api_targets imports this module)
     spec = desc["ranges"]
     fixtures = spec["fixtures"]
-    variants = [(key, dict(rng, **also)) for key, rng in spec["args"].items() for also in [{}] + rng.get("also", [])]
+    variants = [(key, dict(rng, **also)) for key, rng in spec["args"].items()
+                for also in [rng.get("tested_as", {})] + rng.get("also", [])]
     kinds = sorted(set(fixtures.values()) | {r["test_fixture"] for _, r in variants if "test_fixture" in r})
     rows, calls = [], []
     types = {f"{fn}.{n}": t for fn, (_, args) in desc["functions"].items() for n, t in args}
     types.update({f"{s}.{n}": t for s in spec["structs"] for n, t in desc["structs"][s]})
-    for key, rng in variants:  # each entry, then each of its "also" ranges under another fixture
+    for key, rng in variants:  # each entry (or its "tested_as" range), then each "also" range under another fixture
         owner = key.split(".", 1)[0]
         ctype = types.get(key)  # an entry naming nothing is check_ranges' to report
         if (ctype is None or "not_a_range" in rng or owner not in fixtures or owner in spec["untested"]
