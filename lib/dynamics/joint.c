@@ -183,10 +183,13 @@ static bool anchor_in_reach(const body *bd, dvec2 p)
 
 pp_status joint_check_anchors(const char *fn, const body *a, dvec2 local_a, const body *b, dvec2 local_b)
 {
-    if ((a && !anchor_in_reach(a, local_a)) || (b && !anchor_in_reach(b, local_b)))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: an anchor lies farther than %g px or the body's size from its "
-                       "bitmap (bitmap (%g, %g) of body_a, (%g, %g) of body_b)", fn, JOINT_REACH, local_a.x, local_a.y,
-                       local_b.x, local_b.y);
+    if (a && !anchor_in_reach(a, local_a))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: anchor_a lies farther than %g px or the body's size from body_a's "
+                       "bitmap (bitmap point (%g, %g))", fn, JOINT_REACH, local_a.x, local_a.y);
+    if (b && !anchor_in_reach(b, local_b))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the anchor on body_b (anchor_b; anchor_a of a revolute, weld or "
+                       "mouse joint) lies farther than %g px or the body's size from its bitmap (bitmap point (%g, %g))",
+                       fn, JOINT_REACH, local_b.x, local_b.y);
     return PP_OK;
 }
 

@@ -21,6 +21,7 @@ typedef struct range_fixture {
     pp_joint j;
     uint8_t mask[8 * 8];
     uint8_t rgba[8 * 8 * 4];
+    uint8_t strip[PP_MAX_BITMAP_SIDE]; /* solid, for the body_def_strip fixture only */
 } range_fixture;
 
 static pp_world_def range_world_def(range_fixture *f)
@@ -77,6 +78,18 @@ static pp_body_def range_body_def_sprite(range_fixture *f)
 }
 
 static pp_status range_try_body_def_sprite(range_fixture *f, const pp_body_def *d) { return range_try_body_def(f, d); }
+
+/* A 1 × 1 body whose mask holds PP_MAX_BITMAP_SIDE solid bytes: a width or a height up to the limit, the other 1,
+ * reads within it. */
+static pp_body_def range_body_def_strip(range_fixture *f)
+{
+    pp_body_def d = range_body_def(f);
+    d.width = d.height = 1;
+    d.mask = f->strip;
+    return d;
+}
+
+static pp_status range_try_body_def_strip(range_fixture *f, const pp_body_def *d) { return range_try_body_def(f, d); }
 
 /* A prismatic joint holding b to the world along x. */
 static pp_joint_def range_prismatic_def(range_fixture *f)
@@ -138,6 +151,8 @@ static void fixture_make(range_fixture *f, int kind)
     memset(f, 0, sizeof *f);
     memset(f->mask, 1, sizeof f->mask);
     memset(f->rgba, 255, sizeof f->rgba);
+    if (kind == RANGE_BODY_DEF_STRIP)
+        memset(f->strip, 1, sizeof f->strip);
     f->w = make_world(0, 980);
     f->b = add_rect(f->w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
     f->other = add_rect(f->w, body_def(PP_BODY_STATIC, 300, 100, 0), 16, 16);
