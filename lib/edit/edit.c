@@ -379,8 +379,8 @@ PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t 
     const pp_raster *r = &bd->raster;
     const int64_t need = (int64_t)r->width * r->height;
     if (!out || capacity < need)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out must hold width × height = %lld bytes, got %s%lld", fn,
-                       (long long)need, out ? "" : "NULL with capacity ", (long long)capacity);
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out must hold width × height = %lld bytes, got %scapacity %lld", fn,
+                       (long long)need, out ? "" : "NULL with ", (long long)capacity);
     for (int32_t y = 0; y < r->height; y++)
         for (int32_t x = 0; x < r->width; x++)
             out[(int64_t)y * r->width + x] = raster_solid(r, x, y);

@@ -278,7 +278,7 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
     if (!path || !rgba)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: path or rgba is NULL", fn);
     if (width < 1 || height < 1)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: size %dx%d must be at least 1x1 px", fn, (int)width, (int)height);
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: width × height %d × %d must be at least 1 × 1 px", fn, (int)width, (int)height);
     if (width > PP_MAX_BITMAP_SIDE || height > PP_MAX_BITMAP_SIDE || (int64_t)width * height > PP_MAX_BITMAP_AREA)
         return pp_fail(PP_ERR_LIMIT, "%s: %dx%d px is over PP_MAX_BITMAP_SIDE (%d) or PP_MAX_BITMAP_AREA (%d)", fn,
                        (int)width, (int)height, PP_MAX_BITMAP_SIDE, PP_MAX_BITMAP_AREA);

@@ -161,8 +161,13 @@ def _call(desc, fn, key, ctype, comp):
             call.append(f"(pp_vec2){{{float(ok[0])}f, {float(ok[1])}f}}")
         elif t in NUMERIC:
             call.append(f"({t}){entry.get('ok', 1 if name == 'capacity' else 0)}")
+        elif t == "const char *" and name == "path":
+            call.append("f->path")
+        elif t == "const uint8_t *":
+            call.append("range_plane")
         elif t.endswith(" *") and not t.startswith("const "):
-            pre.append(f"{t[:-2]} {name}[4]; memset({name}, 0, sizeof {name});")
+            items = spec.get(f"{fn}.capacity", {}).get("buffer", 4)
+            pre.append(f"{t[:-2]} {name}[{items}]; memset({name}, 0, sizeof {name});")
             call.append(name)
         else:
             raise ValueError(f"{fn}: the generated range test cannot pass its argument {name} ({t}); list it in "

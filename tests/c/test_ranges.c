@@ -6,15 +6,19 @@
 #include <criterion/criterion.h>
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "helpers.h"
 #include "physpix.h"
 
 PP_TEST_SUITE(ranges);
 
-/* A default world holding a 16 px dynamic box `b` at (100, 100), a 16 px static box `other` at (300, 100) and,
- * for the joint fixtures, a revolute, prismatic or mouse joint holding b at its centre. */
+/* A default world holding a 16 px dynamic box `b` at (100, 100) (weight 255, density 1: mass 256), a 16 px static
+ * box `other` at (300, 100) and, for the joint fixtures, a revolute, prismatic or mouse joint holding b at its
+ * centre; the image fixture adds a 2 × 2 PNG at `path` in a fresh temporary folder. */
 typedef struct range_fixture {
     pp_world w;
     pp_body b, other;
@@ -22,7 +26,11 @@ typedef struct range_fixture {
     uint8_t mask[8 * 8];
     uint8_t rgba[8 * 8 * 4];
     uint8_t strip[PP_MAX_BITMAP_SIDE]; /* solid, for the body_def_strip fixture only */
+    char dir[32], path[64];            /* the image fixture's folder and its 2 × 2 PNG */
 } range_fixture;
+
+/* What a const pixel argument reads (a mask or RGBA rows): ones, enough for a PP_MAX_BITMAP_SIDE × 1 image. */
+static uint8_t range_plane[PP_MAX_BITMAP_SIDE * 4];
 
 static pp_world_def range_world_def(range_fixture *f)
 {
@@ -153,6 +161,14 @@ static void fixture_make(range_fixture *f, int kind)
     memset(f->rgba, 255, sizeof f->rgba);
     if (kind == RANGE_BODY_DEF_STRIP)
         memset(f->strip, 1, sizeof f->strip);
+    if (!range_plane[0])
+        memset(range_plane, 1, sizeof range_plane);
+    if (kind == RANGE_IMAGE) {
+        snprintf(f->dir, sizeof f->dir, "/tmp/pp_ranges_XXXXXX");
+        cr_assert_not_null(mkdtemp(f->dir));
+        snprintf(f->path, sizeof f->path, "%s/range.png", f->dir);
+        PP_OK_OR_FAIL(pp_image_save(f->path, range_plane, 2, 2));
+    }
     f->w = make_world(0, 980);
     f->b = add_rect(f->w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
     f->other = add_rect(f->w, body_def(PP_BODY_STATIC, 300, 100, 0), 16, 16);
@@ -185,6 +201,10 @@ Test(ranges, every_boundary_value_of_every_ranged_argument_gets_the_status_its_r
             unnamed++;
         }
         PP_OK_OR_FAIL(pp_world_destroy(f.w));
+        if (f.dir[0]) {
+            remove(f.path);
+            cr_assert_eq(rmdir(f.dir), 0, "%s: the image fixture's folder is left", c->arg);
+        }
     }
     cr_assert_eq(unnamed, 0, "%d refusals do not name their argument (see the log)", unnamed);
     cr_assert_eq(wrong, 0, "%d of %d boundary cases got another status (see the log)", wrong, n);
