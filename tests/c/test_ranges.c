@@ -2,7 +2,8 @@
  * fed its boundary values (tests/c/ranges_gen.h, generated from plugin/api/physpix_api.json's "ranges"): inside
  * is PP_OK, outside PP_ERR_INVALID_ARGUMENT (or the range's "past_max" status) with a message naming the argument,
  * on a fresh small world each time.
- * The arguments left out are listed with a reason in the description's "ranges"."untested". */
+ * Where a limit depends on the body (an impulse's on its mass, a capacity on its size), the entry's "tested_as" gives
+ * what it comes to on the fixture. An argument left out would be listed with a reason in "ranges"."untested". */
 #include <criterion/criterion.h>
 #include <float.h>
 #include <math.h>
