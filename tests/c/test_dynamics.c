@@ -314,3 +314,21 @@ Test(dynamics, a_kinematic_frame_turns_as_its_velocity_says_round_a_tumbling_pil
     cr_assert(fabsf(p.x - 400) < 1e-3f && fabsf(p.y - 400) < 1e-3f, "the frame's centre moved to (%g, %g)", p.x, p.y);
     pp_world_destroy(w);
 }
+
+/* A kinematic platform carrying 30 boxes in three rows keeps to its path: it is where 60 px/s × t puts it. */
+Test(dynamics, a_kinematic_platform_under_a_load_keeps_to_its_path, .timeout = 120) {
+    pp_world w = make_world(0, 980);
+    pp_body_def pd = body_def(PP_BODY_KINEMATIC, 400, 400, 0);
+    pd.linear_velocity = v2(60, 0);
+    const pp_body p = add_rect(w, pd, 600, 20);
+    for (int k = 0; k < 30; k++)
+        add_rect(w, body_def(PP_BODY_DYNAMIC, 250 + (k % 10) * 16.5f, 382 - (k / 10) * 16.5f, 0), 16, 16);
+    double worst = 0;
+    for (int s = 1; s <= 300; s++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        const pp_vec2 q = body_pos(w, p);
+        worst = fmax(worst, hypot(q.x - (400 + 60.0 * s * (double)(1.0f / 60.0f)), q.y - 400));
+    }
+    cr_assert_lt(worst, 0.01, "the platform strayed %.4f px from its path", worst);
+    pp_world_destroy(w);
+}

@@ -5,6 +5,8 @@
  * asserts the range where it holds, and a disabled twin (`.disabled = true`) states the target. */
 #include "helpers.h"
 
+#include <float.h>
+
 PP_TEST_SUITE(extremes);
 
 #define DT (1.0f / 60.0f)
@@ -948,4 +950,40 @@ Test(extremes, tiny_and_huge_densities_never_reach_an_ode_assertion, .timeout = 
             pp_world_destroy(w);
         }
     }
+}
+
+/* The largest forces, torques and gravity scales the API takes, on a stack solved exactly and on a revolute pair,
+ * every step for half a second: no ODE assertion, every status PP_OK or PP_ERR_LIMIT (a step undone past a
+ * float), every body finite. */
+Test(extremes, huge_forces_torques_and_scales_never_reach_an_ode_assertion, .timeout = 120) {
+    const float values[] = {FLT_MAX, -FLT_MAX, 1e30f, -1e30f, 1e10f, 1e-30f};
+    for (size_t v = 0; v < sizeof values / sizeof values[0]; v++)
+        for (int mode = 0; mode < 3; mode++)
+            for (int jointed = 0; jointed < 2; jointed++) {
+                pp_world w = make_world(0, 980);
+                add_ground(w);
+                pp_body a = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, GROUND_TOP - 8, 0), 16, 16);
+                pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 300, GROUND_TOP - 24, 0), 16, 16);
+                if (jointed) {
+                    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+                    jd.body_a = a, jd.body_b = b, jd.anchor_a = v2(300, GROUND_TOP - 16);
+                    pp_joint j;
+                    PP_OK_OR_FAIL(pp_joint_create(w, &jd, &j));
+                }
+                step_n(w, DT, 20);
+                const float x = values[v];
+                for (int k = 0; k < 30; k++) {
+                    if (mode == 0)
+                        PP_OK_OR_FAIL(pp_body_apply_force(w, b, v2(x, x), v2(305, GROUND_TOP - 30)));
+                    else if (mode == 1)
+                        PP_OK_OR_FAIL(pp_body_apply_torque(w, a, x));
+                    else
+                        PP_OK_OR_FAIL(pp_body_set_gravity_scale(w, b, x > 0 ? PP_MAX_GRAVITY_SCALE : -PP_MAX_GRAVITY_SCALE));
+                    const pp_status st = pp_world_step(w, DT);
+                    cr_assert(st == PP_OK || st == PP_ERR_LIMIT, "%g, mode %d: %s (%s)", x, mode, pp_status_name(st),
+                              pp_last_error());
+                }
+                cr_assert(body_finite(w, a) && body_finite(w, b), "%g, mode %d: a body is not finite", x, mode);
+                pp_world_destroy(w);
+            }
 }
