@@ -82,11 +82,11 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
     return wd->def.contact_erp * gap / h;
 }
 
-/* The deepest of the pair's points from contact i on (a pair's points come together). */
-static double pair_deepest(const world *wd, int32_t i)
+/* The deepest of a pair's points, contacts [first, end). */
+static double pair_deepest(const world *wd, int32_t first, int32_t end)
 {
-    double deepest = wd->contacts[i].depth;
-    for (int32_t j = i + 1, end = contact_pair_end(wd, i); j < end; j++)
+    double deepest = wd->contacts[first].depth;
+    for (int32_t j = first + 1; j < end; j++)
         deepest = fmax(deepest, wd->contacts[j].depth);
     return deepest;
 }
@@ -109,7 +109,7 @@ void contact_joints_add(world *wd, double h)
         const double hs = span * h; /* the time step of the contact's island */
         const body *a = body_of(wd, c0->a), *b = body_of(wd, c0->b);
         const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
-        const double deepest = pair_deepest(wd, first), e = fmax(a->restitution, b->restitution);
+        const double deepest = pair_deepest(wd, first, end), e = fmax(a->restitution, b->restitution);
         const double friction = sqrt(a->friction * b->friction), ia = inv_mass(a), ib = inv_mass(b);
         for (int32_t i = first; i < end; i++) {
             const pp_contact *c = &wd->contacts[i];

@@ -338,7 +338,8 @@ PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capa
     int32_t total = wd->contact_count;
     for (int32_t i = 0; i < wd->table.count; i++) {
         const contact_record *r = &wd->table.records[i];
-        for (int32_t k = 0; k < contact_table_resting_points(wd, r); k++, total++)
+        const int32_t points = contact_table_resting_points(wd, r);
+        for (int32_t k = 0; k < points; k++, total++)
             if (total < capacity)
                 out[total] = r->points[k];
     }
