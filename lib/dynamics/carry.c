@@ -62,6 +62,12 @@ static void strike(carry *c, const body *bd)
 
 static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
 
+bool carry_struck(const world *wd, uint32_t slot)
+{
+    const carry *c = &wd->carry;
+    return (int32_t)slot < c->struck_capacity && struck(c, slot);
+}
+
 /* The body sits the substep out (after island_plan; before the next one's, it sat the last one out), or never
  * moves. A sensor's or a one-way platform's pairs are always collided: their touch state lives on pairs that
  * make no contacts. */

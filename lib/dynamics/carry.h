@@ -68,6 +68,9 @@ pp_status carry_record(struct world *wd, double dt, int32_t k);
 bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 /* At a later substep, after the collided pairs' contacts are pushed: mark their bodies struck. */
 void carry_strike(struct world *wd);
+/* Whether a pair the narrowphase collided touched the body in this slot in this step (so far): something
+ * landed on it, or it moved too fast against another body for its pair to be carried. */
+bool carry_struck(const struct world *wd, uint32_t slot);
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through contact_table_found. */
 pp_status carry_push(struct world *wd);
 /* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that

@@ -9,6 +9,7 @@
 #include "alloc.h"
 #include "island.h"
 #include "awake.h"
+#include "carry.h"
 #include "joint.h"
 
 /* Constraint rows a contact costs (the normal and one in-plane friction row), and at most a joint's. */
@@ -18,8 +19,11 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * one over HARD_MASS_RATIO times lighter (QuickStep at twice the time step let a 1:10:100:1000 chain fall) or
  * a kinematic body (an island that sat a substep out and then solved one lost that substep of the body's
  * prescribed motion: a frame turning at 25°/s round 50 tumbling boxes strayed 0.53 rad in 10 s), all solved
- * every substep; an awake body that sat the last substep out, and one that did not. */
-enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4 };
+ * every substep; an awake body that sat the last substep out, and one that did not; a body a collided pair
+ * touched this step (carry_struck: the island is not at rest). */
+enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8 };
+/* The span ROOT_* flags decide; ROOT_STRUCK only chooses the iterations. */
+#define ROOT_SPAN_FLAGS (ROOT_EVERY_SUBSTEP | ROOT_BEHIND | ROOT_CURRENT)
 enum { HARD_MASS_RATIO = 4 };
 
 /* Past this mass ratio between two bodies of an island, the exact solver's factorisation loses its pivots and
@@ -151,6 +155,8 @@ static void set_spans(world *wd, substep_pairing pairing)
             *f |= bd->sat_out + 1 == wd->islands.substep_serial ? ROOT_BEHIND : ROOT_CURRENT;
         if (bd->type == PP_BODY_KINEMATIC)
             *f |= ROOT_EVERY_SUBSTEP;
+        if (pairing == PAIR_SECOND && carry_struck(wd, bd->index))
+            *f |= ROOT_STRUCK;
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int32_t i = wd->islands.nodes[n], f = flags[world_group_root(parent, i)];
@@ -158,8 +164,8 @@ static void set_spans(world *wd, substep_pairing pairing)
         if (wd->islands.kind[i] == ISLAND_QUICK_STACK) {
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
-            else if (pairing == PAIR_SECOND && f == ROOT_BEHIND)
-                span = SPAN_TWO;
+            else if (pairing == PAIR_SECOND && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND)
+                span = SPAN_TWO; /* list_of reads ROOT_STRUCK from the flags left behind */
         }
         wd->islands.span[i] = span;
         if (span == SPAN_SKIP)
@@ -167,40 +173,45 @@ static void set_spans(world *wd, substep_pairing pairing)
     }
 }
 
-/* Which of solver_step's lists a node goes in (0 exact, 1 QuickStep over h, 2 over 2·h, 3 sitting out), or
- * -1: asleep, or a QuickStep island's sleeper (ODE wakes it through its contact). */
+/* Which of solver_step's lists a node goes in (0 exact, 1 QuickStep over h, 2 over 2·h, 3 over 2·h at rest,
+ * 4 sitting out), or -1: asleep, or a QuickStep island's sleeper (ODE wakes it through its contact). */
 static int list_of(world *wd, int32_t i)
 {
     const body *bd = wd->bodies[i];
-    if (wd->islands.group[wd->islands.group_capacity + world_group_root(wd->islands.group, i)] >= 0)
+    const int32_t root = world_group_root(wd->islands.group, i);
+    if (wd->islands.group[wd->islands.group_capacity + root] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
     if (island_exact(wd->islands.kind[i]))
         return 0;
     if (!awake_mover(bd))
         return -1;
-    return wd->islands.span[i] == SPAN_ONE ? 1 : wd->islands.span[i] == SPAN_TWO ? 2 : 3;
+    if (wd->islands.span[i] == SPAN_TWO) /* set_spans's flags, in the group array's last third */
+        return wd->islands.group[2 * wd->islands.group_capacity + root] & ROOT_STRUCK ? 2 : 3;
+    return wd->islands.span[i] == SPAN_ONE ? 1 : 4;
 }
 
 /* The stepped islands' bodies for solver_step, one list after another in wd->islands.bodies, each in node
  * order: every body of the exact islands (ODE wakes their sleepers), then QuickStep's awake bodies over h,
- * over 2·h, and those sitting out. */
+ * over 2·h, over 2·h at rest, and those sitting out. */
 static void list_islands(world *wd, solver_islands *out)
 {
-    int32_t counts[4] = {0}, filled[4] = {0};
+    enum { LISTS = 5 };
+    int32_t counts[LISTS] = {0}, filled[LISTS] = {0};
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int which = list_of(wd, wd->islands.nodes[n]);
         if (which >= 0)
             counts[which]++;
     }
-    solver_body **start[4] = {wd->islands.bodies};
-    for (int w = 1; w < 4; w++)
+    solver_body **start[LISTS] = {wd->islands.bodies};
+    for (int w = 1; w < LISTS; w++)
         start[w] = start[w - 1] + counts[w - 1];
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int which = list_of(wd, wd->islands.nodes[n]);
         if (which >= 0)
             start[which][filled[which]++] = &wd->bodies[wd->islands.nodes[n]]->sb;
     }
-    *out = (solver_islands){start[0], counts[0], start[1], counts[1], start[2], counts[2], start[3], counts[3]};
+    *out = (solver_islands){start[0], counts[0], start[1], counts[1], start[2], counts[2],
+                            start[3], counts[3], start[4], counts[4]};
 }
 
 pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)

@@ -145,9 +145,17 @@ typedef struct solver_islands {
     int32_t quick_count;
     solver_body **quick_two; /* … over 2·h (they sat the substep before out) … */
     int32_t quick_two_count;
+    solver_body **quick_rest; /* … over 2·h, at rest (no pair of theirs collided this step): fewer iterations … */
+    int32_t quick_rest_count;
     solver_body **idle;    /* … and not at all: the awake bodies of islands that sit this substep out */
     int32_t idle_count;
 } solver_islands;
+
+/* No island to step. */
+static inline bool solver_islands_empty(const solver_islands *is)
+{
+    return is->exact_count + is->quick_count + is->quick_two_count + is->quick_rest_count == 0;
+}
 
 /* Advance by h seconds (one substep) and drop the contact joints. Nothing awake skips ODE, which
  * would change nothing but still walk every body. False when ODE could not get memory for its step. */

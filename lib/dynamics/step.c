@@ -304,7 +304,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         forces_damp(wd, h);
         if (!solver_step(wd->solver, h, &islands))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
-        still = islands.exact_count + islands.quick_count + islands.quick_two_count == 0;
+        still = solver_islands_empty(&islands);
         island_list_woken(wd);
         for (int32_t c = 0; c < wd->contact_count; c++) {
             pp_contact *ct = &wd->contacts[c];
