@@ -230,7 +230,7 @@ static void move_pair(const world *wd, const carried_pair *p, np_result *r)
 void carry_strike(world *wd)
 {
     carry *c = &wd->carry;
-    if (!c->active || c->substep == 0) /* at the first substep carry_record strikes */
+    if (c->substep == 0) /* at the first substep carry_record strikes */
         return;
     for (int32_t i = 0; i < wd->contact_count; i++)
         strike(c, body_of(wd, wd->contacts[i].a)), strike(c, body_of(wd, wd->contacts[i].b));

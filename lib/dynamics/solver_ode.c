@@ -544,34 +544,33 @@ static int step_exact(pp_solver *s, double h, solver_body *const *list, int32_t 
 
 /* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding the other lists' bodies
  * while one list's method runs steps each island once, by its own method, time step and iterations. The exact
- * lists go first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
+ * list goes first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
  * wakes nothing that it did not. The idle bodies stay hidden throughout. */
 static int step_methods(pp_solver *s, double h, const solver_islands *is)
 {
-    enum { LISTS = 4 };
-    solver_body **const lists[LISTS] = {is->exact, is->quick, is->quick_two, is->quick_rest};
-    const int32_t counts[LISTS] = {is->exact_count, is->quick_count, is->quick_two_count, is->quick_rest_count};
     int32_t runs = 0;
-    for (int i = 0; i < LISTS; i++)
-        runs += counts[i] > 0;
-    set_enabled(is->idle, is->idle_count, false);
+    for (int i = 0; i < SOLVE_IDLE; i++)
+        runs += is->count[i] > 0;
+    set_enabled(is->list[SOLVE_IDLE], is->count[SOLVE_IDLE], false);
     int ok = 1;
-    for (int i = 0; i < LISTS; i++) {
-        if (counts[i] == 0)
+    for (int i = 0; i < SOLVE_IDLE; i++) {
+        if (is->count[i] == 0)
             continue;
-        for (int j = 0; j < LISTS && runs > 1; j++)
+        for (int j = 0; j < SOLVE_IDLE && runs > 1; j++)
             if (j != i)
-                set_enabled(lists[j], counts[j], false);
-        if (i == 3)
+                set_enabled(is->list[j], is->count[j], false);
+        const bool rest = i == SOLVE_QUICK_TWO_REST;
+        if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->rest_iterations);
-        ok &= i == 0 ? step_exact(s, h, lists[0], counts[0]) : dWorldQuickStep(s->world, i >= 2 ? 2 * h : h);
-        if (i == 3)
+        const double span = i == SOLVE_QUICK_TWO || i == SOLVE_QUICK_TWO_REST ? 2 * h : h;
+        ok &= i == SOLVE_EXACT ? step_exact(s, h, is->list[i], is->count[i]) : dWorldQuickStep(s->world, span);
+        if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->iterations);
-        for (int j = 0; j < LISTS && runs > 1; j++)
+        for (int j = 0; j < SOLVE_IDLE && runs > 1; j++)
             if (j != i)
-                set_enabled(lists[j], counts[j], true);
+                set_enabled(is->list[j], is->count[j], true);
     }
-    set_enabled(is->idle, is->idle_count, true);
+    set_enabled(is->list[SOLVE_IDLE], is->count[SOLVE_IDLE], true);
     return ok;
 }
 
@@ -582,7 +581,9 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
  * contact joins two islands, so each kind's contacts go in their own order. */
 static void attach_contacts(pp_solver *s, const solver_islands *is)
 {
-    const bool stepped[2] = {is->exact_count + is->quick_count > 0, is->quick_two_count + is->quick_rest_count > 0};
+    const bool stepped[2] = {
+        is->count[SOLVE_EXACT] + is->count[SOLVE_QUICK] > 0,
+        is->count[SOLVE_QUICK_TWO] + is->count[SOLVE_QUICK_TWO_REST] > 0};
     const bool reversed[2] = {(s->steps & 1) != 0, (s->steps >> 1 & 1) != 0};
     for (int twice = 0; twice < 2; twice++)
         for (int32_t n = 0; stepped[twice] && n < s->pending_count; n++) {
@@ -605,7 +606,7 @@ static void empty_contacts(pp_solver *s)
 
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
-    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, islands->exact_count)) {
+    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, islands->count[SOLVE_EXACT])) {
         s->pending_count = 0; /* nothing attached: the caller undoes the step */
         return false;
     }

@@ -137,24 +137,25 @@ void solver_body_restore(solver_body *sb, const solver_exact_state *in);
 uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
-/* The bodies of one substep's awake islands, by the method that solves them. */
+/* How a substep's awake islands are solved, in the order solver_step runs them: ODE's exact dWorldStep (every
+ * body of its islands, sleepers included), QuickStep over h, over 2·h (the stacks that sat the substep before
+ * out), over 2·h at rest (no pair of the stack collided this step: island.c), with fewer iterations, and not at
+ * all (islands sitting this substep out). */
+enum { SOLVE_EXACT, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE, SOLVE_LISTS };
+
+/* The bodies of one substep's awake islands, by how they are solved (SOLVE_*). */
 typedef struct solver_islands {
-    solver_body **exact;   /* every body of the islands ODE's exact dWorldStep solves */
-    int32_t exact_count;
-    solver_body **quick;   /* the awake bodies of the islands QuickStep solves over h … */
-    int32_t quick_count;
-    solver_body **quick_two; /* … over 2·h (they sat the substep before out) … */
-    int32_t quick_two_count;
-    solver_body **quick_rest; /* … over 2·h, at rest (no pair of theirs collided this step): fewer iterations … */
-    int32_t quick_rest_count;
-    solver_body **idle;    /* … and not at all: the awake bodies of islands that sit this substep out */
-    int32_t idle_count;
+    solver_body **list[SOLVE_LISTS];
+    int32_t count[SOLVE_LISTS];
 } solver_islands;
 
 /* No island to step. */
 static inline bool solver_islands_empty(const solver_islands *is)
 {
-    return is->exact_count + is->quick_count + is->quick_two_count + is->quick_rest_count == 0;
+    for (int i = 0; i < SOLVE_IDLE; i++)
+        if (is->count[i] > 0)
+            return false;
+    return true;
 }
 
 /* Advance by h seconds (one substep) and drop the contact joints. Nothing awake skips ODE, which
