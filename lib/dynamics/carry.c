@@ -156,7 +156,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
             continue;
         }
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
-        const bool slow = k == 0 && !island_exact(wd->islands.kind[(a->sb.body ? a : b)->index]) &&
+        const bool slow = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
         const bool still =
             !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));
