@@ -183,6 +183,35 @@ static void make_hammer(const char *dir)
     free(weights.px);
 }
 
+/* ---- the car (issue 41): a body 56 × 14 and wheels 18 px across, a pale hub so that their turning shows ---- */
+
+static void make_car(const char *dir)
+{
+    enum { W = 56, H = 14, D = 18 };
+    const rgb paint = {200, 54, 46}, glass = {150, 200, 230}, tyre = {40, 40, 44}, hub = {200, 200, 206};
+    image body = image_new(W, H), wheel = image_new(D, D);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const int cab = y < 6 && (x < 12 || x >= 34); /* the cab's roof is the middle: its corners are cut */
+            if (cab)
+                continue;
+            const int window = y >= 1 && y < 5 && x >= 16 && x < 30;
+            put(&body, x, y, window ? glass : paint, y == H - 1 || x == 0 || x == W - 1 ? -60 : 0, 255);
+        }
+    for (int y = 0; y < D; y++)
+        for (int x = 0; x < D; x++) {
+            const double dx = x + 0.5 - D / 2.0, dy = y + 0.5 - D / 2.0, r = sqrt(dx * dx + dy * dy);
+            if (r > D / 2.0)
+                continue;
+            const int spoke = r < 6 && (abs((int)floor(dx)) < 1 || abs((int)floor(dy)) < 1);
+            put(&wheel, x, y, r < 4 || spoke ? hub : tyre, 0, 255);
+        }
+    save(&body, dir, "car.png");
+    save(&wheel, dir, "wheel.png");
+    free(body.px);
+    free(wheel.px);
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : "demo";
@@ -193,5 +222,6 @@ int main(int argc, char **argv)
     make_crate(dir, 32, "crate.png");
     make_crate(dir, 40, "crate_big.png");
     make_hammer(dir);
+    make_car(dir);
     return 0;
 }

@@ -563,14 +563,16 @@ PP_API pp_status pp_body_apply_torque(pp_world w, pp_body b, float torque);
 
 /* Joints hold two bodies together through ODE's joints in the plane: REVOLUTE a hinge about z, PRISMATIC a
  * slider along an in-plane axis, DISTANCE ODE's distance ball (rigid, a rope between min_length and
- * max_length, or a spring), WELD a fixed joint (rigid or soft), MOUSE a soft pull of a body's point toward a
- * target. A zero body is the static world. Anchors are given in world px at creation and kept as bitmap
+ * max_length, or a spring), WELD a fixed joint (rigid or soft; with angular_hertz a ball joint and a spring on
+ * its angle), MOUSE a soft pull of a body's point toward a target. WHEEL and MOTOR, the springs toward `target`,
+ * a rope's one-sided pulls and pushes and DISTANCE's motor are rows of ODE's angular motor, distance ball and
+ * contact joints set each substep. A zero body is the static world. Anchors are given in world px at creation and kept as bitmap
  * points of their bodies (each within 4096 px, or the bitmap's size, of its bitmap): an edit that leaves no solid pixel within 1 px of an anchor breaks the joint, and a
- * split keeps each joint on the piece holding its anchor. A joint whose reaction passes break_force after a
- * step breaks. A broken joint queues PP_EVENT_JOINT_BROKEN; a joint of a body destroyed by pp_body_destroy
+ * split keeps each joint on the piece holding its anchor. A joint whose reaction passes break_force, or whose
+ * torque about body_b's anchor passes break_torque, after a step breaks. A broken joint queues PP_EVENT_JOINT_BROKEN; a joint of a body destroyed by pp_body_destroy
  * goes with it silently (the host asked). Joined bodies solve and sleep together; collide_connected 0 (the
  * default) keeps the two from colliding. Springs are given by frequency (Hz) and damping ratio, made into
- * ODE's ERP and CFM from the pair's reduced mass; 0 Hz is rigid. */
+ * ODE's ERP and CFM from the pair's reduced mass (angular ones from the inertias about the anchor); 0 Hz is rigid. */
 
 /// What a joint holds.
 typedef enum pp_joint_type {
@@ -579,6 +581,8 @@ typedef enum pp_joint_type {
     PP_JOINT_DISTANCE = 3,  ///< the anchors' distance held rigid, between min and max (rope), or by a spring
     PP_JOINT_WELD = 4,      ///< the bodies held together, rigid or by a spring
     PP_JOINT_MOUSE = 5,     ///< body_b's anchor pulled toward a target by a spring under max_force
+    PP_JOINT_WHEEL = 6,     ///< b's anchor slides along an axis fixed in a on a spring and turns freely (motor: b's spin)
+    PP_JOINT_MOTOR = 7,     ///< drives b's pose relative to a toward linear_offset, angular_offset under max_force, max_torque
     PP_JOINT_TYPE_FORCE_U32 = 0x7fffffff
 } pp_joint_type;
 
@@ -592,21 +596,35 @@ typedef struct pp_joint_def {
     pp_vec2 anchor_b;            ///< world px at creation (PRISMATIC, DISTANCE)
     pp_vec2 axis;                ///< PRISMATIC: the slide direction in the world, any length > 0 (default (1, 0))
     uint32_t collide_connected;  ///< nonzero: the two bodies still collide with each other (default 0)
-    uint32_t enable_limit;       ///< nonzero: lower..upper hold (REVOLUTE, PRISMATIC)
+    uint32_t enable_limit;       ///< nonzero: lower..upper hold (REVOLUTE, PRISMATIC, WHEEL's slide)
     float lower;                 ///< lowest angle (rad, within −π..π) or translation (px), ≤ upper
     float upper;                 ///< highest angle (rad) or translation (px)
-    uint32_t enable_motor;       ///< nonzero: drive toward motor_speed under max_motor_force (REVOLUTE, PRISMATIC)
-    float motor_speed;           ///< rad/s (REVOLUTE, within ±PP_MAX_ANGULAR_SPEED) or px/s (PRISMATIC, ±PP_MAX_SPEED)
-    float max_motor_force;       ///< ≥ 0: mass·px/s² (PRISMATIC) or a torque in mass·px²/s² (REVOLUTE)
+    uint32_t enable_motor;       ///< nonzero: drive toward motor_speed under max_motor_force (REVOLUTE, PRISMATIC,
+                                 ///< WHEEL's spin, DISTANCE's length)
+    float motor_speed;           ///< rad/s (REVOLUTE, WHEEL, within ±PP_MAX_ANGULAR_SPEED) or px/s (PRISMATIC, DISTANCE
+                                 ///< (positive lengthens), ±PP_MAX_SPEED)
+    float max_motor_force;       ///< ≥ 0: mass·px/s² (PRISMATIC, DISTANCE) or a torque in mass·px²/s² (REVOLUTE, WHEEL)
     float min_length;            ///< DISTANCE: shortest anchor distance, px, ≥ 0; min 0 and max 0 keep it rigid
-    float max_length;            ///< DISTANCE: longest anchor distance, px, ≥ min_length (a rope has min 0)
-    float spring_hertz;          ///< DISTANCE, WELD (its translation; it turns rigidly), MOUSE: spring frequency, Hz, ≥ 0;
-                                 ///< 0 is rigid (MOUSE default 5)
-    float spring_damping_ratio;  ///< DISTANCE, WELD, MOUSE: damping ratio, ≥ 0, 1 critical (MOUSE default 0.7)
-    float max_force;             ///< MOUSE: largest pull of the spring (its damping acts on top), mass·px/s², ≥ 0; 0: no cap
+    float max_length;            ///< DISTANCE: longest anchor distance, px, ≥ min_length; a rope (max > min) only pulls at
+                                 ///< max_length and only pushes at min_length
+    float spring_hertz;          ///< DISTANCE, WELD (its translation), MOUSE, WHEEL (its slide), REVOLUTE and PRISMATIC
+                                 ///< (toward target): spring frequency, Hz, ≥ 0; 0 is rigid or none (MOUSE default 5)
+    float spring_damping_ratio;  ///< the same joints' damping ratio, ≥ 0, 1 critical (MOUSE default 0.7)
+    float max_force;             ///< MOUSE: largest pull of the spring (its damping acts on top); MOTOR: largest push;
+                                 ///< mass·px/s², ≥ 0; 0: no cap
     float break_force;           ///< the reaction force that breaks the joint after a step, mass·px/s², ≥ 0; 0 never
     uint32_t reserved;           ///< zero
     uint64_t user_data;          ///< the host's value, returned by pp_joint_get_user_data
+    /* Added with WHEEL and MOTOR: a def whose struct_size ends at user_data is still taken, these at their defaults. */
+    float target;                ///< REVOLUTE (rad, −π..π), PRISMATIC (px): where spring_hertz > 0 pulls, from creation
+    float angular_hertz;         ///< WELD: spring frequency of its rotation, Hz, ≥ 0; 0 rigid
+    float angular_damping_ratio; ///< WELD: damping ratio of its rotation, ≥ 0, 1 critical
+    float break_torque;          ///< the torque about body_b's anchor that breaks the joint after a step, mass·px²/s², ≥ 0; 0 never
+    pp_vec2 linear_offset;       ///< MOTOR: b's centre of mass in a's frame, a's centre of mass as origin, px
+    float angular_offset;        ///< MOTOR: b's angle minus a's, rad
+    float max_torque;            ///< MOTOR: largest torque, mass·px²/s², ≥ 0; 0: no cap
+    float correction_factor;     ///< MOTOR: share of the pose error corrected each substep, 0..1 (default 0.3)
+    uint32_t reserved2;          ///< zero
 } pp_joint_def;
 
 /// A joint def with the defaults of its type (struct_size set; type PP_JOINT_REVOLUTE for an unknown type).
@@ -620,16 +638,21 @@ PP_API pp_status pp_world_get_joints(pp_world w, pp_joint *out, int32_t capacity
 /// The force (mass·px/s²) and torque (mass·px²/s², about body_b's centre of mass) the joint applied to
 /// body_b in the last substep; zeros before the first step and while asleep.
 PP_API pp_status pp_joint_get_reaction(pp_world w, pp_joint j, pp_vec2 *force, float *torque);
-/// REVOLUTE: angle of b relative to a since creation, rad (−π..π), and its rate, rad/s; PRISMATIC:
+/// REVOLUTE: angle of b relative to a since creation, rad (−π..π), and its rate, rad/s; PRISMATIC, WHEEL:
 /// translation of b along the axis since creation, px, px/s; DISTANCE: anchor distance, px, px/s; others 0.
 PP_API pp_status pp_joint_get_value(pp_world w, pp_joint j, float *value, float *speed);
-/// REVOLUTE, PRISMATIC: switch the motor; speed in rad/s (±PP_MAX_ANGULAR_SPEED) or px/s (±PP_MAX_SPEED),
-/// max_force finite and ≥ 0 (a torque for REVOLUTE).
+/// REVOLUTE, PRISMATIC, WHEEL (spin), DISTANCE (length): switch the motor; speed in rad/s (±PP_MAX_ANGULAR_SPEED) or
+/// px/s (±PP_MAX_SPEED), max_force finite and ≥ 0 (a torque for REVOLUTE and WHEEL).
 PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, float speed, float max_force);
-/// REVOLUTE (rad, −π..π), PRISMATIC (px), DISTANCE (min and max length, px): switch and set the limits.
+/// REVOLUTE (rad, −π..π), PRISMATIC, WHEEL (px), DISTANCE (min and max length, px): switch and set the limits.
 PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, float lower, float upper);
 /// MOUSE: move the target, world px, finite. Wakes the body.
 PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target);
+/// REVOLUTE, PRISMATIC (toward target: rad within −π..π, px), WHEEL, DISTANCE, WELD (translation): the spring, Hz ≥ 0
+/// (0 rigid or none) and damping ratio ≥ 0. Wakes the bodies.
+PP_API pp_status pp_joint_set_spring(pp_world w, pp_joint j, float hertz, float damping_ratio, float target);
+/// MOTOR: the pose it drives body_b to: b's centre of mass in a's frame from a's (px) and b's angle minus a's (rad).
+PP_API pp_status pp_joint_set_offsets(pp_world w, pp_joint j, pp_vec2 linear, float angular);
 /// The joint's type.
 PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out);
 /// The joint's two bodies (zero for the static world).
@@ -801,7 +824,8 @@ PP_API pp_status pp_image_save(const char *path, const uint8_t *rgba, int32_t wi
  *           (a PNG of the same size, solid where red ≥ 128 and alpha ≥ 128), "weights" (a PNG of the same
  *           size, red is each pixel's weight 0..255; default all 255), or "box": [w, h] (integers, px: a
  *           solid rectangle; not with "sprite" or "mask").
- * "joints": created in file order, after the bodies: "type" (required) revolute|prismatic|distance|weld|mouse,
+ * "joints": created in file order, after the bodies: "type" (required) revolute|prismatic|distance|weld|mouse|
+ *           wheel|motor,
  *           "body_a" and "body_b" (bodies' names; absent is the static world), and every other pp_joint_def
  *           field by name (anchors and axis as [x, y] world px, flags as true/false, "user_data" 0..2^53).
  * "edits":  pp_timed_edit's fields: "time" (s of world time, ≥ 0, default 0), "type" erase|paint (default

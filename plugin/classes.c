@@ -351,10 +351,10 @@ static int joint_body(plugin_object *self, const pp_variant *a, const char *what
 
 static void world_add_joint(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
-    static const char *const names[] = {"revolute", "prismatic", "distance", "weld", "mouse"}; /* from REVOLUTE = 1 */
+    static const char *const names[] = {"revolute", "prismatic", "distance", "weld", "mouse", "wheel", "motor"}; /* from REVOLUTE = 1 */
     const char *m = "PhysPixWorld.add_joint";
     const world_cache *c = self->cache;
-    const int type = name_index(&a[0], names, 5, "PhysPixWorld.add_joint: type", ret);
+    const int type = name_index(&a[0], names, 7, "PhysPixWorld.add_joint: type", ret);
     if (type < 0)
         return;
     pp_joint_def d = pp_joint_def_default((pp_joint_type)(type + 1));

@@ -60,6 +60,19 @@ static void gen_world_set_joint_target(plugin_object *self, const pp_variant *a,
     ret_ok(ret, pp_joint_set_target(self->world, joint_of(&a[0]), a[1].as.vec2), "PhysPixWorld.set_joint_target");
 }
 
+static void gen_world_set_joint_spring(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret,
+           pp_joint_set_spring(self->world, joint_of(&a[0]), (float)a[1].as.real, (float)a[2].as.real, (float)a[3].as.real),
+           "PhysPixWorld.set_joint_spring");
+}
+
+static void gen_world_set_joint_offsets(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_joint_set_offsets(self->world, joint_of(&a[0]), a[1].as.vec2, (float)a[2].as.real),
+           "PhysPixWorld.set_joint_offsets");
+}
+
 static void gen_world_set_contact_events(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     ret_ok(ret, pp_world_set_contact_events(self->world, a[0].as.boolean != 0), "PhysPixWorld.set_contact_events");
@@ -327,7 +340,7 @@ static const method_def world_methods[] = {
     METHOD(world_get_event_joint, "get_event_joint", INT, "joint_broken: the joint (now stale); else 0",
            ARGS(ARG("index", INT))),
     METHOD(world_add_joint, "add_joint", INT,
-           "join two bodies (a PhysPixBody, or this world for the static world): type \"revolute\", \"prismatic\", \"distance\", \"weld\" or \"mouse\", anchors in world px now, a prismatic's axis; returns the joint (int)",
+           "join two bodies (a PhysPixBody, or this world for the static world): type \"revolute\", \"prismatic\", \"distance\", \"weld\", \"mouse\", \"wheel\" or \"motor\", anchors in world px now, a prismatic's or wheel's axis; returns the joint (int)",
            ARGS(ARG("type", STRING), ARG("body_a", OBJECT), ARG("body_b", OBJECT), ARG("anchor_a", VEC2), ARG("anchor_b", VEC2), ARG("axis", VEC2))),
     METHOD(world_set_joint_options, "set_joint_options", NIL,
            "give later add_joint joints these (until called, each type's defaults): spring Hz (0 rigid) and damping ratio, a mouse joint's max_force and break_force (mass*px/s^2, 0 none)",
@@ -339,18 +352,24 @@ static const method_def world_methods[] = {
     METHOD(gen_world_get_joint_torque, "get_joint_torque", FLOAT,
            "torque the joint put on body_b in the last substep, mass*px^2/s^2", ARGS(ARG("joint", INT))),
     METHOD(gen_world_get_joint_value, "get_joint_value", FLOAT,
-           "revolute: angle since creation, rad; prismatic: translation, px; distance: length, px; else 0",
+           "revolute: angle since creation, rad; prismatic, wheel: translation, px; distance: length, px; else 0",
            ARGS(ARG("joint", INT))),
     METHOD(gen_world_get_joint_speed, "get_joint_speed", FLOAT, "the rate of get_joint_value, rad/s or px/s",
            ARGS(ARG("joint", INT))),
     METHOD(gen_world_set_joint_motor, "set_joint_motor", NIL,
-           "revolute, prismatic: switch the motor; speed rad/s or px/s, max_force >= 0 (a torque for revolute)",
+           "revolute, prismatic, wheel (spin), distance (length): switch the motor; speed rad/s or px/s, max_force >= 0 (a torque for revolute and wheel)",
            ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("speed", FLOAT), ARG("max_force", FLOAT))),
     METHOD(gen_world_set_joint_limits, "set_joint_limits", NIL,
            "revolute (rad, -pi..pi), prismatic (px), distance (min and max length, px): switch and set the limits",
            ARGS(ARG("joint", INT), ARG("enabled", BOOL), ARG("lower", FLOAT), ARG("upper", FLOAT))),
     METHOD(gen_world_set_joint_target, "set_joint_target", NIL, "mouse: move the target, world px",
            ARGS(ARG("joint", INT), ARG("target", VEC2))),
+    METHOD(gen_world_set_joint_spring, "set_joint_spring", NIL,
+           "revolute, prismatic (toward target: rad or px), wheel, distance, weld: spring Hz (0 rigid or none) and damping ratio",
+           ARGS(ARG("joint", INT), ARG("hertz", FLOAT), ARG("damping_ratio", FLOAT), ARG("target", FLOAT))),
+    METHOD(gen_world_set_joint_offsets, "set_joint_offsets", NIL,
+           "motor: drive body_b's centre of mass to linear (px, in a's frame from a's centre of mass) and its angle to angular (rad) from a's",
+           ARGS(ARG("joint", INT), ARG("linear", VEC2), ARG("angular", FLOAT))),
     METHOD(world_raycast, "raycast", BOOL,
            "cast a segment between world points (px) against bodies whose category meets mask (0..2^32-1; sensors skipped); whether it met a solid pixel, which get_ray_* describe",
            ARGS(ARG("from", VEC2), ARG("to", VEC2), ARG("mask", INT))),

@@ -9,6 +9,7 @@
 #include "status.h"
 
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <string.h>
 
@@ -17,8 +18,9 @@ PP_API pp_joint_def pp_joint_def_default(pp_joint_type type)
     pp_joint_def d;
     memset(&d, 0, sizeof d);
     d.struct_size = sizeof d;
-    d.type = type >= PP_JOINT_REVOLUTE && type <= PP_JOINT_MOUSE ? type : PP_JOINT_REVOLUTE;
+    d.type = type >= PP_JOINT_REVOLUTE && type <= PP_JOINT_MOTOR ? type : PP_JOINT_REVOLUTE;
     d.axis = (pp_vec2){1, 0};
+    d.correction_factor = 0.3f; /* Box2D's motor joint's */
     if (d.type == PP_JOINT_MOUSE) { /* Box2D's mouse joint: a soft pull */
         d.spring_hertz = 5.0f;
         d.spring_damping_ratio = 0.7f;
@@ -99,7 +101,7 @@ static bool finite_f(double x) { return fabs(x) <= FLT_MAX; }
  * for a revolute joint's rad/s, PP_MAX_SPEED for a prismatic's px/s (FLT_MAX drove a pair 4.6e14 px in a step). */
 static pp_status check_motor_speed(const char *fn, const char *name, pp_joint_type type, double speed)
 {
-    const bool turns = type == PP_JOINT_REVOLUTE;
+    const bool turns = type == PP_JOINT_REVOLUTE || type == PP_JOINT_WHEEL;
     const double most = turns ? PP_MAX_ANGULAR_SPEED : PP_MAX_SPEED;
     if (!(fabs(speed) <= most))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: %s must be within ±%g %s (%s), got %g", fn, name, most,
@@ -114,6 +116,8 @@ static pp_status check_def_values(const char *fn, const pp_joint_def *d)
         {"max_motor_force", d->max_motor_force}, {"min_length", d->min_length}, {"max_length", d->max_length},
         {"spring_hertz", d->spring_hertz},       {"spring_damping_ratio", d->spring_damping_ratio},
         {"max_force", d->max_force},             {"break_force", d->break_force},
+        {"angular_hertz", d->angular_hertz},     {"angular_damping_ratio", d->angular_damping_ratio},
+        {"break_torque", d->break_torque},       {"max_torque", d->max_torque},
     };
     const double pts[] = {d->anchor_a.x, d->anchor_a.y, d->anchor_b.x, d->anchor_b.y};
     for (int i = 0; i < 4; i++)
@@ -128,9 +132,19 @@ static pp_status check_def_values(const char *fn, const pp_joint_def *d)
     if (st)
         return st;
     /* Every type keeps its def (snapshots and scenes write it whole), so a field it ignores is finite too. */
-    if (!finite_f(d->axis.x) || !finite_f(d->axis.y) || (d->type == PP_JOINT_PRISMATIC && !(hypot(d->axis.x, d->axis.y) > 0)))
+    const bool slides = d->type == PP_JOINT_PRISMATIC || d->type == PP_JOINT_WHEEL;
+    if (!finite_f(d->axis.x) || !finite_f(d->axis.y) || (slides && !(hypot(d->axis.x, d->axis.y) > 0)))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: axis must be finite%s, got (%g, %g)", fn,
-                       d->type == PP_JOINT_PRISMATIC ? " and not zero" : "", d->axis.x, d->axis.y);
+                       slides ? " and not zero" : "", d->axis.x, d->axis.y);
+    if (!finite_f(d->target) || (d->type == PP_JOINT_REVOLUTE && !(fabs(d->target) <= PP_PI)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: target must be finite%s, got %g", fn,
+                       d->type == PP_JOINT_REVOLUTE ? " and within −π..π" : "", d->target);
+    if (!finite_f(d->linear_offset.x) || !finite_f(d->linear_offset.y) || !finite_f(d->angular_offset))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear_offset and angular_offset must be finite, got (%g, %g) and %g",
+                       fn, d->linear_offset.x, d->linear_offset.y, d->angular_offset);
+    if (!(d->correction_factor >= 0 && d->correction_factor <= 1))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: correction_factor must lie within 0..1, got %g", fn,
+                       d->correction_factor);
     if (!finite_f(d->lower) || !finite_f(d->upper))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got %g and %g", fn, d->lower,
                        d->upper);
@@ -220,7 +234,7 @@ static bool anchor_pinned(const body *bd, dvec2 p)
 
 pp_status joint_check_def(world *wd, const char *fn, const pp_joint_def *d)
 {
-    if (!(d->type >= PP_JOINT_REVOLUTE && d->type <= PP_JOINT_MOUSE))
+    if (!(d->type >= PP_JOINT_REVOLUTE && d->type <= PP_JOINT_MOTOR))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: type %d is not a pp_joint_type", fn, (int)d->type);
     body *a, *b;
     pp_status st = check_bodies(wd, fn, d, &a, &b);
@@ -244,17 +258,40 @@ PP_API pp_status pp_joint_create(pp_world w, const pp_joint_def *def, pp_joint *
     return st;
 }
 
-pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint **out)
+/* The def as this library's: one whose struct_size ends at user_data (before WHEEL and MOTOR) gets the later
+ * fields' defaults. PP_ERR_ABI for any other size. */
+static pp_status def_of_size(const char *fn, const pp_joint_def *def, pp_joint_def *out)
 {
-    if (def->struct_size != sizeof *def)
-        return pp_fail(PP_ERR_ABI, "%s: def.struct_size is %u, this library's pp_joint_def is %u bytes (use "
-                       "pp_joint_def_default)", fn, (unsigned)def->struct_size, (unsigned)sizeof *def);
-    pp_status st = joint_check_def(wd, fn, def);
+    const size_t v1 = offsetof(pp_joint_def, target);
+    if (def->struct_size == sizeof *def) {
+        *out = *def;
+        return PP_OK;
+    }
+    if (def->struct_size != v1)
+        return pp_fail(PP_ERR_ABI, "%s: def.struct_size is %u, this library's pp_joint_def is %u bytes (or %u before "
+                       "WHEEL and MOTOR; use pp_joint_def_default)", fn, (unsigned)def->struct_size,
+                       (unsigned)sizeof *def, (unsigned)v1);
+    *out = pp_joint_def_default(def->type);
+    memcpy(out, def, v1);
+    out->struct_size = sizeof *out;
+    return PP_OK;
+}
+
+pp_status joint_make(world *wd, const pp_joint_def *given, const char *fn, joint **out)
+{
+    pp_joint_def full;
+    pp_status st = def_of_size(fn, given, &full);
+    if (st)
+        return st;
+    const pp_joint_def *def = &full;
+    st = joint_check_def(wd, fn, def);
     if (st)
         return st;
     body *a = side_body(wd, def->body_a), *b = side_body(wd, def->body_b);
     const bool one_anchor = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_WELD || def->type == PP_JOINT_MOUSE;
-    const dvec2 wa = dv(def->anchor_a.x, def->anchor_a.y), wb = one_anchor ? wa : dv(def->anchor_b.x, def->anchor_b.y);
+    dvec2 wa = dv(def->anchor_a.x, def->anchor_a.y), wb = one_anchor ? wa : dv(def->anchor_b.x, def->anchor_b.y);
+    if (def->type == PP_JOINT_MOTOR) /* it holds each body by its centre of mass (the world by its origin) */
+        wa = a ? body_com_world(a) : dv(0, 0), wb = b ? body_com_world(b) : dv(0, 0);
     if (def->type == PP_JOINT_DISTANCE && def->max_length == 0 && !(dv_norm(dv_sub(wb, wa)) >= 1e-3))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: a rigid distance joint's anchors coincide (use a revolute joint)", fn);
     const dvec2 local_a = def->type == PP_JOINT_MOUSE ? wa : world_to_local(a, wa), local_b = world_to_local(b, wb);
@@ -268,7 +305,7 @@ pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint *
         pp_free(jt);
         return st;
     }
-    if ((st = solver_joint_create(wd->solver, def->type, fn, &jt->sj))) {
+    if ((st = solver_joint_create(wd->solver, def->type, joint_soft_angle(def), fn, &jt->sj))) {
         id_pool_untake(&wd->joints.ids, slot);
         pp_free(jt);
         return st;
@@ -281,7 +318,7 @@ pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint *
     jt->pinned_a = anchor_pinned(a, jt->local_a), jt->pinned_b = anchor_pinned(b, jt->local_b);
     /* Only a prismatic joint has an axis (checked non-zero); another keeps the default's, so that a zero one it
      * ignores leaves no NaN in its state (fuzz_api: a revolute joint of axis (0, 0) could not be saved). */
-    const dvec2 axis = def->type == PP_JOINT_PRISMATIC
+    const dvec2 axis = def->type == PP_JOINT_PRISMATIC || def->type == PP_JOINT_WHEEL
                            ? dv_scale(dv(def->axis.x, def->axis.y), 1.0 / hypot(def->axis.x, def->axis.y))
                            : dv(1, 0);
     jt->axis_local = a ? dv_unrot(axis, a->cos_a, a->sin_a) : axis;
@@ -293,7 +330,9 @@ pp_status joint_make(world *wd, const pp_joint_def *def, const char *fn, joint *
     double value, speed;
     jt->ref = 0;
     joint_value(wd, jt, &value, &speed);
-    jt->ref = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_PRISMATIC ? value : 0;
+    jt->ref = def->type == PP_JOINT_REVOLUTE || def->type == PP_JOINT_PRISMATIC || def->type == PP_JOINT_WHEEL ? value
+              : joint_soft_angle(def) ? (b ? b->angle : 0) - (a ? a->angle : 0) /* where its angular spring pulls */
+                                      : 0;
     jt->length = def->type == PP_JOINT_DISTANCE ? value : 0;
     joint_attach(wd, jt);
     if (def->type == PP_JOINT_MOUSE)
@@ -398,16 +437,24 @@ PP_API pp_status pp_joint_set_motor(pp_world w, pp_joint j, uint32_t enabled, fl
     joint *jt = joint_lookup(w, j, fn, &wd);
     if (!jt)
         return PP_ERR_INVALID_HANDLE;
-    if (jt->def.type != PP_JOINT_REVOLUTE && jt->def.type != PP_JOINT_PRISMATIC)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute and prismatic joints have motors", fn);
+    const pp_joint_type type = jt->def.type;
+    if (type != PP_JOINT_REVOLUTE && type != PP_JOINT_PRISMATIC && type != PP_JOINT_WHEEL && type != PP_JOINT_DISTANCE)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute, prismatic, wheel and distance joints have motors", fn);
     if (!finite_f(max_force) || !(max_force >= 0))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: max_force must be finite and ≥ 0, got %g", fn, max_force);
-    pp_status st = check_motor_speed(fn, "speed", jt->def.type, speed);
+    pp_status st = check_motor_speed(fn, "speed", type, speed);
     if (st)
         return st;
+    if (type == PP_JOINT_DISTANCE && jt->def.enable_motor && !enabled) { /* a rigid one holds where the motor left it */
+        double value, rate;
+        joint_value(wd, jt, &value, &rate);
+        jt->length = value;
+        solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
+    }
     jt->def.enable_motor = enabled != 0;
     jt->def.motor_speed = speed, jt->def.max_motor_force = max_force;
-    solver_joint_set_motor(wd->solver, jt->def.type, &jt->sj, enabled, speed, max_force);
+    if (type == PP_JOINT_REVOLUTE || type == PP_JOINT_PRISMATIC)
+        solver_joint_set_motor(wd->solver, type, &jt->sj, enabled, speed, max_force);
     joint_wake(wd, jt);
     return PP_OK;
 }
@@ -420,13 +467,16 @@ PP_API pp_status pp_joint_set_limits(pp_world w, pp_joint j, uint32_t enabled, f
     if (!jt)
         return PP_ERR_INVALID_HANDLE;
     pp_joint_def *d = &jt->def;
-    if (d->type != PP_JOINT_REVOLUTE && d->type != PP_JOINT_PRISMATIC && d->type != PP_JOINT_DISTANCE)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute, prismatic and distance joints have limits", fn);
+    if (d->type != PP_JOINT_REVOLUTE && d->type != PP_JOINT_PRISMATIC && d->type != PP_JOINT_DISTANCE &&
+        d->type != PP_JOINT_WHEEL)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute, prismatic, wheel and distance joints have limits", fn);
     pp_status st = check_limits(fn, d->type, lower, upper);
     if (st)
         return st;
     if (d->type == PP_JOINT_DISTANCE) { /* off: rigid at the creation length again */
         d->min_length = enabled ? lower : 0, d->max_length = enabled ? upper : 0;
+    } else if (d->type == PP_JOINT_WHEEL) { /* rows set each substep */
+        d->enable_limit = enabled != 0, d->lower = lower, d->upper = upper;
     } else {
         d->enable_limit = enabled != 0, d->lower = lower, d->upper = upper;
         solver_joint_set_limits(wd->solver, d->type, &jt->sj, enabled, lower - jt->slider_offset,
@@ -448,6 +498,49 @@ PP_API pp_status pp_joint_set_target(pp_world w, pp_joint j, pp_vec2 target)
     if (!finite_f(target.x) || !finite_f(target.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: target must be finite, got (%g, %g)", fn, target.x, target.y);
     jt->local_a = dv(target.x, target.y);
+    joint_wake(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_set_spring(pp_world w, pp_joint j, float hertz, float damping_ratio, float target)
+{
+    static const char *fn = "pp_joint_set_spring";
+    world *wd;
+    joint *jt = joint_lookup(w, j, fn, &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    pp_joint_def *d = &jt->def;
+    if (d->type == PP_JOINT_MOUSE || d->type == PP_JOINT_MOTOR)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only revolute, prismatic, wheel, distance and weld joints have a "
+                       "spring", fn);
+    if (!(hertz >= 0) || !finite_f(hertz) || !(damping_ratio >= 0) || !finite_f(damping_ratio))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: hertz and damping_ratio must be finite and ≥ 0, got %g and %g", fn,
+                       hertz, damping_ratio);
+    if (!finite_f(target) || (d->type == PP_JOINT_REVOLUTE && !(fabs(target) <= PP_PI)))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: target must be finite%s, got %g", fn,
+                       d->type == PP_JOINT_REVOLUTE ? " and within −π..π" : "", target);
+    if (d->type == PP_JOINT_DISTANCE && d->spring_hertz > 0 && !(hertz > 0)) /* rigid again where it is */
+        solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
+    d->spring_hertz = hertz, d->spring_damping_ratio = damping_ratio;
+    if (d->type == PP_JOINT_REVOLUTE || d->type == PP_JOINT_PRISMATIC)
+        d->target = target;
+    joint_wake(wd, jt);
+    return PP_OK;
+}
+
+PP_API pp_status pp_joint_set_offsets(pp_world w, pp_joint j, pp_vec2 linear, float angular)
+{
+    static const char *fn = "pp_joint_set_offsets";
+    world *wd;
+    joint *jt = joint_lookup(w, j, fn, &wd);
+    if (!jt)
+        return PP_ERR_INVALID_HANDLE;
+    if (jt->def.type != PP_JOINT_MOTOR)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: only motor joints have offsets", fn);
+    if (!finite_f(linear.x) || !finite_f(linear.y) || !finite_f(angular))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: linear and angular must be finite, got (%g, %g) and %g", fn,
+                       linear.x, linear.y, angular);
+    jt->def.linear_offset = linear, jt->def.angular_offset = angular;
     joint_wake(wd, jt);
     return PP_OK;
 }

@@ -13,8 +13,9 @@ typedef struct joint {
     pp_joint_def def;         /* as created, with the limits, motor and bodies as they are now */
     dvec2 local_a, local_b;   /* anchors: bitmap px of their body, world px for the world (MOUSE: a's is the target) */
     bool pinned_a, pinned_b;  /* the anchor had a solid pixel within 1 px at creation: an edit that takes them breaks it */
-    dvec2 axis_local;         /* PRISMATIC: unit axis in a's bitmap axes (world axes for the world) */
-    double ref;               /* REVOLUTE: b's angle from a at creation, rad; PRISMATIC: translation then, px */
+    dvec2 axis_local;         /* PRISMATIC, WHEEL: unit axis in a's bitmap axes (world axes for the world) */
+    double ref;               /* REVOLUTE, a WELD with angular_hertz: b's angle from a at creation, rad; PRISMATIC,
+                               * WHEEL: translation then, px */
     double length;            /* DISTANCE: the length it holds rigid or springs about, px */
     double slider_offset;     /* PRISMATIC: the translation when ODE's slider was last attached, px */
     bool dirty;               /* a body's ODE frame changed: attach again before the next solver step */
@@ -27,6 +28,9 @@ typedef struct joint {
 
 /* How far past its body's bitmap an anchor may lie, px (or the body's own size where that is more). */
 #define JOINT_REACH 4096.0
+
+/* Whether a def is a weld with a spring on its angle (a ball joint and an angular row in ODE). */
+static inline bool joint_soft_angle(const pp_joint_def *d) { return d->type == PP_JOINT_WELD && d->angular_hertz > 0; }
 
 /* A live joint of this world, or NULL (no failure recorded). */
 joint *joint_find(const world *wd, pp_joint j);

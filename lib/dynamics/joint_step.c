@@ -41,7 +41,7 @@ void joint_value(const world *wd, const joint *jt, double *value, double *speed)
     if (jt->def.type == PP_JOINT_REVOLUTE) {
         *value = wrap_angle(angle_of(b) - angle_of(a) - jt->ref);
         *speed = spin_of(wd, b) - spin_of(wd, a);
-    } else if (jt->def.type == PP_JOINT_PRISMATIC) {
+    } else if (jt->def.type == PP_JOINT_PRISMATIC || jt->def.type == PP_JOINT_WHEEL) {
         const dvec2 axis = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local;
         *value = dv_dot(d, axis) - jt->ref;
         *speed = dv_dot(dvel, axis);
@@ -60,6 +60,20 @@ static double joint_mass(const world *wd, const joint *jt)
     return ia + ib > 0 ? 1.0 / (ia + ib) : 0;
 }
 
+/* The pair's inertia about a world point as an angular spring there sees it, mass·px²: each pushed body's
+ * inertia about the point (exact when the other side does not move, or both turn about their centres). */
+static double joint_inertia(const world *wd, const joint *jt, dvec2 p)
+{
+    const body *side[2] = {joint_body_a(wd, jt), joint_body_b(wd, jt)};
+    double inv = 0;
+    for (int k = 0; k < 2; k++)
+        if (side[k] && side[k]->type == PP_BODY_DYNAMIC) {
+            const double r = dv_norm(dv_sub(body_com_world(side[k]), p));
+            inv += 1.0 / (side[k]->mass.inertia + side[k]->mass.mass * r * r);
+        }
+    return inv > 0 ? 1.0 / inv : 0;
+}
+
 /* Attach the ODE joint with its recorded frame, then its limits, motor and length. */
 static void attach_recorded(world *wd, joint *jt)
 {
@@ -75,6 +89,12 @@ static void attach_recorded(world *wd, joint *jt)
     }
     if (d->type == PP_JOINT_DISTANCE)
         solver_joint_set_length(wd->solver, &jt->sj, true, jt->length);
+}
+
+static dvec2 unit_or_x(dvec2 v)
+{
+    const double n = dv_norm(v);
+    return n > 1e-9 ? dv_scale(v, 1.0 / n) : dv(1, 0);
 }
 
 /* Attach the ODE joint to its bodies as they are now, recording how for snapshots. */
@@ -201,18 +221,133 @@ void joint_edit_done(world *wd, body *bd, const fracture_plan *p)
     }
 }
 
-/* A rope is held at max_length when stretched to it, at min_length when pushed to it, slack between. */
-static void rope_prepare(world *wd, joint *jt)
+/* A rope only pulls at max_length and only pushes at min_length: one-sided stops along the anchors' line (their
+ * lever arms are those of the anchors, which lie on it), slack between. A rod (max = min) is held by both. */
+static void rope_prepare(world *wd, joint *jt, dvec2 pa, dvec2 pb, double h)
 {
-    double d, speed;
-    joint_value(wd, jt, &d, &speed);
     const pp_joint_def *def = &jt->def;
-    if (d >= def->max_length)
-        solver_joint_set_length(wd->solver, &jt->sj, true, def->max_length);
-    else if (def->min_length > 0 && d <= def->min_length)
-        solver_joint_set_length(wd->solver, &jt->sj, true, def->min_length);
-    else
+    const double d = dv_norm(dv_sub(pb, pa));
+    const dvec2 u = unit_or_x(dv_sub(pb, pa));
+    solver_joint_set_length(wd->solver, &jt->sj, false, 0);
+    solver_joint_add_stop(wd->solver, &jt->sj, pb, dv_scale(u, -1), def->max_length - d, h);
+    if (def->min_length > 0)
+        solver_joint_add_stop(wd->solver, &jt->sj, pb, u, d - def->min_length, h);
+}
+
+/* DISTANCE: a rope's stops, a winch's drive of the length (a rigid one's length is then the motor's). */
+static void distance_prepare(world *wd, joint *jt, double h)
+{
+    const pp_joint_def *d = &jt->def;
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const dvec2 pa = local_to_world(a, jt->local_a), pb = local_to_world(b, jt->local_b);
+    const bool rope = d->spring_hertz == 0 && d->max_length > 0;
+    if (rope)
+        rope_prepare(wd, jt, pa, pb, h);
+    if (!d->enable_motor)
+        return;
+    if (!rope && d->spring_hertz == 0)
         solver_joint_set_length(wd->solver, &jt->sj, false, 0);
+    const solver_drive dr = {pb, unit_or_x(dv_sub(pb, pa)), {d->motor_speed, 0}, {0, 0}, {d->max_motor_force, 0}};
+    solver_joint_add_drive(wd->solver, &jt->sj, &dr, h);
+}
+
+/* The spring of a slide (PRISMATIC toward target, WHEEL toward where it was made) on b's anchor along a's axis. */
+static void slide_spring(world *wd, joint *jt, double target, double h)
+{
+    const pp_joint_def *d = &jt->def;
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const dvec2 axis = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local;
+    double value, speed;
+    joint_value(wd, jt, &value, &speed);
+    const double m = joint_mass(wd, jt), omega = 2 * PP_PI * d->spring_hertz;
+    solver_joint_linear_spring(wd->solver, &jt->sj, local_to_world(b, jt->local_b), axis, value - target,
+                               m * omega * omega, 2 * m * d->spring_damping_ratio * omega, h);
+}
+
+/* An angular spring on b's angle from a: error rad, at the anchor's inertia. */
+static void angle_spring(world *wd, joint *jt, double error, double hertz, double ratio, double h)
+{
+    const double I = joint_inertia(wd, jt, local_to_world(joint_body_b(wd, jt), jt->local_b));
+    const double omega = 2 * PP_PI * hertz;
+    solver_joint_angle_spring(wd->solver, &jt->sj, error, I * omega * omega, 2 * I * ratio * omega, h);
+}
+
+/* WHEEL: b's anchor held on a's axis line (its slide rigid without a spring), the slide's spring and limits,
+ * the spin's motor. */
+static void wheel_prepare(world *wd, joint *jt, double h)
+{
+    const pp_joint_def *d = &jt->def;
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const dvec2 u = a ? dv_rot(jt->axis_local, a->cos_a, a->sin_a) : jt->axis_local, n = dv(-u.y, u.x);
+    const dvec2 pa = local_to_world(a, jt->local_a), pb = local_to_world(b, jt->local_b);
+    const double s = dv_dot(dv_sub(pb, pa), u) - jt->ref, off = dv_dot(dv_sub(pb, pa), n);
+    const bool sprung = d->spring_hertz > 0;
+    const solver_drive dr = {pb, u, {0, 0}, {s, off}, {sprung ? 0 : -1, -1}};
+    solver_joint_add_drive(wd->solver, &jt->sj, &dr, h);
+    if (sprung)
+        slide_spring(wd, jt, 0, h);
+    if (d->enable_limit) {
+        solver_joint_add_stop(wd->solver, &jt->sj, pb, u, s - d->lower, h);
+        solver_joint_add_stop(wd->solver, &jt->sj, pb, dv_scale(u, -1), d->upper - s, h);
+    }
+    if (d->enable_motor)
+        solver_joint_angle_motor(wd->solver, &jt->sj, d->motor_speed, d->max_motor_force);
+}
+
+/* MOTOR: b's centre of mass driven toward linear_offset in a's frame and its angle toward angular_offset, each
+ * at correction_factor of the error a substep, under max_force (shared between the error's direction and across
+ * it as the last substep used it) and max_torque. */
+static void motor_prepare(world *wd, joint *jt, double h)
+{
+    const pp_joint_def *d = &jt->def;
+    const body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
+    const dvec2 ca = a ? body_com_world(a) : dv(0, 0), cb = b ? body_com_world(b) : dv(0, 0);
+    const dvec2 off = dv(d->linear_offset.x, d->linear_offset.y);
+    const dvec2 goal = dv_add(ca, a ? dv_rot(off, a->cos_a, a->sin_a) : off), e = dv_sub(cb, goal);
+    const dvec2 u = unit_or_x(e);
+    const double beta = d->correction_factor / h;
+    double f_perp = -1, f_along = -1;
+    if (d->max_force > 0) {
+        dvec2 f;
+        double t;
+        solver_joint_reaction(wd->solver, &jt->sj, &f, &t);
+        const double along = fmin(fabs(dv_dot(f, u)), d->max_force);
+        f_along = d->max_force;
+        f_perp = fmax(sqrt(d->max_force * d->max_force - along * along), 1e-3 * d->max_force);
+    }
+    const solver_drive dr = {cb, u, {-beta * dv_norm(e), 0}, {0, 0}, {f_along, f_perp}};
+    solver_joint_add_drive(wd->solver, &jt->sj, &dr, h);
+    const double turn = wrap_angle(angle_of(b) - angle_of(a) - d->angular_offset);
+    solver_joint_angle_motor(wd->solver, &jt->sj, -beta * turn, d->max_torque);
+}
+
+/* This substep's parts beside the ODE joint (none for a joint of the first part's kinds without the new
+ * settings, which steps as before them). */
+static void parts_prepare(world *wd, joint *jt, double h)
+{
+    const pp_joint_def *d = &jt->def;
+    switch (d->type) {
+    case PP_JOINT_REVOLUTE:
+        if (d->spring_hertz > 0) {
+            double value, speed;
+            joint_value(wd, jt, &value, &speed);
+            angle_spring(wd, jt, wrap_angle(value - d->target), d->spring_hertz, d->spring_damping_ratio, h);
+        }
+        break;
+    case PP_JOINT_PRISMATIC:
+        if (d->spring_hertz > 0)
+            slide_spring(wd, jt, d->target, h);
+        break;
+    case PP_JOINT_DISTANCE: distance_prepare(wd, jt, h); break;
+    case PP_JOINT_WELD:
+        if (joint_soft_angle(d))
+            angle_spring(wd, jt, wrap_angle(angle_of(joint_body_b(wd, jt)) - angle_of(joint_body_a(wd, jt)) - jt->ref),
+                         d->angular_hertz, d->angular_damping_ratio, h);
+        break;
+    case PP_JOINT_WHEEL: wheel_prepare(wd, jt, h); break;
+    case PP_JOINT_MOTOR: motor_prepare(wd, jt, h); break;
+    default: break;
+    }
 }
 
 /* The mouse's target, brought within max_force / k of the anchor so that the spring pulls no harder. */
@@ -240,21 +375,33 @@ void joint_prepare(world *wd, double h)
         const double k = m * omega * omega, c = 2 * m * d->spring_damping_ratio * omega;
         if (d->type == PP_JOINT_DISTANCE || d->type == PP_JOINT_WELD || d->type == PP_JOINT_MOUSE)
             solver_joint_set_spring(wd->solver, d->type, &jt->sj, k, c, h);
-        if (d->type == PP_JOINT_DISTANCE && d->spring_hertz == 0 && d->max_length > 0)
-            rope_prepare(wd, jt);
-        else if (d->type == PP_JOINT_MOUSE)
+        if (d->type == PP_JOINT_MOUSE)
             mouse_prepare(wd, jt, k);
+        solver_joint_parts_begin(wd->solver, &jt->sj);
+        parts_prepare(wd, jt, h);
     }
 }
 
+/* Whether the last substep's reaction passed break_force, or its torque about body_b's anchor break_torque. */
 static bool over_break_force(const world *wd, const joint *jt)
 {
-    if (!(jt->def.break_force > 0))
+    if (!(jt->def.break_force > 0) && !(jt->def.break_torque > 0))
         return false;
     dvec2 f;
     double t;
     solver_joint_reaction(wd->solver, &jt->sj, &f, &t);
-    return dv_norm(f) > jt->def.break_force;
+    if (jt->def.break_force > 0 && dv_norm(f) > jt->def.break_force)
+        return true;
+    if (!(jt->def.break_torque > 0))
+        return false;
+    /* The reaction's torque is about b's centre of mass (a's against the world); about the anchor the force's
+     * moment comes off, leaving what the joint's angle holds. */
+    const body *b = joint_body_b(wd, jt), *a = joint_body_a(wd, jt);
+    const body *on = b && b->sb.body ? b : a;
+    const dvec2 anchor = local_to_world(on, on == b ? jt->local_b : jt->local_a), com = body_com_world(on);
+    const dvec2 r = dv_sub(com, anchor);
+    const double about = t + r.x * f.y - r.y * f.x; /* the reverse for a: the size is the same */
+    return fabs(about) > jt->def.break_torque;
 }
 
 pp_status joint_step_done(world *wd)
@@ -311,7 +458,8 @@ pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
     if (!attach_plausible(wd, jt))
         return pp_fail(PP_ERR_FORMAT, "pp_world_load_snapshot: joint %#llx was attached far from its bodies or along "
                        "no axis", (unsigned long long)jt->handle.id);
-    pp_status st = solver_joint_create(wd->solver, jt->def.type, "pp_world_load_snapshot", &jt->sj);
+    pp_status st = solver_joint_create(wd->solver, jt->def.type, joint_soft_angle(&jt->def), "pp_world_load_snapshot",
+                                       &jt->sj);
     if (st)
         return st;
     solver_exact_state now_a, now_b;

@@ -326,9 +326,24 @@ static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)
 
 /* ---- joints ---- */
 
-pp_status solver_joint_create(pp_solver *s, pp_joint_type type, const char *fn, solver_joint *out)
+enum { PART_JOINT, PART_ANGLE, PART_SPRING, PART_ROWS, PART_COUNT = PART_ROWS + SOLVER_JOINT_ROWS };
+
+static dJointFeedback *part_feedback(const solver_joint *sj, int part) { return (dJointFeedback *)sj->feedback + part; }
+
+/* An angular motor about z in user mode: axis 0 a spring (its stops), axis 1 a motor, both off. */
+static dJointID angle_motor_create(pp_solver *s)
 {
-    dJointFeedback *fb = pp_calloc(1, sizeof *fb);
+    dJointID j = dJointCreateAMotor(s->world, 0);
+    dJointSetAMotorMode(j, dAMotorUser);
+    dJointSetAMotorNumAxes(j, 2);
+    dJointSetAMotorAxis(j, 0, 0, 0, 0, 1);
+    dJointSetAMotorAxis(j, 1, 0, 0, 0, 1);
+    return j;
+}
+
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, bool soft_angle, const char *fn, solver_joint *out)
+{
+    dJointFeedback *fb = pp_calloc(PART_COUNT, sizeof *fb);
     if (!fb)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the joint", fn);
     dJointID j;
@@ -336,16 +351,32 @@ pp_status solver_joint_create(pp_solver *s, pp_joint_type type, const char *fn, 
     case PP_JOINT_REVOLUTE: j = dJointCreateHinge(s->world, 0); break;
     case PP_JOINT_PRISMATIC: j = dJointCreateSlider(s->world, 0); break;
     case PP_JOINT_DISTANCE: j = dJointCreateDBall(s->world, 0); break;
-    case PP_JOINT_WELD: j = dJointCreateFixed(s->world, 0); break;
+    case PP_JOINT_WELD: j = soft_angle ? dJointCreateBall(s->world, 0) : dJointCreateFixed(s->world, 0); break;
+    case PP_JOINT_WHEEL: /* its slide and limits are rows set each substep; the motor turns b */
+    case PP_JOINT_MOTOR: j = angle_motor_create(s); break;
     default: j = dJointCreateBall(s->world, 0); break;
     }
     dJointSetFeedback(j, fb);
-    *out = (solver_joint){j, fb, true};
+    *out = (solver_joint){.joint = j, .feedback = fb, .first_is_b = true};
+    if (type == PP_JOINT_WHEEL || type == PP_JOINT_MOTOR)
+        out->angle = j;
     return PP_OK;
+}
+
+static void rows_destroy(solver_joint *sj)
+{
+    for (int32_t k = 0; k < sj->row_count; k++)
+        dJointDestroy((dJointID)sj->rows[k]);
+    sj->row_count = 0;
 }
 
 void solver_joint_destroy(solver_joint *sj)
 {
+    rows_destroy(sj);
+    if (sj->angle && sj->angle != sj->joint)
+        dJointDestroy((dJointID)sj->angle);
+    if (sj->spring)
+        dJointDestroy((dJointID)sj->spring);
     if (sj->joint)
         dJointDestroy((dJointID)sj->joint);
     pp_free(sj->feedback);
@@ -360,6 +391,7 @@ void solver_joint_attach(pp_solver *s, pp_joint_type type, solver_joint *sj, con
     dJointID j = sj->joint;
     dBodyID a = f->a ? (dBodyID)f->a->body : 0, b = f->b ? (dBodyID)f->b->body : 0;
     sj->first_is_b = b != 0;
+    sj->body1 = b ? b : a, sj->body2 = b ? a : 0;
     dJointAttach(j, b ? b : a, b ? a : 0);
     if (!a && !b) {
         dJointDisable(j);
@@ -385,7 +417,13 @@ void solver_joint_attach(pp_solver *s, pp_joint_type type, solver_joint *sj, con
         break;
     }
     case PP_JOINT_WELD:
-        dJointSetFixed(j);
+        if (dJointGetType(j) == dJointTypeBall)
+            dJointSetBallAnchor(j, p1.x * k, p1.y * k, 0);
+        else
+            dJointSetFixed(j);
+        break;
+    case PP_JOINT_WHEEL:
+    case PP_JOINT_MOTOR:
         break;
     default: /* the body's point; solver_joint_set_target moves the world's */
         dJointSetBallAnchor(j, p1.x * k, p1.y * k, 0);
@@ -429,8 +467,9 @@ void solver_joint_set_spring(const pp_solver *s, pp_joint_type type, const solve
 {
     /* ODE's manual: a spring k and damper c over a step h are ERP = hk/(hk + c), CFM = 1/(hk + c). Both are
      * force per length, the same number in metres as in pixels. */
+    const bool fixed = dJointGetType((dJointID)sj->joint) == dJointTypeFixed;
     void (*set)(dJointID, int, dReal) = type == PP_JOINT_DISTANCE ? dJointSetDBallParam
-                                        : type == PP_JOINT_WELD   ? dJointSetFixedParam
+                                        : fixed                   ? dJointSetFixedParam
                                                                   : dJointSetBallParam;
     const bool rigid = !(k > 0) || !(h * k + c > 0);
     set(sj->joint, dParamERP, rigid ? dWorldGetERP(s->world) : h * k / (h * k + c));
@@ -452,26 +491,180 @@ void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 t
     dJointSetBallAnchor2(sj->joint, t.x * s->inv_ppm, t.y * s->inv_ppm, 0);
 }
 
+/* ---- a joint's parts: rows set each substep beside its ODE joint ---- */
+
+/* ERP and CFM of a spring k, damper c over a step h whose position term uses the new velocity: ODE's mapping
+ * (c + hk) damps hk more than asked (a 2 Hz spring over 1/240 s lost 15 % a period undamped), so the damper
+ * asked for is lessened by hk as far as it goes. */
+static void spring_erp_cfm(double k, double c, double h, double *erp, double *cfm)
+{
+    const double d = fmax(c - h * k, 0) + h * k;
+    *erp = h * k / d;
+    *cfm = 1.0 / d;
+}
+
+static void zero_feedback(const solver_joint *sj, int part) { memset(part_feedback(sj, part), 0, sizeof(dJointFeedback)); }
+
+void solver_joint_parts_begin(pp_solver *s, solver_joint *sj)
+{
+    (void)s;
+    rows_destroy(sj);
+    for (int k = PART_ROWS; k < PART_COUNT; k++)
+        zero_feedback(sj, k);
+    if (sj->angle) { /* both axes off: no row */
+        dJointID j = sj->angle;
+        if (j != sj->joint) /* first in its bodies' lists again, as after a snapshot's load */
+            dJointAttach(j, sj->body1, sj->body2);
+        dJointSetAMotorParam(j, dParamLoStop, -dInfinity);
+        dJointSetAMotorParam(j, dParamHiStop, dInfinity);
+        dJointSetAMotorParam(j, dParamFMax2, 0);
+    }
+    if (sj->spring) {
+        dJointAttach(sj->spring, sj->body1, sj->body2);
+        dJointDisable(sj->spring);
+    }
+}
+
+static dJointID angle_part(pp_solver *s, solver_joint *sj)
+{
+    if (!sj->angle) {
+        sj->angle = angle_motor_create(s);
+        dJointSetFeedback(sj->angle, part_feedback(sj, PART_ANGLE));
+        dJointAttach(sj->angle, sj->body1, sj->body2);
+    }
+    return sj->angle;
+}
+
+void solver_joint_angle_spring(pp_solver *s, solver_joint *sj, double error, double k, double c, double h)
+{
+    if (!sj->body1)
+        return;
+    dJointID j = angle_part(s, sj);
+    double erp, cfm;
+    const double u = s->inv_ppm * s->inv_ppm; /* mass·px² → mass·m² */
+    spring_erp_cfm(k * u, c * u, h, &erp, &cfm);
+    dJointSetAMotorAngle(j, 0, joint_sign(sj) * error);
+    dJointSetAMotorParam(j, dParamStopERP, erp);
+    dJointSetAMotorParam(j, dParamStopCFM, cfm);
+    dJointSetAMotorParam(j, dParamLoStop, 0); /* low and high at once: one unbounded row toward 0 */
+    dJointSetAMotorParam(j, dParamHiStop, 0);
+}
+
+void solver_joint_angle_motor(pp_solver *s, solver_joint *sj, double speed, double max_torque)
+{
+    if (!sj->body1)
+        return;
+    dJointID j = angle_part(s, sj);
+    dJointSetAMotorParam(j, dParamVel2, joint_sign(sj) * speed);
+    dJointSetAMotorParam(j, dParamFMax2, max_torque > 0 ? max_torque * s->inv_ppm * s->inv_ppm : dInfinity);
+}
+
+/* How far along its axis a linear spring's anchor on a lies: its row then points along the axis to within
+ * the slide's error over this, and its lever arms are exact (they differ by a multiple of the axis). */
+#define SPRING_REACH 1e4
+
+void solver_joint_linear_spring(pp_solver *s, solver_joint *sj, dvec2 pb, dvec2 dir, double error, double k, double c,
+                                double h)
+{
+    if (!sj->body1)
+        return;
+    if (!sj->spring) {
+        sj->spring = dJointCreateDBall(s->world, 0);
+        dJointSetFeedback(sj->spring, part_feedback(sj, PART_SPRING));
+        dJointAttach(sj->spring, sj->body1, sj->body2);
+    }
+    dJointID j = sj->spring;
+    const double q = s->inv_ppm;
+    const dvec2 pa = dv_sub(pb, dv_scale(dir, SPRING_REACH + error));
+    const dvec2 p1 = sj->first_is_b ? pb : pa, p2 = sj->first_is_b ? pa : pb;
+    double erp, cfm;
+    spring_erp_cfm(k, c, h, &erp, &cfm);
+    dJointEnable(j);
+    dJointSetDBallAnchor1(j, p1.x * q, p1.y * q, 0);
+    dJointSetDBallAnchor2(j, p2.x * q, p2.y * q, 0);
+    dJointSetDBallDistance(j, SPRING_REACH * q);
+    dJointSetDBallParam(j, dParamERP, erp);
+    dJointSetDBallParam(j, dParamCFM, cfm);
+}
+
+/* A contact joint between the joint's bodies as one of its rows this substep. */
+static void add_row(pp_solver *s, solver_joint *sj, dContact *ct)
+{
+    PP_ASSERT(sj->row_count < SOLVER_JOINT_ROWS);
+    dJointID j = dJointCreateContact(s->world, 0, ct);
+    dJointAttach(j, sj->body1, sj->body2);
+    dJointSetFeedback(j, part_feedback(sj, PART_ROWS + sj->row_count));
+    sj->rows[sj->row_count++] = j;
+}
+
+void solver_joint_add_drive(pp_solver *s, solver_joint *sj, const solver_drive *d, double h)
+{
+    if (!sj->body1 || !(d->max_force[0] != 0 || d->max_force[1] != 0))
+        return;
+    const double q = s->inv_ppm, sg = joint_sign(sj), erp = dWorldGetERP(s->world);
+    dContact ct = {0};
+    /* The normal is z, where nothing moves, and may always separate: only the two friction rows act, in the
+     * plane, each bounded by its mu as a force (no dContactApprox1) and driven at its motion. */
+    ct.surface.mode = dContactMu2 | dContactFDir1 | dContactMotion1 | dContactMotion2 | dContactMotionN;
+    ct.surface.mu = d->max_force[0] < 0 ? dInfinity : d->max_force[0] * q;
+    ct.surface.mu2 = d->max_force[1] < 0 ? dInfinity : d->max_force[1] * q;
+    ct.surface.motion1 = sg * (d->speed[0] - erp * d->error[0] / h) * q;
+    ct.surface.motion2 = sg * (d->speed[1] - erp * d->error[1] / h) * q;
+    ct.surface.motionN = -1e4; /* m/s: never reached */
+    ct.geom.pos[0] = d->point.x * q;
+    ct.geom.pos[1] = d->point.y * q;
+    ct.geom.normal[2] = 1;
+    ct.fdir1[0] = d->dir.x;
+    ct.fdir1[1] = d->dir.y;
+    add_row(s, sj, &ct);
+}
+
+void solver_joint_add_stop(pp_solver *s, solver_joint *sj, dvec2 point, dvec2 dir, double gap, double h)
+{
+    if (!sj->body1)
+        return;
+    const double q = s->inv_ppm, sg = joint_sign(sj);
+    dContact ct = {0};
+    /* ODE pushes its first body along the normal: b along dir, or a against it when b is the world. Past the
+     * stop the depth corrects (the surface layer added back: a joint has no slop); short of it the row lets b
+     * close the gap in this substep and no more. */
+    ct.surface.mode = dContactMotionN;
+    ct.surface.motionN = gap > 0 ? -gap / h * q : 0;
+    ct.geom.pos[0] = point.x * q;
+    ct.geom.pos[1] = point.y * q;
+    ct.geom.normal[0] = sg * dir.x;
+    ct.geom.normal[1] = sg * dir.y;
+    ct.geom.depth = gap < 0 ? -gap * q + dWorldGetContactSurfaceLayer(s->world) : 0;
+    add_row(s, sj, &ct);
+}
+
 void solver_joint_feedback(const solver_joint *sj, double out[6])
 {
-    const dJointFeedback *fb = sj->feedback;
-    for (int k = 0; k < 3; k++)
-        out[k] = fb->f1[k], out[3 + k] = fb->t1[k];
+    for (int k = 0; k < 6; k++)
+        out[k] = 0;
+    for (int p = 0; p < PART_COUNT; p++) {
+        const dJointFeedback *fb = part_feedback(sj, p);
+        for (int k = 0; k < 3; k++)
+            out[k] += fb->f1[k], out[3 + k] += fb->t1[k];
+    }
 }
 
 void solver_joint_set_feedback(const solver_joint *sj, const double in[6])
 {
-    dJointFeedback *fb = sj->feedback;
+    for (int p = 1; p < PART_COUNT; p++)
+        zero_feedback(sj, p);
+    dJointFeedback *fb = part_feedback(sj, PART_JOINT);
     for (int k = 0; k < 3; k++)
         fb->f1[k] = in[k], fb->t1[k] = in[3 + k];
 }
 
 void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *force, double *torque)
 {
-    const dJointFeedback *fb = sj->feedback;
+    double fb[6];
+    solver_joint_feedback(sj, fb);
     const double sg = joint_sign(sj); /* against the world, body_b (the world) takes the reverse */
-    *force = dv(sg * fb->f1[0] * s->ppm, sg * fb->f1[1] * s->ppm);
-    *torque = sg * fb->t1[2] * s->ppm * s->ppm;
+    *force = dv(sg * fb[0] * s->ppm, sg * fb[1] * s->ppm);
+    *torque = sg * fb[5] * s->ppm * s->ppm;
 }
 
 /* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;

@@ -77,9 +77,16 @@ dvec2 solver_body_get_com(const pp_solver *s, const solver_body *sb);
 
 /* A joint's ODE objects. ODE's first body is body_b, or body_a when body_b is the world: ODE never swaps
  * them itself, so its hinge and slider read b relative to a, or the reverse (sign −1) against the world. */
+enum { SOLVER_JOINT_ROWS = 3 };
 typedef struct solver_joint {
-    void *joint;               /* the ODE joint */
-    void *feedback;            /* its dJointFeedback: the last substep's force on ODE's first body */
+    void *joint;               /* the ODE joint (WHEEL and MOTOR: an angular motor, which is `angle` too) */
+    void *feedback;            /* dJointFeedback of the joint, angle, spring and rows: the last substep's force on
+                                * ODE's first body */
+    void *angle;               /* an angular motor about z in user mode, or NULL: axis 0 a spring, axis 1 a motor */
+    void *spring;              /* a distance ball anchored far along a slide's axis (a linear spring), or NULL */
+    void *rows[SOLVER_JOINT_ROWS]; /* this substep's contact joints: drives and one-sided stops */
+    int32_t row_count;
+    void *body1, *body2;       /* the ODE bodies the joint was last attached to */
     bool first_is_b;
 } solver_joint;
 
@@ -91,8 +98,9 @@ typedef struct solver_joint_frame {
     double angle;              /* REVOLUTE: the angle b has turned from a since creation, rad */
 } solver_joint_frame;
 
-/* An ODE joint of the type (hinge, slider, distance ball, fixed, ball), attached to nothing yet. */
-pp_status solver_joint_create(pp_solver *s, pp_joint_type type, const char *fn, solver_joint *out);
+/* An ODE joint of the type (hinge, slider, distance ball, fixed, ball; WHEEL and MOTOR an angular motor; a WELD
+ * with `soft_angle` a ball), attached to nothing yet. */
+pp_status solver_joint_create(pp_solver *s, pp_joint_type type, bool soft_angle, const char *fn, solver_joint *out);
 void solver_joint_destroy(solver_joint *sj);
 /* Attach to the frame's bodies with its anchors and axis, as they are now; a joint between two bodies
  * without ODE bodies is disabled. */
@@ -109,8 +117,31 @@ void solver_joint_set_spring(const pp_solver *s, pp_joint_type type, const solve
 void solver_joint_set_length(const pp_solver *s, const solver_joint *sj, bool held, double length);
 /* MOUSE: the world point, px, the body's anchor is pulled to. */
 void solver_joint_set_target(const pp_solver *s, const solver_joint *sj, dvec2 target);
-/* ODE's own record of the last substep's force and torque on its first body (N, N·m: x, y, z each), for
- * snapshots. */
+/* Before a substep: drop the last one's rows and switch the angle and spring parts off; what follows sets
+ * this substep's (each part acts on the bodies the joint was last attached to). */
+void solver_joint_parts_begin(pp_solver *s, solver_joint *sj);
+/* A spring on b's angle relative to a: `error` rad from where it pulls, k (mass·px²/s² per rad), c (mass·px²/s per
+ * rad) for a substep of h s. */
+void solver_joint_angle_spring(pp_solver *s, solver_joint *sj, double error, double k, double c, double h);
+/* A motor on b's spin relative to a: speed rad/s under max_torque (mass·px²/s²; 0: no cap). */
+void solver_joint_angle_motor(pp_solver *s, solver_joint *sj, double speed, double max_torque);
+/* A spring on b's point pb (world px) along the unit `dir` fixed in a: `error` px past where it pulls, k (mass/s²),
+ * c (mass/s) for a substep of h s. */
+void solver_joint_linear_spring(pp_solver *s, solver_joint *sj, dvec2 pb, dvec2 dir, double error, double k, double c,
+                                double h);
+/* Two rows at a world point (px), on the unit `dir` and on its perpendicular (−dir.y, dir.x): each drives b's
+ * speed there relative to a's material point to speed (px/s) less the world's ERP of error (px) over h, under
+ * max_force (mass·px/s²; < 0 no cap, 0 no row). */
+typedef struct solver_drive {
+    dvec2 point, dir;
+    double speed[2], error[2], max_force[2];
+} solver_drive;
+void solver_joint_add_drive(pp_solver *s, solver_joint *sj, const solver_drive *d, double h);
+/* A one-sided stop at a world point (px): it only pushes b along the unit `dir` relative to a, once b has moved
+ * `gap` px against dir (negative: past it already). */
+void solver_joint_add_stop(pp_solver *s, solver_joint *sj, dvec2 point, dvec2 dir, double gap, double h);
+/* ODE's own record of the last substep's force and torque on its first body, all parts summed (N, N·m: x, y, z
+ * each), for snapshots. */
 void solver_joint_feedback(const solver_joint *sj, double out[6]);
 void solver_joint_set_feedback(const solver_joint *sj, const double in[6]);
 /* The force (mass·px/s²) and torque (mass·px²/s²) the last substep applied to body_b. */

@@ -19,7 +19,7 @@ static const char *const backend_names[] = {"auto", "cpu", "gpu", NULL};
 static const char *const normal_names[] = {"area_gradient", "kernel", NULL};
 static const char *const contact_names[] = {"manifold", "centroid", NULL};
 static const char *const body_type_names[] = {"dynamic", "static", "kinematic", NULL};
-const char *const joint_type_names[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", NULL};
+const char *const joint_type_names[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", "wheel", "motor", NULL};
 static const char *const edit_type_names[] = {"", "erase", "paint", NULL};
 
 const field world_fields[] = {
@@ -93,6 +93,14 @@ const field joint_fields[] = {
     F_FLOAT(pp_joint_def, max_force, NUM_NONNEG),
     F_FLOAT(pp_joint_def, break_force, NUM_NONNEG),
     F_INT(pp_joint_def, user_data, 0, JSON_MAX_EXACT_INT),
+    F_FLOAT(pp_joint_def, target, NUM_FINITE),
+    F_FLOAT(pp_joint_def, angular_hertz, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, angular_damping_ratio, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, break_torque, NUM_NONNEG),
+    F_VEC2(pp_joint_def, linear_offset),
+    F_FLOAT(pp_joint_def, angular_offset, NUM_FINITE),
+    F_FLOAT(pp_joint_def, max_torque, NUM_NONNEG),
+    F_FLOAT(pp_joint_def, correction_factor, NUM_NONNEG),
     {NULL, FK_FLOAT, 0, 0, NUM_FINITE, 0, 0, NULL},
 };
 

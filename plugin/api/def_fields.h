@@ -75,13 +75,21 @@
     X(spring_damping_ratio, FLOAT, NULL) \
     X(max_force, FLOAT, NULL) \
     X(break_force, FLOAT, NULL) \
-    X(user_data, ID, NULL)
+    X(user_data, ID, NULL) \
+    X(target, FLOAT, NULL) \
+    X(angular_hertz, FLOAT, NULL) \
+    X(angular_damping_ratio, FLOAT, NULL) \
+    X(break_torque, FLOAT, NULL) \
+    X(linear_offset, VEC2, NULL) \
+    X(angular_offset, FLOAT, NULL) \
+    X(max_torque, FLOAT, NULL) \
+    X(correction_factor, FLOAT, NULL)
 
 static const char *const pp_backend_names[] = {"auto", "cpu", "gpu", NULL};
 static const char *const pp_normal_method_names[] = {"area_gradient", "kernel", NULL};
 static const char *const pp_contact_mode_names[] = {"manifold", "centroid", NULL};
 static const char *const pp_preset_names[] = {"", "fast", "balanced", "accurate", NULL};
 static const char *const pp_body_type_names[] = {"dynamic", "static", "kinematic", NULL};
-static const char *const pp_joint_type_names[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", NULL};
+static const char *const pp_joint_type_names[] = {"", "revolute", "prismatic", "distance", "weld", "mouse", "wheel", "motor", NULL};
 
 #endif

@@ -194,7 +194,8 @@ bool fields_joint_def(call *c, const godot_variant *var, pp_joint_def *out)
     int32_t type = 0;
     const int found = read_leading(c, var, "joint", &f, &type);
     if (found == 0)
-        return fail(c, "joint has no \"type\" (\"revolute\", \"prismatic\", \"distance\", \"weld\" or \"mouse\")");
+        return fail(c, "joint has no \"type\" (\"revolute\", \"prismatic\", \"distance\", \"weld\", \"mouse\", \"wheel\" or "
+                       "\"motor\")");
     *out = pp_joint_def_default((pp_joint_type)type);
     return found > 0 && read_fields(c, var, "joint", JOINT_FIELDS, sizeof JOINT_FIELDS / sizeof JOINT_FIELDS[0], out,
                                     skip_leading, (void *)f.name);

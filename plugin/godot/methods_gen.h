@@ -193,6 +193,16 @@ static godot_variant api_set_joint_target(call *c)
     return done(c, pp_joint_set_target(c->self->world, c->a[0].joint, c->a[1].v));
 }
 
+static godot_variant api_set_joint_spring(call *c)
+{
+    return done(c, pp_joint_set_spring(c->self->world, c->a[0].joint, c->a[1].f, c->a[2].f, c->a[3].f));
+}
+
+static godot_variant api_set_joint_offsets(call *c)
+{
+    return done(c, pp_joint_set_offsets(c->self->world, c->a[0].joint, c->a[1].v, c->a[2].f));
+}
+
 static godot_variant api_set_gravity(call *c)
 {
     return done(c, pp_world_set_gravity(c->self->world, c->a[0].v));
@@ -261,6 +271,8 @@ static const method_def METHODS[] = {
     {"set_joint_motor", "jBff", api_set_joint_motor, "set_joint_motor(joint: int, enabled: bool, speed: float, max_force: float)"},
     {"set_joint_limits", "jBff", api_set_joint_limits, "set_joint_limits(joint: int, enabled: bool, lower: float, upper: float)"},
     {"set_joint_target", "jv", api_set_joint_target, "set_joint_target(joint: int, target: Vector2)"},
+    {"set_joint_spring", "jfff", api_set_joint_spring, "set_joint_spring(joint: int, hertz: float, damping_ratio: float, target: float)"},
+    {"set_joint_offsets", "jvf", api_set_joint_offsets, "set_joint_offsets(joint: int, linear: Vector2, angular: float)"},
     {"get_contacts", "", get_contacts, "get_contacts() -> Array"},
     {"get_events", "", get_events, "get_events() -> Array"},
     {"raycast", "vv|m", raycast, "raycast(from: Vector2, to: Vector2, mask: int = 0xffffffff) -> Dictionary or null"},

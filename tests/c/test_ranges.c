@@ -19,7 +19,7 @@ PP_TEST_SUITE(ranges);
 
 /* A default world holding a 16 px dynamic box `b` at (100, 100) (weight 255, density 1: mass 256), a 16 px static
  * box `other` at (300, 100) and, for the joint fixtures, a revolute, prismatic or mouse joint holding b at its
- * centre; the image fixture adds a 2 × 2 PNG at `path` in a fresh temporary folder. */
+ * centre (the motor fixture: a motor joint on b); the image fixture adds a 2 × 2 PNG at `path` in a fresh temporary folder. */
 typedef struct range_fixture {
     pp_world w;
     pp_body b, other;
@@ -173,6 +173,11 @@ static void fixture_make(range_fixture *f, int kind)
     f->w = make_world(0, 980);
     f->b = add_rect(f->w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
     f->other = add_rect(f->w, body_def(PP_BODY_STATIC, 300, 100, 0), 16, 16);
+    if (kind == RANGE_MOTOR) {
+        pp_joint_def d = pp_joint_def_default(PP_JOINT_MOTOR);
+        d.body_b = f->b;
+        PP_OK_OR_FAIL(pp_joint_create(f->w, &d, &f->j));
+    }
     if (kind == RANGE_REVOLUTE || kind == RANGE_MOUSE || kind == RANGE_PRISMATIC) {
         pp_joint_def d = kind == RANGE_MOUSE       ? pp_joint_def_default(PP_JOINT_MOUSE)
                          : kind == RANGE_PRISMATIC ? range_prismatic_def(f)

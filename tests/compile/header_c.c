@@ -16,7 +16,8 @@ _Static_assert(offsetof(pp_host_interface, struct_size) == 0 && offsetof(pp_plug
                "struct_size first");
 _Static_assert(offsetof(pp_body_def, struct_size) == 0, "struct_size first");
 _Static_assert(sizeof(pp_joint) == 8 && sizeof(pp_joint_type) == 4, "joint handle and type");
-_Static_assert(offsetof(pp_joint_def, struct_size) == 0 && sizeof(pp_joint_def) == 112, "pp_joint_def layout");
+_Static_assert(offsetof(pp_joint_def, struct_size) == 0 && sizeof(pp_joint_def) == 152 &&
+               offsetof(pp_joint_def, target) == 112, "pp_joint_def layout (a def of the first 112 bytes is still taken)");
 
 int physpix_header_c_check(void);
 int physpix_header_c_check(void) { return (int)sizeof(pp_body_def) + (int)sizeof(pp_world_def); }

@@ -9,6 +9,7 @@
 #include "fuzz_common.h"
 
 #include <math.h>
+#include <stddef.h>
 
 /* Harness caps that keep one input cheap; out-of-range values still go through on the rare paths. */
 #define MAX_WORLDS 3
@@ -672,8 +673,8 @@ static void op_joint_create(reader *r)
     tracked_world *t;
     const pp_world w = pick_world(r, &t);
     int stale_a, stale_b;
-    pp_joint_def d = pp_joint_def_default((pp_joint_type)(u8(r) % 7)); /* 0 and 6 are no type */
-    d.type = (pp_joint_type)(u8(r) % 7);
+    pp_joint_def d = pp_joint_def_default((pp_joint_type)(u8(r) % 9)); /* 0 and 8 are no type */
+    d.type = (pp_joint_type)(u8(r) % 9);
     d.body_a = u8(r) < 64 ? (pp_body){0} : pick_body(r, t, &stale_a);
     d.body_b = pick_body(r, t, &stale_b);
     d.anchor_a = (pp_vec2){f32(r, 300), f32(r, 300)};
@@ -686,8 +687,13 @@ static void op_joint_create(reader *r)
     d.min_length = f32(r, 100), d.max_length = f32(r, 100);
     d.spring_hertz = f32(r, 10), d.spring_damping_ratio = f32(r, 2);
     d.max_force = f32(r, 1e6f), d.break_force = f32(r, 1e7f);
+    if (flags & 64) { /* the second part's fields */
+        d.target = f32(r, 4), d.angular_hertz = f32(r, 10), d.angular_damping_ratio = f32(r, 2);
+        d.break_torque = f32(r, 1e9f), d.linear_offset = (pp_vec2){f32(r, 300), f32(r, 300)};
+        d.angular_offset = f32(r, 4), d.max_torque = f32(r, 1e9f), d.correction_factor = f32(r, 1.2f);
+    }
     if (flags & 8)
-        d.struct_size = u8(r);
+        d.struct_size = u8(r) & 1 ? (uint32_t)offsetof(pp_joint_def, target) : u8(r);
     pp_joint j = {0};
     const pp_status st = ST(pp_joint_create(w, (flags & 16) ? NULL : &d, (flags & 32) ? NULL : &j));
     if (!t)
@@ -714,7 +720,9 @@ static void op_joint_use(reader *r)
     float a, b;
     pp_body ba, bb;
     pp_status st;
-    switch (k % 8) {
+    switch (k % 10) {
+    case 8: st = ST(pp_joint_set_spring(w, j, x * 0.1f, y * 0.02f, f32(r, 4))); break;
+    case 9: st = ST(pp_joint_set_offsets(w, j, (pp_vec2){x, y}, f32(r, 4))); break;
     case 0: st = ST(pp_joint_destroy(w, j)); break;
     case 1: st = ST(pp_joint_get_reaction(w, j, k & 8 ? NULL : &f, &a)); break;
     case 2: st = ST(pp_joint_get_value(w, j, &a, k & 8 ? NULL : &b)); break;
@@ -730,9 +738,9 @@ static void op_joint_use(reader *r)
             FUZZ_CHECK(n >= 0, "joint count %d", (int)n);
     }
     }
-    if (!t || (j.id == 0 && k % 8 != 7))
-        FUZZ_CHECK(st != PP_OK, "a joint call (%d) on a dead world or a zero joint succeeded", k % 8);
-    if ((k % 8) == 0 && st == PP_OK)
+    if (!t || (j.id == 0 && k % 10 != 7))
+        FUZZ_CHECK(st != PP_OK, "a joint call (%d) on a dead world or a zero joint succeeded", k % 10);
+    if ((k % 10) == 0 && st == PP_OK)
         FUZZ_CHECK(ST(pp_joint_destroy(w, j)) == PP_ERR_INVALID_HANDLE, "a joint destroyed twice");
 }
 

@@ -269,6 +269,36 @@ func test_joints():
 	return true
 
 
+# Issue 41: a wheel sags by m·g/k = g/ω² on its spring; a motor joint takes a crate to the offsets it is given.
+func test_wheel_and_motor_joints():
+	var j = PhysPixWorld.new()
+	j.create({"backend": "cpu"})
+	var hz = 2.0
+	var hub = j.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(200, 200))
+	var wheel = j.create_joint({"type": "wheel", "body_b": hub, "anchor_a": Vector2(200, 200), "anchor_b": Vector2(200, 200),
+		"axis": Vector2(0, 1), "spring_hertz": hz, "spring_damping_ratio": 0.7})
+	check(is_int(wheel), "create_joint(wheel): %s %s" % [wheel, j.get_last_error()])
+	var crate = j.add_body_mask(solid_mask(20, 20), 20, 20, Vector2(400, 200))
+	var motor = j.create_joint({"type": "motor", "body_b": crate, "linear_offset": Vector2(420, 150), "angular_offset": 0.2})
+	check(is_int(motor), "create_joint(motor): %s %s" % [motor, j.get_last_error()])
+	steps(j, 240)
+	var sag = 980.0 / pow(2 * PI * hz, 2)
+	var value = j.get_joint_value(wheel)["value"]
+	print("wheel sag %.4f px, m·g/k %.4f px (%+.2f %%)" % [value, sag, 100 * (value / sag - 1)])
+	check(near(value, sag, 0.03 * sag), "the wheel sags m·g/k within 3 %%: %.4f px against %.4f px" % [value, sag])
+	check(j.get_position(crate).distance_to(Vector2(420, 150)) < 0.5 and near(j.get_angle(crate), 0.2, 0.01),
+		"the motor joint holds the crate at its offsets: %s, %s rad" % [j.get_position(crate), j.get_angle(crate)])
+	j.set_joint_offsets(motor, Vector2(380, 170), 0.0)
+	j.set_joint_spring(wheel, 4.0, 0.7, 0.0)
+	check(j.get_last_error() == "", "set_joint_offsets and set_joint_spring accepted: %s" % j.get_last_error())
+	steps(j, 240)
+	check(j.get_position(crate).distance_to(Vector2(380, 170)) < 0.5, "moved to the new offsets: %s" % [j.get_position(crate)])
+	check(near(j.get_joint_value(wheel)["value"], sag / 4, 0.03 * sag / 4), "a 4 Hz spring sags a quarter: %s" % [j.get_joint_value(wheel)])
+	check(j.set_joint_offsets(wheel, Vector2(), 0.0) == null and j.get_last_error().find("PP_ERR_INVALID_ARGUMENT") >= 0,
+		"set_joint_offsets on a wheel refused: %s" % j.get_last_error())
+	return true
+
+
 # Issue 25: world settings at creation, poses, pixels in and out, states in one call, runtime properties.
 # Issue 39: every pixel call fed huge, negative and 32-bit-wrapping ints is refused with a message, never a crash
 # (read_rgba(body, 1, 9223372036854775807) overflowed its row check and killed godot3-server).
@@ -737,6 +767,7 @@ func _init():
 	test_one_way()
 	check(test_native_gains() == true, "test_native_gains ran to its end (no script error)")
 	check(test_joints() == true, "test_joints ran to its end (no script error)")
+	check(test_wheel_and_motor_joints() == true, "test_wheel_and_motor_joints ran to its end (no script error)")
 	check(test_handle_kinds() == true, "test_handle_kinds ran to its end (no script error)")
 	check(test_pixel_calls_with_huge_arguments() == true, "test_pixel_calls_with_huge_arguments ran to its end")
 	check(test_settings_at_creation() == true, "test_settings_at_creation ran to its end (no script error)")

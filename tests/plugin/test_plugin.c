@@ -292,10 +292,11 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     snprintf(snap, sizeof snap, "/tmp/pp_plugin_snapshot_%d", (int)getpid());
     uint64_t scratch_box, scratch_ground;
     const uint64_t scratch = make_scene(&scratch_box, &scratch_ground);
-    /* A hinge for the joint getters and setters, a mouse joint for set_joint_target, a weld for destroy_joint. */
-    int64_t joints[3];
-    const char *const kinds[3] = {"revolute", "mouse", "weld"};
-    for (int i = 0; i < 3; i++) {
+    /* A hinge for the joint getters and setters, a mouse joint for set_joint_target, a weld for destroy_joint, a
+     * motor joint for set_joint_offsets. */
+    int64_t joints[4];
+    const char *const kinds[4] = {"revolute", "mouse", "weld", "motor"};
+    for (int i = 0; i < 4; i++) {
         pp_variant j = call(world, "add_joint",
                             (pp_variant[]){V_STR(kinds[i]), V_OBJ(world), V_OBJ(box), V_VEC2(50, 91),
                                            V_VEC2(0, 0), V_VEC2(1, 0)},
@@ -303,6 +304,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         cr_assert_eq(j.type, PP_VARIANT_INT, "add_joint(%s): %s", kinds[i], j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
         joints[i] = j.as.integer;
     }
+    /* The motor joint keeps the box where the hinge holds it. */
+    call(world, "set_joint_offsets", (pp_variant[]){V_INT(joints[3]), V_VEC2(50, 91), V_FLOAT(0)}, 3);
     const recipe world_recipes[] = {
         {"step", {V_FLOAT(1.0 / 60)}},
         {"add_body", {V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(20, 20), V_STR("static")}},
@@ -336,6 +339,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"set_joint_motor", {V_INT(joints[0]), V_BOOL(1), V_FLOAT(1), V_FLOAT(1e6)}},
         {"set_joint_limits", {V_INT(joints[0]), V_BOOL(1), V_FLOAT(-0.5), V_FLOAT(0.5)}},
         {"set_joint_target", {V_INT(joints[1]), V_VEC2(50, 91)}},
+        {"set_joint_spring", {V_INT(joints[0]), V_FLOAT(2), V_FLOAT(0.5), V_FLOAT(0.1)}},
+        {"set_joint_offsets", {V_INT(joints[3]), V_VEC2(50, 91), V_FLOAT(0)}},
         {"raycast", {V_VEC2(100, 0), V_VEC2(100, 200), V_INT(0xffffffff)}},
         {"get_ray_body", {{0}}},
         {"get_ray_point", {{0}}},
@@ -674,7 +679,8 @@ Test(methods, a_hinge_swings_with_the_physical_pendulum_period_and_breaks_when_i
     ret = call(world, "add_joint",
                (pp_variant[]){V_STR("hinge"), V_OBJ(world), V_OBJ(rod), V_VEC2(0, 0), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT,
-                 "type must be \"revolute\", \"prismatic\", \"distance\", \"weld\" or \"mouse\", got \"hinge\"");
+                 "type must be \"revolute\", \"prismatic\", \"distance\", \"weld\", \"mouse\", \"wheel\" or \"motor\", got "
+                 "\"hinge\"");
     pp_variant other_made;
     plugin.api.object_create("PhysPixWorld", &other_made);
     const uint64_t other = ok_object(other_made);
@@ -704,6 +710,55 @@ Test(methods, a_hinge_swings_with_the_physical_pendulum_period_and_breaks_when_i
     for (int k = 0; k < 30; k++)
         call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
     cr_assert(call(rod, "get_position", NULL, 0).as.vec2.y > y0 + 50, "the rod fell from %g", y0);
+}
+
+/* Issue 41 through the plugin: a wheel joint's sag under gravity is m·g/k = g/ω², and a motor joint takes a crate
+ * to the offsets set_joint_offsets gives it. */
+Test(methods, a_wheel_sags_by_its_spring_and_a_motor_joint_takes_a_crate_to_its_offsets)
+{
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t world = ok_object(made);
+    static uint8_t mask[20 * 20];
+    memset(mask, 1, sizeof mask);
+    const uint64_t hub = ok_object(call(world, "add_body",
+                                        (pp_variant[]){V_BYTES(mask, sizeof mask), V_INT(20), V_INT(20), V_VEC2(200, 200),
+                                                       V_STR("dynamic")},
+                                        5));
+    const uint64_t crate = ok_object(call(world, "add_body",
+                                          (pp_variant[]){V_BYTES(mask, sizeof mask), V_INT(20), V_INT(20),
+                                                         V_VEC2(400, 200), V_STR("dynamic")},
+                                          5));
+    const double hz = 2, sag = 980 / pow(2 * M_PI * hz, 2);
+    call(world, "set_joint_options", (pp_variant[]){V_BOOL(0), V_FLOAT(hz), V_FLOAT(0.7), V_FLOAT(0), V_FLOAT(0)}, 5);
+    pp_variant j = call(world, "add_joint",
+                        (pp_variant[]){V_STR("wheel"), V_OBJ(world), V_OBJ(hub), V_VEC2(200, 200), V_VEC2(200, 200),
+                                       V_VEC2(0, 1)},
+                        6);
+    cr_assert_eq(j.type, PP_VARIANT_INT, "%s", j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
+    const pp_variant wheel = V_INT(j.as.integer);
+    call(world, "set_joint_options", (pp_variant[]){V_BOOL(0), V_FLOAT(0), V_FLOAT(0), V_FLOAT(0), V_FLOAT(0)}, 5);
+    j = call(world, "add_joint",
+             (pp_variant[]){V_STR("motor"), V_OBJ(world), V_OBJ(crate), V_VEC2(0, 0), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
+    cr_assert_eq(j.type, PP_VARIANT_INT, "%s", j.type == PP_VARIANT_ERROR ? j.as.error.message : "");
+    const pp_variant motor = V_INT(j.as.integer);
+    pp_variant ret = call(world, "set_joint_offsets", (pp_variant[]){motor, V_VEC2(450, 150), V_FLOAT(0.3)}, 3);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    for (int k = 0; k < 240; k++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    const double value = call(world, "get_joint_value", &wheel, 1).as.real;
+    const pp_vec2 p = call(crate, "get_position", NULL, 0).as.vec2;
+    const double angle = call(crate, "get_angle", NULL, 0).as.real;
+    cr_log_info("plugin wheel sag %.4f px (m·g/k %.4f); motor joint crate at (%.3f, %.3f), %.4f rad", value, sag, p.x,
+                p.y, angle);
+    cr_assert(fabs(value / sag - 1) < 0.03, "sag %g px, m·g/k %g px", value, sag);
+    cr_assert(hypot(p.x - 450, p.y - 150) < 0.5 && fabs(angle - 0.3) < 0.01, "crate at (%g, %g), %g rad", p.x, p.y,
+              angle);
+    ret = call(world, "set_joint_offsets", (pp_variant[]){wheel, V_VEC2(0, 0), V_FLOAT(0)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.set_joint_offsets: pp_joint_set_offsets: only motor");
+    ret = call(world, "set_joint_spring", (pp_variant[]){wheel, V_FLOAT(-1), V_FLOAT(0), V_FLOAT(0)}, 4);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "hertz");
+    plugin.api.object_destroy(world, &ret);
 }
 
 /* Issue 39: a world's first body and first joint share slot 0 of their tables; a body object passed as a joint

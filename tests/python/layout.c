@@ -96,7 +96,10 @@ int main(void)
     F(pp_joint_def, motor_speed); F(pp_joint_def, max_motor_force); F(pp_joint_def, min_length);
     F(pp_joint_def, max_length); F(pp_joint_def, spring_hertz); F(pp_joint_def, spring_damping_ratio);
     F(pp_joint_def, max_force); F(pp_joint_def, break_force); F(pp_joint_def, reserved);
-    F(pp_joint_def, user_data);
+    F(pp_joint_def, user_data); F(pp_joint_def, target); F(pp_joint_def, angular_hertz);
+    F(pp_joint_def, angular_damping_ratio); F(pp_joint_def, break_torque); F(pp_joint_def, linear_offset);
+    F(pp_joint_def, angular_offset); F(pp_joint_def, max_torque); F(pp_joint_def, correction_factor);
+    F(pp_joint_def, reserved2);
     end();
 
     S(pp_collision_view);

@@ -95,3 +95,41 @@ def test_misuse_is_refused_with_the_library_status(world):
                             stranger)
     joint.destroy()
     raises_from_library(physpix.InvalidHandleError, ["stale"], joint.destroy)
+
+
+def test_wheel_sag_rope_slack_and_motor_joint_offsets(world):
+    """Issue 41's joints from Python: a wheel sags m·g/k = g/ω², a rope thrown inward flies free, a motor joint
+    takes its body to the offsets it is given (set_offsets), a revolute spring rests at its target (set_spring)."""
+    hz = 2.0
+    hub = rect(world, 24, 24, position=(200, 200))
+    wheel = world.create_joint("wheel", body_b=hub, anchor_a=(200, 200), anchor_b=(200, 200), axis=(0, 1),
+                               spring_hertz=hz, spring_damping_ratio=0.7)
+    assert wheel.type == physpix.JointType.WHEEL
+    bob = rect(world, 16, 16, position=(400, 200))
+    rope = world.create_joint("distance", body_b=bob, anchor_a=(400, 100), anchor_b=(400, 200), max_length=100)
+    crate = rect(world, 20, 20, position=(600, 200))
+    motor = world.create_joint("motor", body_b=crate, linear_offset=(640, 150), angular_offset=0.25)
+    assert motor.type == physpix.JointType.MOTOR
+    for _ in range(240):
+        world.step(DT)
+    assert wheel.value[0] == pytest.approx(G / (2 * math.pi * hz) ** 2, rel=0.03)
+    assert crate.position == pytest.approx((640, 150), abs=0.5) and crate.angle == pytest.approx(0.25, abs=0.01)
+    bob.set_velocity((0, -120), 0)
+    nearest = 1e9
+    for _ in range(30):
+        world.step(DT)
+        nearest = min(nearest, rope.value[0])
+    assert nearest == pytest.approx(100 - 120 ** 2 / (2 * G), abs=0.5)
+    motor.set_offsets((560, 180), 0)
+    for _ in range(240):
+        world.step(DT)
+    assert crate.position == pytest.approx((560, 180), abs=0.5)
+    raises_from_library(physpix.InvalidArgumentError, ["motor"], wheel.set_offsets, (0, 0), 0)
+    raises_from_library(physpix.InvalidArgumentError, ["hertz"], wheel.set_spring, -1, 0)
+    door = rect(world, 60, 8, position=(330, 400))
+    door.gravity_scale = 0
+    hinge = world.create_joint("revolute", body_b=door, anchor_a=(302, 400))
+    hinge.set_spring(1.5, 1.0, 0.4)
+    for _ in range(300):
+        world.step(DT)
+    assert hinge.value[0] == pytest.approx(0.4, abs=0.01)

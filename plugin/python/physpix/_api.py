@@ -233,6 +233,15 @@ class pp_joint_def(ctypes.Structure):
         ("break_force", c_float),
         ("reserved", c_uint32),
         ("user_data", c_uint64),
+        ("target", c_float),
+        ("angular_hertz", c_float),
+        ("angular_damping_ratio", c_float),
+        ("break_torque", c_float),
+        ("linear_offset", pp_vec2),
+        ("angular_offset", c_float),
+        ("max_torque", c_float),
+        ("correction_factor", c_float),
+        ("reserved2", c_uint32),
     ]
 
 
@@ -320,6 +329,8 @@ SIGNATURES = {
     "pp_joint_set_motor": (STATUS, [pp_world, pp_joint, c_uint32, c_float, c_float]),
     "pp_joint_set_limits": (STATUS, [pp_world, pp_joint, c_uint32, c_float, c_float]),
     "pp_joint_set_target": (STATUS, [pp_world, pp_joint, pp_vec2]),
+    "pp_joint_set_spring": (STATUS, [pp_world, pp_joint, c_float, c_float, c_float]),
+    "pp_joint_set_offsets": (STATUS, [pp_world, pp_joint, pp_vec2, c_float]),
     "pp_joint_get_type": (STATUS, [pp_world, pp_joint, P(c_enum)]),
     "pp_joint_get_bodies": (STATUS, [pp_world, pp_joint, P(pp_body), P(pp_body)]),
     "pp_joint_get_user_data": (STATUS, [pp_world, pp_joint, P(c_uint64)]),

@@ -93,6 +93,8 @@ class JointType(NamedEnum):
     DISTANCE = 3
     WELD = 4
     MOUSE = 5
+    WHEEL = 6
+    MOTOR = 7
 
 
 class EditType(NamedEnum):

@@ -429,10 +429,12 @@ class World:
 
     def create_joint(self, type: Union[JointType, int, str], body_a: Optional[Body] = None,
                      body_b: Optional[Body] = None, **fields: Any) -> Joint:
-        """A joint of a type ("revolute", "prismatic", "distance", "weld", "mouse") between two bodies (None: the
-        static world) with pp_joint_def fields as keywords: anchor_a=(x, y) world px, axis, enable_limit, lower,
-        upper, enable_motor, motor_speed, max_motor_force, min_length, max_length, spring_hertz,
-        spring_damping_ratio, max_force, break_force, collide_connected, user_data."""
+        """A joint of a type ("revolute", "prismatic", "distance", "weld", "mouse", "wheel", "motor") between two
+        bodies (None: the static world) with pp_joint_def fields as keywords: anchor_a=(x, y) world px, axis,
+        enable_limit, lower, upper, enable_motor, motor_speed, max_motor_force, min_length, max_length,
+        spring_hertz, spring_damping_ratio, max_force, break_force, collide_connected, user_data, target,
+        angular_hertz, angular_damping_ratio, break_torque, linear_offset, angular_offset, max_torque,
+        correction_factor."""
         jt = enum_value(JointType, type, "type")
         d = lib.pp_joint_def_default(jt)
         _fill_def(d, fields, "create_joint", skip=("struct_size", "type", "body_a", "body_b"))
@@ -947,14 +949,15 @@ class Joint(_InWorld):
 
     @property
     def value(self) -> Tuple[float, float]:
-        """(value, speed): REVOLUTE b's angle from a since creation (rad, rad/s); PRISMATIC its translation (px,
-        px/s); DISTANCE the anchors' distance (px, px/s); others (0, 0)."""
+        """(value, speed): REVOLUTE b's angle from a since creation (rad, rad/s); PRISMATIC, WHEEL its translation
+        (px, px/s); DISTANCE the anchors' distance (px, px/s); others (0, 0)."""
         v, s = c_float(), c_float()
         self._call(lib.pp_joint_get_value, byref(v), byref(s))
         return v.value, s.value
 
     def set_motor(self, enabled: bool, speed: float = 0.0, max_force: float = 0.0) -> None:
-        """REVOLUTE (rad/s, torque mass·px²/s²) or PRISMATIC (px/s, mass·px/s²): drive toward speed."""
+        """REVOLUTE, WHEEL's spin (rad/s, torque mass·px²/s²), PRISMATIC or DISTANCE's length (px/s, mass·px/s²):
+        drive toward speed."""
         self._call(lib.pp_joint_set_motor, 1 if enabled else 0, speed, max_force)
 
     def set_limits(self, enabled: bool, lower: float = 0.0, upper: float = 0.0) -> None:
@@ -964,3 +967,13 @@ class Joint(_InWorld):
     def set_target(self, target: Vec2Like) -> None:
         """MOUSE: the world point (px) the body's anchor is pulled to."""
         self._call(lib.pp_joint_set_target, vec2(target, "target"))
+
+    def set_spring(self, hertz: float, damping_ratio: float, target: float = 0.0) -> None:
+        """REVOLUTE, PRISMATIC (toward target: rad within −π..π, px), WHEEL, DISTANCE, WELD (translation): the
+        spring, Hz ≥ 0 (0 rigid or none), and its damping ratio ≥ 0."""
+        self._call(lib.pp_joint_set_spring, hertz, damping_ratio, target)
+
+    def set_offsets(self, linear: Vec2Like, angular: float) -> None:
+        """MOTOR: drive body_b's centre of mass to linear (px, in a's frame from a's centre of mass) and its angle
+        to angular (rad) from a's."""
+        self._call(lib.pp_joint_set_offsets, vec2(linear, "linear"), angular)

@@ -13,7 +13,7 @@ const PENDING = "physpix_pending_joints"  # the group of joint nodes waiting for
 
 export(NodePath) var node_a = NodePath()  # a PhysPixBody2D, or empty for the static world
 export(NodePath) var node_b = NodePath()  # a PhysPixBody2D
-export(String, "revolute", "prismatic", "distance", "weld", "mouse") var joint_type = "revolute"
+export(String, "revolute", "prismatic", "distance", "weld", "mouse", "wheel", "motor") var joint_type = "revolute"
 export var anchor_a = Vector2()  # in this node's frame; REVOLUTE, WELD and MOUSE use anchor_a alone
 export var anchor_b = Vector2()  # in this node's frame (PRISMATIC, DISTANCE)
 export var axis = Vector2(1, 0)  # PRISMATIC: the slide direction, in this node's frame
