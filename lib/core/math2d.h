@@ -10,6 +10,11 @@ typedef struct dvec2 {
     double x, y;
 } dvec2;
 
+/* fmax and fmin inline: GCC leaves them calls into libm for their NaN and signed-zero rules. The same result
+ * as theirs (a NaN loses to a number) but for a zero against a zero of the other sign. */
+static inline double dmax(double a, double b) { return a > b || b != b ? a : b; }
+static inline double dmin(double a, double b) { return a < b || b != b ? a : b; }
+
 static inline dvec2 dv(double x, double y) { return (dvec2){x, y}; }
 static inline dvec2 dv_add(dvec2 a, dvec2 b) { return dv(a.x + b.x, a.y + b.y); }
 static inline dvec2 dv_sub(dvec2 a, dvec2 b) { return dv(a.x - b.x, a.y - b.y); }

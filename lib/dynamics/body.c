@@ -84,8 +84,8 @@ void body_update_pose_cache(body *bd)
         const double xs[2] = {r->x0, r->x1}, ys[2] = {r->y0, r->y1};
         for (int k = 0; k < 4; k++) {
             const dvec2 w = dv_add(bd->pos, dv_rot(dv_sub(dv(xs[k & 1], ys[k >> 1]), bd->pivot), bd->cos_a, bd->sin_a));
-            box.x0 = fmin(box.x0, w.x), box.y0 = fmin(box.y0, w.y);
-            box.x1 = fmax(box.x1, w.x), box.y1 = fmax(box.y1, w.y);
+            box.x0 = dmin(box.x0, w.x), box.y0 = dmin(box.y0, w.y);
+            box.x1 = dmax(box.x1, w.x), box.y1 = dmax(box.y1, w.y);
         }
     }
     bd->aabb = box;

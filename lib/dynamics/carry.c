@@ -223,7 +223,7 @@ static void move_pair(const world *wd, const carried_pair *p, np_result *r)
         *out = cc->c;
         const dvec2 at = dv_add(p0, dv_scale(dv_add(ua, ub), 0.5));
         out->point = (pp_vec2){(float)at.x, (float)at.y};
-        out->depth = (float)fmax(depth, 0.0); /* a contact reports overlap, never a gap */
+        out->depth = (float)dmax(depth, 0.0); /* a contact reports overlap, never a gap */
     }
 }
 
@@ -291,7 +291,7 @@ static bool still_held(const world *wd, const carried_pair *p, const void *step_
         const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y);
         const dvec2 ua = moved(a, com_a, cc->com_a, cc->cos_a, cc->sin_a, p0);
         const dvec2 ub = moved(b, com_b, cc->com_b, cc->cos_b, cc->sin_b, p0);
-        drift = fmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
+        drift = dmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
     }
     drift = sqrt(drift);
     return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);

@@ -28,7 +28,7 @@ static double anchor_speed(const world *wd, const body *a, const body *b, const 
     const dvec2 slip = contact_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
     const double along = dv_dot(slip, dv(-c->normal.y, c->normal.x));
     const double v = wd->def.contact_erp * along / h, cap = wd->def.max_correction_speed;
-    return fmax(-cap, fmin(cap, v));
+    return dmax(-cap, dmin(cap, v));
 }
 
 /* How fast the pair's points meet along the contact normal, px/s (> 0: approaching). */
@@ -52,9 +52,9 @@ static double bounce_for(const world *wd, const body *a, const body *b, const pp
         return e; /* ODE bounces nothing this slow */
     const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
     const dvec2 ga = a->type == PP_BODY_DYNAMIC ? g : dv(0, 0), gb = b->type == PP_BODY_DYNAMIC ? g : dv(0, 0);
-    const double g_closing = -dv_dot(dv_sub(gb, ga), n), d = fmax(0.0, c->depth - wd->def.contact_slop);
-    const double v2 = e * e * closing * closing + 2.0 * fmax(0.0, g_closing) * d * (1.0 - e * e);
-    return fmin(fmax(e, sqrt(v2) / closing), fmax(e, 1.0));
+    const double g_closing = -dv_dot(dv_sub(gb, ga), n), d = dmax(0.0, c->depth - wd->def.contact_slop);
+    const double v2 = e * e * closing * closing + 2.0 * dmax(0.0, g_closing) * d * (1.0 - e * e);
+    return dmin(dmax(e, sqrt(v2) / closing), dmax(e, 1.0));
 }
 
 /* ODE's surface layer leaves a contact shallower than contact_slop where it is, and the contact's softness
@@ -76,7 +76,7 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
     const double ia = inv_mass(a), ib = inv_mass(b);
     if (!(gap > 0) || (kind != ISLAND_QUICK_STACK && kind != ISLAND_EXACT))
         return 0;
-    if ((kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 && fmax(ia, ib) > CLOSING_MASS_RATIO * fmin(ia, ib)) ||
+    if ((kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 && dmax(ia, ib) > CLOSING_MASS_RATIO * dmin(ia, ib)) ||
         (e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold))
         return 0;
     return wd->def.contact_erp * gap / h;
@@ -87,7 +87,7 @@ static double pair_deepest(const world *wd, int32_t first, int32_t end)
 {
     double deepest = wd->contacts[first].depth;
     for (int32_t j = first + 1; j < end; j++)
-        deepest = fmax(deepest, wd->contacts[j].depth);
+        deepest = dmax(deepest, wd->contacts[j].depth);
     return deepest;
 }
 
@@ -109,7 +109,7 @@ void contact_joints_add(world *wd, double h)
         const double hs = span * h; /* the time step of the contact's island */
         const body *a = body_of(wd, c0->a), *b = body_of(wd, c0->b);
         const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
-        const double deepest = pair_deepest(wd, first, end), e = fmax(a->restitution, b->restitution);
+        const double deepest = pair_deepest(wd, first, end), e = dmax(a->restitution, b->restitution);
         const double friction = sqrt(a->friction * b->friction), ia = inv_mass(a), ib = inv_mass(b);
         for (int32_t i = first; i < end; i++) {
             const pp_contact *c = &wd->contacts[i];

@@ -48,11 +48,11 @@ static int64_t overlap_at(const sweep *sw, double t, const body *other)
         const pp_aabb *box = &other->aabb;
         const dvec2 corner = dv(k & 1 ? box->x1 + 1 : box->x0 - 1, k & 2 ? box->y1 + 1 : box->y0 - 1);
         const dvec2 l = dv_add(dv_unrot(dv_sub(corner, com), c, s), sw->com_local);
-        lx0 = fmin(lx0, l.x), ly0 = fmin(ly0, l.y), lx1 = fmax(lx1, l.x), ly1 = fmax(ly1, l.y);
+        lx0 = dmin(lx0, l.x), ly0 = dmin(ly0, l.y), lx1 = dmax(lx1, l.x), ly1 = dmax(ly1, l.y);
     }
     /* Clamped on both sides: a box far off the bitmap gives bounds past int32 (UBSan, found by fuzz_snapshot). */
-    const int32_t x0 = (int32_t)fmin(fmax(r->x0, floor(lx0)), r->x1), x1 = (int32_t)fmax(fmin(r->x1, ceil(lx1)), r->x0);
-    const int32_t y0 = (int32_t)fmin(fmax(r->y0, floor(ly0)), r->y1), y1 = (int32_t)fmax(fmin(r->y1, ceil(ly1)), r->y0);
+    const int32_t x0 = (int32_t)dmin(dmax(r->x0, floor(lx0)), r->x1), x1 = (int32_t)dmax(dmin(r->x1, ceil(lx1)), r->x0);
+    const int32_t y0 = (int32_t)dmin(dmax(r->y0, floor(ly0)), r->y1), y1 = (int32_t)dmax(dmin(r->y1, ceil(ly1)), r->y0);
     int64_t n = 0;
     for (int32_t y = y0; y < y1; y++) {
         const dvec2 w = dv_add(com, dv_rot(dv_sub(dv(x0 + 0.5, y + 0.5), sw->com_local), c, s));
@@ -136,17 +136,17 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
     double reach2 = 0;
     for (int k = 0; k < 4; k++) {
         const dvec2 d = dv_sub(dv(k & 1 ? r->x1 : r->x0, k & 2 ? r->y1 : r->y0), sw.com_local);
-        reach2 = fmax(reach2, dv_dot(d, d));
+        reach2 = dmax(reach2, dv_dot(d, d));
     }
     const double reach = sqrt(reach2), travel = sqrt(dv_dot(sw.dcom, sw.dcom)) + fabs(sw.dangle) * reach;
     const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
-    const double spacing = fmax(1.0, 0.5 * thin);
+    const double spacing = dmax(1.0, 0.5 * thin);
     if (travel <= spacing)
         return PP_OK;
     const dvec2 end = dv_add(sw.com0, sw.dcom);
-    const pp_aabb swept = {fmin(sw.com0.x, end.x) - reach, fmin(sw.com0.y, end.y) - reach,
-                           fmax(sw.com0.x, end.x) + reach, fmax(sw.com0.y, end.y) + reach};
-    const int32_t samples = (int32_t)fmin(ceil(travel / spacing), 1 << 20);
+    const pp_aabb swept = {dmin(sw.com0.x, end.x) - reach, dmin(sw.com0.y, end.y) - reach,
+                           dmax(sw.com0.x, end.x) + reach, dmax(sw.com0.y, end.y) + reach};
+    const int32_t samples = (int32_t)dmin(ceil(travel / spacing), 1 << 20);
     /* In slot order: first_hit stops at the hit found so far, so the order decides among near-equal hits. */
     int32_t *near = NULL, n = 0;
     pp_status st = awake_bodies_in_box(wd, "pp_world_step", swept, &near, &n);
@@ -159,7 +159,7 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
             continue;
         if (!(bd->category_bits & o->mask_bits) || !(o->category_bits & bd->mask_bits) || !stops(wd, bd, o, sw.dcom))
             continue;
-        t = fmin(t, first_hit(&sw, o, thin, samples, travel, t));
+        t = dmin(t, first_hit(&sw, o, thin, samples, travel, t));
     }
     pp_free(near);
     if (t >= 1.0)

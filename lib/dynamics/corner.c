@@ -49,7 +49,7 @@ static double patch_extent(const patch *pa, dvec2 n, bool up)
     double best = up ? -INFINITY : INFINITY;
     for (int32_t i = 0; i < pa->n; i++) {
         const double q = pa->dx[i] * u.x + pa->dy[i] * u.y + (up ? 0.5 : -0.5);
-        best = up ? fmax(best, q) : fmin(best, q);
+        best = up ? dmax(best, q) : dmin(best, q);
     }
     return best;
 }

@@ -154,7 +154,7 @@ static void set_spans(world *wd, substep_pairing pairing)
     for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
-            fmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * fmin(a->mass.mass, b->mass.mass))
+            dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
             flags[world_group_root(parent, (int32_t)a->index)] |= ROOT_EVERY_SUBSTEP;
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
@@ -337,7 +337,7 @@ bool island_sleep(world *wd, double h)
         const double vmax = d->sleep_linear_speed; /* squared: no hypot for every body every substep */
         const bool slow = dv_dot(v, v) <= vmax * vmax && fabs(w) <= d->sleep_angular_speed;
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
-        bd->slow_time = slow && d->allow_sleep ? fmin(bd->slow_time + h, d->sleep_time) : 0;
+        bd->slow_time = slow && d->allow_sleep ? dmin(bd->slow_time + h, d->sleep_time) : 0;
     }
     if (!d->allow_sleep || wd->islands.node_count == 0)
         return false; /* no node: nothing awake, and maybe no arrays yet */

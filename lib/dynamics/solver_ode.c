@@ -134,13 +134,13 @@ void solver_destroy(pp_solver *s)
     pp_free(s);
 }
 
+/* A rotation about z by its quaternion: ODE keeps the quaternion and makes the matrix from it, so this is
+ * what dBodySetRotation would end in, without its trip through a matrix and back. */
 static void set_rotation_z(solver_body *sb, double angle)
 {
-    dBodyID b = sb->body;
     sb->rotation_angle = angle;
-    dMatrix3 R;
-    dRFromAxisAndAngle(R, 0, 0, 1, angle);
-    dBodySetRotation(b, R);
+    const dQuaternion q = {cos(0.5 * angle), 0, 0, sin(0.5 * angle)};
+    dBodySetQuaternion(sb->body, q);
 }
 
 static void set_mass(const pp_solver *s, dBodyID b, double mass, double inertia)
@@ -667,18 +667,19 @@ void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *fo
     *torque = sg * fb[5] * s->ppm * s->ppm;
 }
 
-/* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis;
- * project the body back to a pure z rotation, as ODE's own plane-2D demo does. */
-void solver_body_flatten(solver_body *sb)
+/* Plane-2D keeps positions in the plane but lets the orientation drift off the z axis; an awake body is
+ * projected back to a pure z rotation, as ODE's own plane-2D demo does, and its state read at once. */
+void solver_body_sync(const pp_solver *s, solver_body *sb, solver_body_state *out)
 {
     dBodyID b = sb->body;
-    if (!dBodyIsEnabled(b))
-        return;
     const dReal *R = dBodyGetRotation(b), *w = dBodyGetAngularVel(b), *p = dBodyGetPosition(b);
     const dReal *v = dBodyGetLinearVel(b);
-    const double angle = atan2(R[4], R[0]), wz = w[2];
-    const double px = p[0], py = p[1], vx = v[0], vy = v[1];
-    set_rotation_z(sb, angle);
+    *out = (solver_body_state){dv(p[0] * s->ppm, p[1] * s->ppm), atan2(R[4], R[0]), dv(v[0] * s->ppm, v[1] * s->ppm),
+                               w[2], dBodyIsEnabled(b) != 0};
+    if (!out->awake)
+        return;
+    const double px = p[0], py = p[1], vx = v[0], vy = v[1], wz = w[2];
+    set_rotation_z(sb, out->angle);
     dBodySetAngularVel(b, 0, 0, wz);
     dBodySetPosition(b, px, py, 0);
     dBodySetLinearVel(b, vx, vy, 0);

@@ -68,8 +68,8 @@ void solver_set_gravity(pp_solver *s, dvec2 gravity);
 void solver_body_wake(const solver_body *sb);
 void solver_body_sleep(const solver_body *sb);
 bool solver_body_is_awake(const solver_body *sb);
-/* Undo ODE's drift out of the plane; call once per body after each step. */
-void solver_body_flatten(solver_body *sb);
+/* After each step, once per body: read its state and, if awake, undo ODE's drift out of the plane. */
+void solver_body_sync(const pp_solver *s, solver_body *sb, solver_body_state *out);
 void solver_body_get_state(const pp_solver *s, const solver_body *sb, solver_body_state *out);
 /* The state's velocities alone (px/s, rad/s), and its centre of mass alone (px): no angle to work out. */
 void solver_body_get_velocity(const pp_solver *s, const solver_body *sb, dvec2 *v, double *w);

@@ -245,7 +245,7 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
     const double speed = hypot(s->velocity.x, s->velocity.y);
     if (speed > max_v)
         s->velocity = dv_scale(s->velocity, max_v / speed);
-    s->angular_velocity = fmax(-max_w, fmin(max_w, s->angular_velocity));
+    s->angular_velocity = dmax(-max_w, dmin(max_w, s->angular_velocity));
     solver_body_set_velocity(wd->solver, &bd->sb, s->velocity, s->angular_velocity);
 }
 
@@ -258,9 +258,8 @@ static pp_status sync_bodies(world *wd)
         body *bd = wd->bodies[wd->awake.slots[k]];
         if (!awake_mover(bd) || wd->islands.span[bd->index] == SPAN_SKIP)
             continue;
-        solver_body_flatten(&bd->sb);
         solver_body_state s;
-        solver_body_get_state(wd->solver, &bd->sb, &s);
+        solver_body_sync(wd->solver, &bd->sb, &s);
         clamp_speed(wd, bd, &s);
         const double c = cos(s.angle), sn = sin(s.angle);
         /* pivot = com − R(angle)·(com_local − pivot) */
