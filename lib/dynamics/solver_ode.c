@@ -235,7 +235,6 @@ void solver_body_sleep(const solver_body *sb)
     dBodyDisable(sb->body);
 }
 
-bool solver_body_is_awake(const solver_body *sb) { return dBodyIsEnabled((dBodyID)sb->body) != 0; }
 
 void solver_body_get_velocity(const pp_solver *s, const solver_body *sb, dvec2 *v, double *w)
 {
