@@ -8,15 +8,47 @@
 
 pp_status awake_reserve(world *wd, int32_t n, const char *fn)
 {
-    if (!ARRAY_RESERVE(wd->awake.slots, wd->awake.capacity, n))
+    if (!ARRAY_RESERVE(wd->awake.slots, wd->awake.capacity, n) ||
+        !ARRAY_RESERVE(wd->awake.changed, wd->awake.changed_capacity, n) ||
+        !ARRAY_RESERVE(wd->awake.by_x, wd->awake.by_x_capacity, n))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d awake bodies", fn, (int)n);
     return PP_OK;
+}
+
+/* Into the changed list, once (room reserved with the set's). */
+static void note_changed(world *wd, body *bd)
+{
+    if (bd->changed_at >= 0)
+        return;
+    PP_ASSERT(wd->awake.changed_count < wd->awake.changed_capacity);
+    bd->changed_at = wd->awake.changed_count;
+    wd->awake.changed[wd->awake.changed_count++] = (int32_t)bd->index;
+}
+
+static void clear_changed(world *wd)
+{
+    for (int32_t k = 0; k < wd->awake.changed_count; k++)
+        wd->bodies[wd->awake.changed[k]]->changed_at = -1;
+    wd->awake.changed_count = 0;
+}
+
+void awake_slept(world *wd, body *bd)
+{
+    if (bd->awake_at >= 0)
+        note_changed(wd, bd);
+}
+
+void awake_moved(world *wd, body *bd)
+{
+    awake_add(wd, bd);
+    note_changed(wd, bd);
 }
 
 void awake_add(world *wd, body *bd)
 {
     if (bd->awake_at >= 0)
         return;
+    note_changed(wd, bd);
     PP_ASSERT(wd->awake.count < wd->awake.capacity); /* awake_reserve at creation */
     wd->table.resting_stale = true; /* it may be in a resting pair (contact_table.c) */
     const int32_t n = wd->awake.count++;
@@ -36,6 +68,13 @@ void awake_forget(world *wd, body *bd)
     if (bd->index < (uint32_t)wd->awake.proxy_capacity)
         wd->awake.proxies[bd->index].live = false;
     broadphase_remove(&wd->broad, bd->index);
+    const int32_t c = bd->changed_at;
+    if (c >= 0) {
+        const int32_t last_changed = wd->awake.changed[--wd->awake.changed_count];
+        wd->awake.changed[c] = last_changed;
+        wd->bodies[last_changed]->changed_at = c;
+        bd->changed_at = -1;
+    }
     const int32_t at = bd->awake_at;
     if (at < 0)
         return;
@@ -50,6 +89,8 @@ void awake_forget(world *wd, body *bd)
 
 void awake_rebuild(world *wd)
 {
+    clear_changed(wd);
+    awake_index_stale(wd);
     wd->awake.count = 0;
     wd->awake.sorted = true;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++)
@@ -88,6 +129,8 @@ pp_status awake_refresh(world *wd)
         if (st)
             return st;
     }
+    clear_changed(wd); /* every listed body left is an awake mover, the rest are in the tree */
+    awake_index_stale(wd);
     int32_t kept = 0, movers = 0;
     for (int32_t k = 0; k < wd->awake.count; k++) {
         const int32_t i = wd->awake.slots[k];
@@ -127,13 +170,60 @@ static bool visit_leaf(uint32_t slot, void *user)
     return false;
 }
 
+static int by_x0(const void *x, const void *y)
+{
+    const awake_entry *a = x, *b = y;
+    return a->x0 != b->x0 ? (a->x0 > b->x0) - (a->x0 < b->x0) : (a->slot > b->slot) - (a->slot < b->slot);
+}
+
+/* The awake movers by their boxes' x0 (then slot), as they are now. Room was reserved with the set's. */
+static void build_index(world *wd)
+{
+    awake_set *a = &wd->awake;
+    a->by_x_count = 0;
+    a->by_x_width = 0;
+    for (int32_t k = 0; k < a->count; k++) {
+        const body *bd = wd->bodies[a->slots[k]];
+        if (!awake_mover(bd))
+            continue;
+        a->by_x[a->by_x_count++] = (awake_entry){bd->aabb.x0, a->slots[k]};
+        a->by_x_width = dmax(a->by_x_width, bd->aabb.x1 - bd->aabb.x0);
+    }
+    if (a->by_x_count > 1)
+        qsort(a->by_x, (size_t)a->by_x_count, sizeof *a->by_x, by_x0);
+    a->by_x_valid = true;
+}
+
 void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd, void *user), void *user)
 {
     box_visit v = {wd, box, visit, user, false};
     broadphase_query(&wd->broad, box, visit_leaf, &v);
-    const int32_t n = wd->awake.count; /* bodies a visit lists were visited from the tree */
-    for (int32_t k = 0; k < n && !v.stopped; k++) {
-        body *bd = wd->bodies[wd->awake.slots[k]];
+    /* Bodies a visit lists or moves join the changed list: walk the count and the index as they were. */
+    const int32_t changed = wd->awake.changed_count;
+    for (int32_t k = 0; k < changed && !v.stopped; k++) {
+        body *bd = wd->bodies[wd->awake.changed[k]];
+        if (bd->awake_at >= 0 && aabb_overlap(&bd->aabb, &box) && !visit(wd, bd, user))
+            return;
+    }
+    if (v.stopped)
+        return;
+    if (!wd->awake.by_x_valid)
+        build_index(wd);
+    const awake_set *a = &wd->awake;
+    /* The first entry past box.x1, then back while an entry as wide as the widest could still reach box.x0. */
+    int32_t lo = 0, hi = a->by_x_count;
+    while (lo < hi) {
+        const int32_t mid = lo + (hi - lo) / 2;
+        if (a->by_x[mid].x0 <= box.x1)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (int32_t k = lo - 1; k >= 0 && a->by_x[k].x0 >= box.x0 - a->by_x_width; k--) {
+        body *bd = wd->bodies[a->by_x[k].slot];
+        /* Gone, asleep or moved since (then the changed list had it): not this entry's to visit. */
+        if (!bd || bd->awake_at < 0 || bd->changed_at >= 0 || !awake_mover(bd))
+            continue;
         if (aabb_overlap(&bd->aabb, &box) && !visit(wd, bd, user))
             return;
     }
@@ -166,6 +256,18 @@ pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **
     }
     if (l.count > 1)
         qsort(l.slots, (size_t)l.count, sizeof *l.slots, slot_order);
+#ifdef PP_CHECKS
+    /* The same bodies as a walk of every live body finds. */
+    int32_t expected = 0;
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
+        const body *bd = wd->bodies[i];
+        if (bd && aabb_overlap(&bd->aabb, &box)) {
+            PP_ASSERT(expected < l.count && l.slots[expected] == i);
+            expected++;
+        }
+    }
+    PP_ASSERT(expected == l.count);
+#endif
     *slots = l.slots, *n = l.count;
     return PP_OK;
 }
@@ -178,11 +280,40 @@ static bool wake_movable(world *wd, body *bd, void *user)
     return true;
 }
 
-void awake_wake_in_box(world *wd, pp_aabb box) { awake_each_in_box(wd, box, wake_movable, NULL); }
+/* A leaf whose fat box meets the query: wake its body (a listed one is an awake mover or in the changed list). */
+static bool wake_leaf(uint32_t slot, void *user)
+{
+    box_visit *v = user;
+    body *bd = v->wd->bodies[slot];
+    if (bd->awake_at < 0 && aabb_overlap(&bd->aabb, &v->box))
+        wake_movable(v->wd, bd, NULL);
+    return true;
+}
+
+void awake_wake_in_box(world *wd, pp_aabb box)
+{
+#ifdef PP_CHECKS
+    /* Every listed body that needs waking is in the changed list. */
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        const body *bd = wd->bodies[wd->awake.slots[k]];
+        PP_ASSERT(!bd->sb.body || awake_mover(bd) || bd->changed_at >= 0);
+    }
+#endif
+    box_visit v = {wd, box, wake_movable, NULL, false};
+    broadphase_query(&wd->broad, box, wake_leaf, &v);
+    /* Waking lists a body and may add to the list: walk the count the query left. */
+    for (int32_t k = 0; k < wd->awake.changed_count; k++) {
+        body *bd = wd->bodies[wd->awake.changed[k]];
+        if (bd->awake_at >= 0 && aabb_overlap(&bd->aabb, &box))
+            wake_movable(wd, bd, NULL);
+    }
+}
 
 void awake_free(awake_set *a)
 {
     pp_free(a->slots);
+    pp_free(a->changed);
+    pp_free(a->by_x);
     pp_free(a->proxies);
     *a = (awake_set){0};
 }

@@ -16,7 +16,20 @@ void awake_add(world *wd, body *bd);
 /* Wake a movable body's ODE body and list it. */
 void awake_wake(world *wd, body *bd);
 
-/* Wake every movable body whose world box meets `box` (closed). */
+/* A listed body was put to sleep: until the next refresh it is in no tree leaf, and awake_wake_in_box must
+ * still find it. */
+void awake_slept(world *wd, body *bd);
+
+/* A body's box changed outside a substep's solve (an edit, a teleport, a new type, a stop by a sweep): list
+ * it, and let the box queries see it where it is now. */
+void awake_moved(world *wd, body *bd);
+
+/* Bodies moved in a substep's solve: the box queries' index of awake bodies is rebuilt when next asked. */
+static inline void awake_index_stale(world *wd) { wd->awake.by_x_valid = false; }
+
+/* Wake every movable body whose world box meets `box` (closed). An awake mover needs no waking, so this visits
+ * the tree's leaves and the bodies listed or put to sleep since the last refresh, never the whole awake set:
+ * an edit costs what is near it. */
 void awake_wake_in_box(world *wd, pp_aabb box);
 
 /* Forget a body that is being removed: out of the set, its slot's proxy dead. */
@@ -30,7 +43,8 @@ void awake_rebuild(world *wd);
 pp_status awake_refresh(world *wd);
 
 /* Call visit for each live body whose world box meets `box` (closed), in no set order, until it returns false:
- * the tree's leaves find the bodies it holds up to date, the awake set the rest. Cannot fail. */
+ * the tree's leaves find the bodies it holds up to date, an index of the awake movers by x (built at most once
+ * a substep, when asked) and the changed list the rest, so a query costs what is near it. Cannot fail. */
 void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd, void *user), void *user);
 
 /* The live bodies whose world box meets `box` (closed), in slot order, as a list the caller frees with pp_free:

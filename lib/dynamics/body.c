@@ -221,6 +221,7 @@ pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const 
     if (!bd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
     bd->awake_at = -1;
+    bd->changed_at = -1;
     if ((st = raster_init(fn, &bd->raster, def))) {
         pp_free(bd);
         return st;
@@ -334,7 +335,7 @@ void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotat
     carry_forget(wd, bd->index); /* a static body, now moving, or the reverse: its pairs are collided anew */
     bd->serial = wd->next_serial++; /* ODE's newest body: a snapshot remakes it last too */
     joint_body_changed(wd, bd);
-    awake_add(wd, bd); /* the broadphase hears of the new type */
+    awake_moved(wd, bd); /* the broadphase hears of the new type; an awake body's queries see it anew */
 }
 
 void body_remove(world *wd, body *bd)
@@ -385,7 +386,7 @@ PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, 
     bd->angle = bd->fixed_rotation ? bd->angle : angle;
     bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
     body_update_pose_cache(bd);
-    awake_add(wd, bd);
+    awake_moved(wd, bd);
     if (bd->sb.body) {
         solver_body_set_pose(wd->solver, &bd->sb, body_com_world(bd), bd->angle);
         awake_wake(wd, bd);

@@ -169,6 +169,7 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
     bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
     bd->pos = dv_sub(com, dv_rot(dv_sub(sw.com_local, bd->pivot), bd->cos_a, bd->sin_a));
     body_update_pose_cache(bd);
+    awake_moved(wd, bd); /* the next sweeps' queries see it where it stopped */
     solver_body_set_pose(wd->solver, &bd->sb, com, bd->angle);
     wd->stats.swept_stops++;
     return PP_OK;

@@ -368,6 +368,7 @@ bool island_sleep(world *wd, double h)
         body *bd = wd->bodies[wd->awake.slots[k]];
         if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd) && !restless[world_group_root(parent, (int32_t)bd->index)]) {
             solver_body_sleep(&bd->sb);
+            awake_slept(wd, bd);
             bd->slow_time = d->sleep_time + 1; /* asleep: past sleep_time marks it */
             slept = true;
         }

@@ -145,6 +145,7 @@ PP_API pp_status pp_body_set_awake(pp_world w, pp_body b, uint32_t awake)
         return PP_OK;
     }
     solver_body_sleep(&bd->sb); /* the awake set drops it at the next substep's start */
+    awake_slept(wd, bd);
     bd->slow_time = wd->def.sleep_time + 1; /* asleep, as island_sleep marks a sleeper */
     return PP_OK;
 }

@@ -254,6 +254,7 @@ static void clamp_speed(world *wd, body *bd, solver_body_state *s)
  * the caller undoes the step. */
 static pp_status sync_bodies(world *wd)
 {
+    awake_index_stale(wd);
     for (int32_t k = 0; k < wd->awake.count; k++) {
         body *bd = wd->bodies[wd->awake.slots[k]];
         if (!awake_mover(bd) || wd->islands.span[bd->index] == SPAN_SKIP)

@@ -43,6 +43,7 @@ typedef struct body {
     uint64_t user_data;
     uint64_t serial;         /* creation order; a snapshot recreates ODE bodies in it */
     int32_t awake_at;        /* its place in the world's awake set (awake.h), or -1 */
+    int32_t changed_at;      /* its place in the awake set's changed list (awake.h), or -1 */
     double slow_time;        /* s the body has stayed under the sleep speeds, at most sleep_time while awake;
                               * sleep_time + 1 while asleep */
     bool bullet;             /* swept against dynamic bodies too */
@@ -80,11 +81,24 @@ enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2 };
 
 /* The parts of a world each file owns: only its owner writes them; the others read, or call its functions. */
 
+/* An awake mover in the awake set's index: its box's x0 (px) when the index was built, and its slot. */
+typedef struct awake_entry {
+    double x0;
+    int32_t slot;
+} awake_entry;
+
 /* The awake set (awake.c). */
 typedef struct awake_set {
     int32_t *slots;          /* slots, sorted from each substep's start */
     int32_t count, capacity;
     bool sorted;
+    int32_t *changed;        /* listed bodies the index may not show as they are: listed, put to sleep or moved
+                              * outside a step since the last refresh */
+    int32_t changed_count, changed_capacity;
+    struct awake_entry *by_x; /* the index: the awake movers when it was built, by their boxes' x0 */
+    int32_t by_x_count, by_x_capacity;
+    double by_x_width;       /* the widest of their boxes, px */
+    bool by_x_valid;         /* no body moved in a step since it was built */
     int32_t movers;          /* dynamic or kinematic bodies awake at the last broadphase */
     bp_proxy *proxies;       /* the broadphase's view of every slot, refreshed for the set's bodies */
     int32_t proxy_capacity;

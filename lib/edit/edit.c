@@ -160,7 +160,7 @@ static void job_commit(world *wd, edit_job *j, pp_aabb *woken)
     raster_edit_done(&bd->raster, e->y0, e->y1);
     carry_forget(wd, bd->index); /* its held contacts are the old pixels' */
     body_update_pose_cache(bd);
-    awake_add(wd, bd); /* new bounds, even for a static body */
+    awake_moved(wd, bd); /* new bounds, even for a static body */
     const pp_aabb region = edited_region(bd, e);
     if (woken)
         *woken = (pp_aabb){fmin(woken->x0, region.x0), fmin(woken->y0, region.y0), fmax(woken->x1, region.x1),
@@ -278,7 +278,7 @@ static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius,
         pp_free(jobs);
         return st;
     }
-    /* One wake over every body's edited region, not one a body: each wake walks the awake set, which every
+    /* One wake over every body's edited region, not one a body: each wake visits the changed list, which every
      * edited body has joined (65,536 one-pixel bodies erased at once took seconds). */
     int32_t erased = 0;
     pp_aabb woken = {INFINITY, INFINITY, -INFINITY, -INFINITY};

@@ -212,7 +212,7 @@ void fracture_commit(world *wd, body *bd, fracture_plan *p)
             world_queue_event(wd, (pp_event){.type = PP_EVENT_BODY_DESTROYED, .body = gone}); /* room reserved */
         } else {
             body_update_pose_cache(bd);
-            awake_add(wd, bd); /* new bounds, even for a static body */
+            awake_moved(wd, bd); /* new bounds, even for a static body */
             if (bd->sb.body)
                 edit_update_solver_body(wd, bd);
         }

@@ -180,3 +180,39 @@ Test(awake, a_resting_pair_woken_is_the_same_pair_and_ends_when_parted)
     cr_assert_eq(begins, 1, "and it begins one with the ground: %d BEGINs", begins);
     pp_world_destroy(w);
 }
+
+/* Box queries find awake bodies through an index of them by x, built once a substep: a body moved, painted
+ * or put to sleep between steps must still be met where it now is, by an erase and by the wake an edit
+ * spreads. 16×16 boxes, 256 px each. */
+Test(awake, the_box_queries_meet_awake_bodies_where_they_are_now)
+{
+    pp_world_def d = pp_world_def_default();
+    d.gravity = (pp_vec2){0, 0};
+    pp_world w = make_world_def(&d);
+    pp_body mover = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 16, 16);
+    pp_body others[20];
+    for (int i = 0; i < 20; i++) /* awake neighbours along x, so the index has more than one entry */
+        others[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 300 + 40.0f * i, 100, 0), 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, mover, (pp_vec2){30, 0}, 0));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    int32_t changed = -1;
+    /* A query now builds the index with the mover near x 100. */
+    PP_OK_OR_FAIL(pp_world_erase_circle(w, (pp_vec2){2000, 2000}, 4, &changed));
+    cr_assert_eq(changed, 0);
+    /* Teleported between steps: erased where it now is, not where the index saw it. */
+    PP_OK_OR_FAIL(pp_body_set_transform(w, mover, (pp_vec2){1200, 600}, 0));
+    PP_OK_OR_FAIL(pp_world_erase_circle(w, (pp_vec2){100.5f, 100}, 3, &changed));
+    cr_assert_eq(changed, 0, "the erase at the mover's old place took %d of its pixels", changed);
+    PP_OK_OR_FAIL(pp_world_erase_circle(w, (pp_vec2){1200, 600}, 3, &changed));
+    cr_assert_gt(changed, 0, "the erase at the mover's new place missed it");
+    /* Put to sleep between steps (listed still, in no tree leaf): an erase finds it and its edit wakes it. */
+    PP_OK_OR_FAIL(pp_body_set_awake(w, others[3], 0));
+    int32_t awake = 1;
+    PP_OK_OR_FAIL(pp_body_is_awake(w, others[3], &awake));
+    cr_assert_eq(awake, 0);
+    PP_OK_OR_FAIL(pp_world_erase_circle(w, (pp_vec2){420 + 7, 100}, 2, &changed));
+    cr_assert_gt(changed, 0, "the erase missed the sleeper's edge");
+    PP_OK_OR_FAIL(pp_body_is_awake(w, others[3], &awake));
+    cr_assert_eq(awake, 1, "an edit of a sleeper's edge did not wake it");
+    pp_world_destroy(w);
+}

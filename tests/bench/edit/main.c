@@ -1,7 +1,8 @@
 /* Edit latency: a 32 px crater in a 4096×2048 terrain with 200 boxes resting on it. Times the
  * erase call itself and the step after it against a step without an edit; median and 99th
  * percentile over the craters, printed and written as CSV. Then one pp_world_erase_circle over n one-pixel
- * bodies (debris), before any step: its time a body should not grow with n.
+ * bodies (debris), before any step: its time a body should not grow with n. Then a small erase in a terrain
+ * while n bodies are awake elsewhere: its time should not grow with n either (an edit costs what is near it).
  *
  *   bench_edit [--csv PATH] [--craters N]
  */
@@ -49,6 +50,47 @@ static double erase_debris(int side)
         check(PP_ERR_INVALID_ARGUMENT, "the erase missed debris");
     check(pp_world_destroy(w), "pp_world_destroy");
     return ms;
+}
+
+/* Median ms of ERASES radius-3 erases in a 1024×256 terrain while n boxes drift, awake, far above it. */
+static double erase_with_awake(int n)
+{
+    enum { ERASES = 400 };
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU;
+    wd.gravity = (pp_vec2){0, 0};
+    wd.allow_sleep = 0;
+    pp_world w;
+    check(pp_world_create(&wd, &w), "pp_world_create");
+    uint8_t *ground = malloc(1024 * 256);
+    memset(ground, 1, 1024 * 256);
+    pp_body_def d = pp_body_def_default();
+    d.type = PP_BODY_STATIC, d.width = 1024, d.height = 256, d.mask = ground;
+    d.position = (pp_vec2){512, 128};
+    pp_body terrain;
+    check(pp_body_create(w, &d, &terrain), "terrain");
+    uint8_t box[4 * 4];
+    memset(box, 1, sizeof box);
+    for (int i = 0; i < n; i++) {
+        pp_body_def bd = pp_body_def_default();
+        bd.width = bd.height = 4, bd.mask = box;
+        bd.position = (pp_vec2){8.0f * (i % 500), -1000.0f - 8.0f * (i / 500)};
+        bd.linear_velocity = (pp_vec2){1, 0};
+        pp_body b;
+        check(pp_body_create(w, &bd, &b), "drifting box");
+    }
+    check(pp_world_step(w, 1.0f / 60), "step"); /* every box awake and in the awake set's index */
+    double ms[ERASES];
+    for (int k = 0; k < ERASES; k++) {
+        const pp_vec2 c = {20.0f + (float)((k * 397) % 980), 20.0f + (float)((k * 131) % 200)};
+        const double t0 = bench_clock_ms();
+        check(pp_world_erase_circle(w, c, 3.0f, NULL), "small erase");
+        ms[k] = bench_clock_ms() - t0;
+    }
+    check(pp_world_destroy(w), "pp_world_destroy");
+    free(ground);
+    qsort(ms, ERASES, sizeof *ms, bench_cmp_double);
+    return ms[ERASES / 2];
 }
 
 static double pct(double *v, int n, double p)
@@ -134,6 +176,15 @@ int main(int argc, char **argv)
         printf("%-26d %10.3f %14.3f\n", sides[i] * sides[i], debris_ms[i],
                1e3 * debris_ms[i] / (sides[i] * sides[i]));
     }
+    enum { AWAKE_SIZES = 3 };
+    const int awake_n[AWAKE_SIZES] = {100, 1000, 10000};
+    double awake_ms[AWAKE_SIZES];
+    printf("\na radius-3 erase in a terrain while n bodies are awake elsewhere (median of 400)\n%-26s %10s\n",
+           "awake bodies", "us");
+    for (int i = 0; i < AWAKE_SIZES; i++) {
+        awake_ms[i] = erase_with_awake(awake_n[i]);
+        printf("%-26d %10.2f\n", awake_n[i], 1e3 * awake_ms[i]);
+    }
     if (csv_path) {
         FILE *f = fopen(csv_path, "w");
         if (!f) {
@@ -144,6 +195,8 @@ int main(int argc, char **argv)
                 e99, a50, a99, p50, p99);
         for (int i = 0; i < DEBRIS_SIZES; i++) /* one run each: median and p99 are that run */
             fprintf(f, "erase_debris_%d,%.6f,%.6f\n", sides[i] * sides[i], debris_ms[i], debris_ms[i]);
+        for (int i = 0; i < AWAKE_SIZES; i++) /* a median of 400 erases; p99 not kept */
+            fprintf(f, "erase_with_%d_awake,%.6f,%.6f\n", awake_n[i], awake_ms[i], awake_ms[i]);
         fclose(f);
         printf("wrote %s\n", csv_path);
     }
