@@ -278,6 +278,11 @@ $(BUILD)/bench/bench_raycast: tests/bench/raycast/main.c tests/bench/machine.h $
 	$(Q)mkdir -p $(BUILD)/bench
 	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
+# What pp_world_debug_draw costs beside a step: a cratered 2048×1024 terrain with 300 crates.
+$(BUILD)/bench/bench_debug_draw: tests/bench/debug_draw/main.c tests/bench/machine.h $(STATIC)
+	$(Q)mkdir -p $(BUILD)/bench
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+
 # Loading and scheduling at scale: a 100,000-body scene and snapshot, 100,000 edits in decreasing time order.
 $(BUILD)/bench/bench_load: tests/bench/load/main.c tests/bench/machine.h $(STATIC)
 	$(Q)mkdir -p $(BUILD)/bench
@@ -351,9 +356,10 @@ bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
 	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
-	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr
+	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr $(BUILD)/bench/bench_debug_draw
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
+	$(BUILD)/bench/bench_debug_draw --csv $(BUILD)/bench/debug_draw.csv
 	$(BUILD)/bench/bench_load --csv $(BUILD)/bench/load.csv
 	$(BUILD)/bench/bench_features --csv $(BUILD)/bench/features.csv
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv

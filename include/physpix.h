@@ -659,6 +659,9 @@ PP_API pp_status pp_joint_get_type(pp_world w, pp_joint j, pp_joint_type *out);
 PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp_body *body_b);
 /// The host's value given in the joint's def.
 PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out);
+/// The joint's anchors in world px at the bodies' current poses (a static world side's is the world point it was
+/// given; MOUSE: anchor_a is the target); either pointer may be NULL.
+PP_API pp_status pp_joint_get_anchors(pp_world w, pp_joint j, pp_vec2 *anchor_a, pp_vec2 *anchor_b);
 
 /* ---- Queries: rays, point/box/circle queries, pair collision, debug view ---- */
 
@@ -728,6 +731,102 @@ PP_API pp_status pp_world_collide(pp_world w, pp_body a, pp_body b, pp_contact *
 /// The view is filled even when capacity is short (then PP_ERR_INVALID_ARGUMENT and nothing written).
 PP_API pp_status pp_world_debug_collision(pp_world w, pp_body a, pp_body b, uint8_t *cells, pp_vec2 *local_normals,
                                           int64_t capacity, pp_collision_view *view);
+
+/* Debug drawing: the world's physics as line segments a host draws after a step, as it reads contacts.
+ * What is drawn, in this order:
+ *   bodies, in slot order, those whose world bounds (the box of their solid pixels) meet the view box, each:
+ *     OUTLINE   its solid pixels' boundary on the pixel squares' edges, merged into maximal straight runs and
+ *               turned with the body (a w×h box is 4 segments, an L 6); only the runs whose bounds meet the box;
+ *               each run has the solid on its right as drawn with y down (clockwise round a box on screen);
+ *     AABB      the 4 sides of its world bounds;
+ *     CENTER    two segments from its centre of mass along its bitmap x and y axes, PP_DEBUG_AXIS_LENGTH px;
+ *     VELOCITY  dynamic and kinematic bodies: from the centre of mass to where it goes in PP_DEBUG_VELOCITY_TIME s;
+ *   contacts, in pp_world_get_contacts' order, those whose point lies in the box, each:
+ *     CONTACT   a cross of two segments, PP_DEBUG_CROSS_SIZE px to either side of the point along x and along y;
+ *     NORMAL    from the point along the normal (a to b), PP_DEBUG_NORMAL_LENGTH px;
+ *   joints, in slot order, those with an anchor in the box (the anchors pp_joint_get_anchors reports):
+ *     JOINT     anchor a to anchor b, then each body's centre of mass to its anchor (none for the static world).
+ * `body` is the body a segment belongs to: a contact's a; for a joint, the body whose centre of mass it starts
+ * from, and body_b for anchor to anchor; zero for the static world. The box [lower, upper] is closed, world px, finite; (−FLT_MAX, −FLT_MAX) to
+ * (FLT_MAX, FLT_MAX) draws everything. Bodies are found through the broadphase, so a small box costs what it
+ * shows. Each body's outline is kept in bitmap px and built again only after an edit changed its mask; the
+ * first call after an edit pays for that body's outline, every other call for the transform of its runs.
+ * Colours are 0xRRGGBBAA: outlines and AABBs by the body's state, in this order of precedence:
+ * sensor PP_DEBUG_COLOR_SENSOR, static PP_DEBUG_COLOR_STATIC, asleep PP_DEBUG_COLOR_ASLEEP, kinematic
+ * PP_DEBUG_COLOR_KINEMATIC, awake dynamic PP_DEBUG_COLOR_AWAKE; the rest by kind. */
+
+/// What a debug segment shows.
+typedef enum pp_debug_kind {
+    PP_DEBUG_OUTLINE = 1,  ///< a straight run of a body's solid-pixel boundary
+    PP_DEBUG_AABB = 2,     ///< a side of a body's world bounds
+    PP_DEBUG_CONTACT = 3,  ///< half of the cross at a contact point
+    PP_DEBUG_NORMAL = 4,   ///< a contact's normal, from its point
+    PP_DEBUG_JOINT = 5,    ///< anchor to anchor, or a body's centre of mass to its anchor
+    PP_DEBUG_CENTER = 6,   ///< a body's bitmap x or y axis from its centre of mass
+    PP_DEBUG_VELOCITY = 7, ///< a body's velocity from its centre of mass
+    PP_DEBUG_KIND_FORCE_U32 = 0x7fffffff
+} pp_debug_kind;
+
+/// One line segment to draw.
+typedef struct pp_debug_segment {
+    pp_vec2 a;          ///< start, world px
+    pp_vec2 b;          ///< end, world px
+    uint32_t rgba;      ///< colour, 0xRRGGBBAA
+    pp_debug_kind kind; ///< what it shows
+    pp_body body;       ///< the body it belongs to; zero for the static world
+} pp_debug_segment;
+
+/// pp_world_debug_draw flag: each body's solid-pixel boundary, on the pixel squares' edges.
+#define PP_DEBUG_DRAW_OUTLINES (1u << 0)
+/// pp_world_debug_draw flag: each body's world bounds.
+#define PP_DEBUG_DRAW_AABBS (1u << 1)
+/// pp_world_debug_draw flag: a cross at each contact point and its normal.
+#define PP_DEBUG_DRAW_CONTACTS (1u << 2)
+/// pp_world_debug_draw flag: anchor to anchor, and each anchor to its body's centre of mass.
+#define PP_DEBUG_DRAW_JOINTS (1u << 3)
+/// pp_world_debug_draw flag: the centre of mass with the body's axes.
+#define PP_DEBUG_DRAW_CENTERS (1u << 4)
+/// pp_world_debug_draw flag: each moving body's velocity.
+#define PP_DEBUG_DRAW_VELOCITIES (1u << 5)
+/// Every pp_world_debug_draw flag; other bits are PP_ERR_INVALID_ARGUMENT.
+#define PP_DEBUG_DRAW_ALL 0x3fu
+
+/// Half the width of a contact's cross, px.
+#define PP_DEBUG_CROSS_SIZE 3.0f
+/// Length of a drawn contact normal, px.
+#define PP_DEBUG_NORMAL_LENGTH 12.0f
+/// Length of a drawn body axis, px.
+#define PP_DEBUG_AXIS_LENGTH 10.0f
+/// A velocity is drawn as the distance it covers in this time, s.
+#define PP_DEBUG_VELOCITY_TIME 0.1f
+
+/// Outline and AABB colour of a sensor body (pale yellow), 0xRRGGBBAA.
+#define PP_DEBUG_COLOR_SENSOR 0xE6E64CFFu
+/// Outline and AABB colour of a static body (pale green).
+#define PP_DEBUG_COLOR_STATIC 0x7FE57FFFu
+/// Outline and AABB colour of a dynamic or kinematic body asleep (grey).
+#define PP_DEBUG_COLOR_ASLEEP 0x999999FFu
+/// Outline and AABB colour of an awake kinematic body (blue).
+#define PP_DEBUG_COLOR_KINEMATIC 0x7F7FE5FFu
+/// Outline and AABB colour of an awake dynamic body (pink).
+#define PP_DEBUG_COLOR_AWAKE 0xE5B2B2FFu
+/// Colour of a contact's cross (red).
+#define PP_DEBUG_COLOR_CONTACT 0xFF3333FFu
+/// Colour of a contact's normal (orange).
+#define PP_DEBUG_COLOR_NORMAL 0xFFA500FFu
+/// Colour of a joint's segments (cyan).
+#define PP_DEBUG_COLOR_JOINT 0x4CE5E5FFu
+/// Colour of a body's bitmap x axis (red).
+#define PP_DEBUG_COLOR_AXIS_X 0xE53333FFu
+/// Colour of a body's bitmap y axis (green).
+#define PP_DEBUG_COLOR_AXIS_Y 0x33E533FFu
+/// Colour of a velocity (yellow).
+#define PP_DEBUG_COLOR_VELOCITY 0xFFFF33FFu
+
+/// Write up to capacity segments (flags: PP_DEBUG_DRAW_* bits) of what meets the world box [lower, upper] (px),
+/// in the order above; count receives the total even when capacity is short.
+PP_API pp_status pp_world_debug_draw(pp_world w, uint32_t flags, pp_vec2 lower, pp_vec2 upper, pp_debug_segment *out,
+                                     int32_t capacity, int32_t *count);
 
 /* ---- Edits: erase, paint, write and read pixels, timed edits ---- */
 

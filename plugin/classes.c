@@ -4,6 +4,7 @@
  * is ranges, sizes and names. */
 #include "plugin.h"
 
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -726,6 +727,44 @@ static void world_get_debug_local_normals(plugin_object *self, const pp_variant 
     uint8_t *out = ret_bytes(ret, size);
     if (out && size > 0)
         memcpy(out, self->cache->debug_normals, (size_t)size);
+}
+
+/* Six 32-bit words a segment: a.x, a.y, b.x, b.y (floats), rgba, kind. */
+enum { DEBUG_WORDS = 6 };
+
+static void world_debug_draw(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.debug_draw";
+    int32_t n = 0;
+    const pp_vec2 lo = {-FLT_MAX, -FLT_MAX}, hi = {FLT_MAX, FLT_MAX};
+    if (a[0].as.integer < 0 || a[0].as.integer > UINT32_MAX) {
+        ret_error(ret, PP_ERR_INVALID_ARGUMENT, "%s: flags must be in 0..%u, got %lld", m, UINT32_MAX,
+                  (long long)a[0].as.integer);
+        return;
+    }
+    const uint32_t flags = (uint32_t)a[0].as.integer;
+    if (!ret_ok(ret, pp_world_debug_draw(self->world, flags, lo, hi, NULL, 0, &n), m))
+        return;
+    pp_debug_segment *segs = n > 0 ? malloc((size_t)n * sizeof *segs) : NULL;
+    if (n > 0 && !segs) {
+        ret_error(ret, PP_ERR_OUT_OF_MEMORY, "%s: out of memory for %d segments", m, (int)n);
+        return;
+    }
+    const int32_t capacity = n;
+    if (!ret_ok(ret, pp_world_debug_draw(self->world, flags, lo, hi, segs, capacity, &n), m)) {
+        free(segs);
+        return;
+    }
+    n = n < capacity ? n : capacity;
+    uint8_t *out = ret_bytes(ret, (int64_t)n * DEBUG_WORDS * 4);
+    for (int32_t i = 0; out && i < n; i++) {
+        const pp_debug_segment *s = &segs[i];
+        const float f[4] = {s->a.x, s->a.y, s->b.x, s->b.y};
+        const uint32_t u[2] = {s->rgba, (uint32_t)s->kind};
+        memcpy(out + (size_t)i * DEBUG_WORDS * 4, f, sizeof f);
+        memcpy(out + (size_t)i * DEBUG_WORDS * 4 + sizeof f, u, sizeof u);
+    }
+    free(segs);
 }
 
 

@@ -95,6 +95,20 @@ static void gen_world_get_time(plugin_object *self, const pp_variant *a, pp_vari
         ret_float(ret, out);
 }
 
+static void gen_world_get_joint_anchor_a(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 out;
+    if (ret_ok(ret, pp_joint_get_anchors(self->world, joint_of(&a[0]), &out, NULL), "PhysPixWorld.get_joint_anchor_a"))
+        ret_vec2(ret, out);
+}
+
+static void gen_world_get_joint_anchor_b(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_vec2 out;
+    if (ret_ok(ret, pp_joint_get_anchors(self->world, joint_of(&a[0]), NULL, &out), "PhysPixWorld.get_joint_anchor_b"))
+        ret_vec2(ret, out);
+}
+
 static void gen_body_get_position(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     pp_vec2 out;
@@ -447,6 +461,14 @@ static const method_def world_methods[] = {
     METHOD(world_get_debug_local_normals, "get_debug_local_normals", BYTES,
            "each cell's local kernel normal as two native floats (x, y), world axes; zero off the critical cells",
            .arg_count = 0),
+    METHOD(world_debug_draw, "debug_draw", BYTES,
+           "the whole world's debug segments (flags: 1 outlines, 2 AABBs, 4 contacts, 8 joints, 16 centres, 32 velocities; 63 all), 24 bytes each, native-endian: a.x, a.y, b.x, b.y (float32, world px), rgba (uint32, 0xRRGGBBAA), kind (uint32, 1 outline .. 7 velocity; pp_world_debug_draw's order and colours)",
+           ARGS(ARG("flags", INT))),
+    METHOD(gen_world_get_joint_anchor_a, "get_joint_anchor_a", VEC2,
+           "the joint's anchor on body_a at the bodies' current poses, world px (the static world's: its point; mouse: the target)",
+           ARGS(ARG("joint", INT))),
+    METHOD(gen_world_get_joint_anchor_b, "get_joint_anchor_b", VEC2,
+           "the joint's anchor on body_b at the bodies' current poses, world px", ARGS(ARG("joint", INT))),
 };
 
 static const method_def body_methods[] = {

@@ -3,6 +3,7 @@
  * per-column counts and the tile occupancy exact through per-tile counts (an edit never
  * rescans the bitmap). */
 #include "alloc.h"
+#include "outline.h"
 #include "raster.h"
 #include "status.h"
 
@@ -36,6 +37,7 @@ pp_status raster_init(const char *fn, pp_raster *r, const pp_body_def *def)
     r->height = h;
     r->words_per_row = (w + 63) / 64;
     r->gpu_word = -1;
+    r->version = 1;
     r->bits = pp_calloc((size_t)r->words_per_row * (size_t)h, sizeof(uint64_t));
     r->row_count = pp_calloc((size_t)h, sizeof(int32_t));
     r->col_count = pp_calloc((size_t)w, sizeof(int32_t));
@@ -100,6 +102,7 @@ void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weigh
         return;
     const int32_t d = solid ? 1 : -1;
     *word ^= bit;
+    r->version++;
     r->solid_count += d;
     r->row_count[y] += d;
     r->col_count[x] += d;
@@ -129,6 +132,7 @@ void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1)
 
 void raster_free(pp_raster *r)
 {
+    raster_outline_free(r);
     pp_free(r->bits);
     pp_free(r->weights);
     pp_free(r->row_count);

@@ -32,6 +32,8 @@ typedef struct pp_raster {
     uint8_t *tile_count;     /* solid pixels per tile, tiles_y × tiles_x, exact after every write */
     int64_t gpu_word;        /* first 32-bit word of the mask in the world's GPU mirror; −1: not mirrored */
     int32_t dirty_y0, dirty_y1; /* rows edited since the mirror was written; clean when y0 ≥ y1 */
+    uint64_t version;        /* counts the mask's changes (1 when made): what is derived from the bits keys on it */
+    struct raster_outline *outline; /* the boundary's runs (outline.c), as of its own version; NULL until asked */
 } pp_raster;
 
 /* Validate a def's bitmap (sizes, limits, planes) without allocating. */

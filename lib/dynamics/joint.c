@@ -566,6 +566,30 @@ PP_API pp_status pp_joint_get_bodies(pp_world w, pp_joint j, pp_body *body_a, pp
     return st;
 }
 
+void joint_anchors(const world *wd, const joint *jt, dvec2 *a, dvec2 *b)
+{
+    const body *ba = joint_body_a(wd, jt), *bb = joint_body_b(wd, jt);
+    *a = ba ? dv_add(ba->pos, dv_rot(dv_sub(jt->local_a, ba->pivot), ba->cos_a, ba->sin_a)) : jt->local_a;
+    *b = bb ? dv_add(bb->pos, dv_rot(dv_sub(jt->local_b, bb->pivot), bb->cos_a, bb->sin_a)) : jt->local_b;
+}
+
+PP_API pp_status pp_joint_get_anchors(pp_world w, pp_joint j, pp_vec2 *anchor_a, pp_vec2 *anchor_b)
+{
+    world *wd;
+    pp_status st;
+    joint *jt = joint_for_out(w, j, "pp_joint_get_anchors", anchor_a ? (void *)anchor_a : (void *)anchor_b,
+                              "anchor_a and anchor_b are both", &wd, &st);
+    if (!jt)
+        return st;
+    dvec2 a, b;
+    joint_anchors(wd, jt, &a, &b);
+    if (anchor_a)
+        *anchor_a = vec2_of(a);
+    if (anchor_b)
+        *anchor_b = vec2_of(b);
+    return PP_OK;
+}
+
 PP_API pp_status pp_joint_get_user_data(pp_world w, pp_joint j, uint64_t *out)
 {
     world *wd;

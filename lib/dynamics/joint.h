@@ -37,6 +37,8 @@ joint *joint_find(const world *wd, pp_joint j);
 /* The joint's bodies; NULL for the world. */
 body *joint_body_a(const world *wd, const joint *jt);
 body *joint_body_b(const world *wd, const joint *jt);
+/* The joint's anchors in the world at its bodies' current poses, px (pp_joint_get_anchors). */
+void joint_anchors(const world *wd, const joint *jt, dvec2 *a, dvec2 *b);
 /* Wake the joint's bodies that have an ODE body. */
 void joint_wake(world *wd, const joint *jt);
 /* Take the joint out of its bodies' counts and the table, and free it with its ODE joint (no event). */

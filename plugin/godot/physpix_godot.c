@@ -3,6 +3,7 @@
  * and the library's three entry points. Bodies and joints are ints: the pp_body or pp_joint id's 64 bits. An id
  * names its world, so an int from before load_scene or load_snapshot replaced the object's world is refused by
  * PhysPix itself (PP_ERR_INVALID_HANDLE). */
+#include <float.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -345,6 +346,19 @@ static godot_variant get_joint_value(call *c)
     return gdn_dict_variant(&d);
 }
 
+/* {anchor_a, anchor_b}: world px at the bodies' current poses (the static world's: its point; mouse: the target). */
+static godot_variant get_joint_anchors(call *c)
+{
+    pp_vec2 a, b;
+    if (!ok(c, pp_joint_get_anchors(c->self->world, c->a[0].joint, &a, &b)))
+        return gdn_nil();
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "anchor_a", gdn_vector2(a.x, a.y));
+    gdn_dict_put(&d, "anchor_b", gdn_vector2(b.x, b.y));
+    return gdn_dict_variant(&d);
+}
+
 /* ---- edits ----------------------------------------------------------------------------- */
 
 static godot_variant paint_circle(call *c)
@@ -492,6 +506,43 @@ static godot_variant get_bodies(call *c)
 static godot_variant get_contacts(call *c)
 {
     return list_array(c, list_contacts, sizeof(pp_contact), contact_item, NULL);
+}
+
+/* pp_world_debug_draw as an Array of {a, b, rgba, kind, body}: flags (default every one), and the view box
+ * lower..upper (default everything; upper alone defaults to everything past lower). */
+static godot_variant debug_draw(call *c)
+{
+    const uint32_t flags = c->argc > 0 ? (uint32_t)c->a[0].i : PP_DEBUG_DRAW_ALL;
+    const pp_vec2 lo = c->argc > 1 ? c->a[1].v : (pp_vec2){-FLT_MAX, -FLT_MAX};
+    const pp_vec2 hi = c->argc > 2 ? c->a[2].v : (pp_vec2){FLT_MAX, FLT_MAX};
+    int32_t n = 0;
+    if (!ok(c, pp_world_debug_draw(c->self->world, flags, lo, hi, NULL, 0, &n)))
+        return gdn_nil();
+    pp_debug_segment *segs = n > 0 ? malloc(sizeof *segs * (size_t)n) : NULL;
+    if (n > 0 && !segs) {
+        fail(c, "out of memory for %d segments", (int)n);
+        return gdn_nil();
+    }
+    const int32_t capacity = n;
+    if (n > 0 && !ok(c, pp_world_debug_draw(c->self->world, flags, lo, hi, segs, capacity, &n))) {
+        free(segs);
+        return gdn_nil();
+    }
+    godot_array out;
+    gdn->godot_array_new(&out);
+    for (int32_t i = 0; i < n && i < capacity; i++) {
+        const pp_debug_segment *g = &segs[i];
+        godot_dictionary d;
+        gdn->godot_dictionary_new(&d);
+        gdn_dict_put(&d, "a", gdn_vector2(g->a.x, g->a.y));
+        gdn_dict_put(&d, "b", gdn_vector2(g->b.x, g->b.y));
+        gdn_dict_put(&d, "rgba", gdn_int(g->rgba));
+        gdn_dict_put(&d, "kind", gdn_int(g->kind));
+        gdn_dict_put(&d, "body", body_int(g->body));
+        gdn_array_put(&out, gdn_dict_variant(&d));
+    }
+    free(segs);
+    return gdn_array_variant(&out);
 }
 
 static godot_variant joint_item(const void *item)

@@ -6,6 +6,7 @@
 _Static_assert(sizeof(pp_vec2) == 8, "pp_vec2 layout");
 _Static_assert(sizeof(pp_world) == 8 && sizeof(pp_body) == 8, "handle layout");
 _Static_assert(sizeof(pp_contact) == 48, "pp_contact layout");
+_Static_assert(sizeof(pp_debug_segment) == 32 && sizeof(pp_debug_kind) == 4, "pp_debug_segment layout");
 _Static_assert(sizeof(pp_event) == 56 && offsetof(pp_event, joint) == 48, "pp_event layout");
 _Static_assert(sizeof(pp_raycast_hit) == 32, "pp_raycast_hit layout");
 _Static_assert(sizeof(pp_body_def) == 152, "pp_body_def layout");

@@ -788,13 +788,19 @@ static void op_query(reader *r)
     const uint32_t mask = k & 8 ? u32(r) : 0xffffffffu;
     const pp_vec2 p = {f32(r, 400), f32(r, 400)}, q = {f32(r, 400), f32(r, 400)};
     static pp_body bodies[8];
+    static pp_debug_segment segs[8];
     int32_t cap = (int32_t)(int8_t)u8(r) % 8, n = -1, hit = -1;
     pp_raycast_hit h;
     pp_status st;
     switch (k % 4) {
     case 0: st = ST(pp_world_raycast(w, p, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit)); break;
     case 1: st = ST(pp_world_query_point(w, p, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
-    case 2: st = ST(pp_world_query_aabb(w, p, q, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
+    case 2:
+        if (k & 64) /* the debug segments of the same box instead: flags from the mask, a bit past them at times */
+            st = ST(pp_world_debug_draw(w, mask & 0x7f, p, q, k & 16 ? NULL : segs, cap, k & 32 ? NULL : &n));
+        else
+            st = ST(pp_world_query_aabb(w, p, q, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n));
+        break;
     default: st = ST(pp_world_query_circle(w, p, q.x, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
     }
     if (!t) {
@@ -815,6 +821,14 @@ static void op_query(reader *r)
         return;
     }
     FUZZ_CHECK(n >= 0, "count %d", (int)n);
+    if (k % 4 == 2 && (k & 64)) {
+        FUZZ_CHECK((mask & 0x7f) < 64, "flags 0x%x past PP_DEBUG_DRAW_ALL accepted", (unsigned)(mask & 0x7f));
+        for (int32_t i = 0; i < n && i < cap; i++)
+            FUZZ_CHECK(segs[i].kind >= PP_DEBUG_OUTLINE && segs[i].kind <= PP_DEBUG_VELOCITY &&
+                           (segs[i].body.id == 0 || pp_body_get_position(w, segs[i].body, &pos) == PP_OK),
+                       "segment %d: kind %d of no live body", (int)i, (int)segs[i].kind);
+        return;
+    }
     for (int32_t i = 0; i < n && i < cap; i++)
         FUZZ_CHECK(pp_body_get_position(w, bodies[i], &pos) == PP_OK, "a query returned no live body");
 }

@@ -513,6 +513,31 @@ func test_native_gains():
 
 # Issue 24: world def fields by name at creation (a world without gravity keeps a body at rest; every field
 # get_settings names goes back through create), NaN and wrong types refused with the world kept, the new getters.
+# Issue 43: debug_draw gives a box's four outline edges, culls by the view box and refuses unknown flags;
+# get_joint_anchors reports where a hinge holds.
+func test_debug_draw():
+	var d = PhysPixWorld.new()
+	var box = d.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(100, 50))  # 92..108 × 42..58
+	var segs = d.debug_draw(1)
+	var want = [[Vector2(92, 42), Vector2(108, 42)], [Vector2(108, 42), Vector2(108, 58)],
+		[Vector2(108, 58), Vector2(92, 58)], [Vector2(92, 58), Vector2(92, 42)]]
+	var found = 0
+	for s in segs:
+		for w in want:
+			if s["a"] == w[0] and s["b"] == w[1] and s["kind"] == 1 and s["body"] == box:
+				found += 1
+	check(segs.size() == 4 and found == 4, "debug_draw(1): a 16×16 box is its 4 edges: %s %s" % [segs, d.get_last_error()])
+	check(d.debug_draw().size() == 4 + 4 + 2 + 1, "debug_draw(): outline, AABB, axes and velocity")
+	check(d.debug_draw(63, Vector2(500, 500), Vector2(600, 600)) == [], "a view box away from the box draws nothing")
+	check(d.debug_draw(64) == null and d.get_last_error().find("flags") >= 0,
+		"unknown flag bits refused: %s" % d.get_last_error())
+	var hinge = d.create_joint({"type": "revolute", "body_b": box, "anchor_a": Vector2(100, 40)})
+	var anchors = d.get_joint_anchors(hinge)
+	check(typeof(anchors) == TYPE_DICTIONARY and anchors["anchor_a"] == Vector2(100, 40)
+		and anchors["anchor_a"].distance_to(anchors["anchor_b"]) < 1e-3, "get_joint_anchors: %s" % [anchors])
+	return true
+
+
 func test_settings_at_creation():
 	var g = PhysPixWorld.new()
 	check(g.create({"gravity": Vector2(0, 0), "substeps": 3, "allow_sleep": false, "backend": "cpu"}) == true,
@@ -771,6 +796,7 @@ func _init():
 	check(test_handle_kinds() == true, "test_handle_kinds ran to its end (no script error)")
 	check(test_pixel_calls_with_huge_arguments() == true, "test_pixel_calls_with_huge_arguments ran to its end")
 	check(test_settings_at_creation() == true, "test_settings_at_creation ran to its end (no script error)")
+	check(test_debug_draw() == true, "test_debug_draw ran to its end (no script error)")
 
 	# Each PhysPixWorld owns one pp_world, freed with the Reference: more than PP_MAX_WORLDS (4096)
 	# made and dropped in turn must all succeed.

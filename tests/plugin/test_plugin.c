@@ -374,6 +374,9 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_debug_step_y", {{0}}},
         {"get_debug_normal", {{0}}},
         {"get_debug_local_normals", {{0}}},
+        {"debug_draw", {V_INT(63)}},
+        {"get_joint_anchor_a", {V_INT(joints[0])}},
+        {"get_joint_anchor_b", {V_INT(joints[0])}},
         {"get_body_states", {{0}}},
         {"create", {V_STR("{\"preset\": \"fast\", \"gravity\": [0, 500]}")}}, /* on the scratch world */
         {"get_settings", {{0}}},
@@ -1180,6 +1183,41 @@ Test(methods, body_states_come_in_one_call_in_get_body_counts_order)
             cr_assert(f[3] == 12.0f && f[4] == -3.0f && f[5] == 0.5f, "the box's set velocity");
     }
     plugin.api.variant_clear(&states);
+}
+
+Test(methods, debug_draw_packs_each_segment_as_four_floats_and_two_words)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    const int n = (int)call(world, "get_body_count", NULL, 0).as.integer;
+    pp_variant segs = call(world, "debug_draw", (pp_variant[]){V_INT(2)}, 1); /* AABBs: 4 sides a body */
+    cr_assert_eq(segs.type, PP_VARIANT_BYTES, "%s", segs.type == PP_VARIANT_ERROR ? segs.as.error.message : "");
+    cr_assert_eq(segs.as.bytes.length, (int64_t)n * 4 * 24, "%d bodies, %lld bytes", n, (long long)segs.as.bytes.length);
+    for (int i = 0; i < 4 * n; i++) {
+        uint32_t u[2];
+        memcpy(u, segs.as.bytes.data + (size_t)i * 24 + 16, sizeof u);
+        cr_assert_eq(u[1], 2u, "segment %d: kind %u", i, u[1]);
+    }
+    /* The ground, in the first slot: 200×20 about (100, 110), its top side first; static's colour. */
+    float f[4];
+    uint32_t rgba;
+    memcpy(f, segs.as.bytes.data, sizeof f);
+    memcpy(&rgba, segs.as.bytes.data + 16, sizeof rgba);
+    cr_assert(f[0] == 0 && f[1] == 100 && f[2] == 200 && f[3] == 100, "(%g, %g) -> (%g, %g)", f[0], f[1], f[2], f[3]);
+    cr_assert_eq(rgba, 0x7FE57FFFu);
+    plugin.api.variant_clear(&segs);
+    pp_variant bad = call(world, "debug_draw", (pp_variant[]){V_INT(64)}, 1);
+    expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "flags");
+    bad = call(world, "debug_draw", (pp_variant[]){V_INT(-1)}, 1);
+    expect_error(&bad, PP_ERR_INVALID_ARGUMENT, "flags");
+    /* A joint's anchors: the hinge's two are the point it was made at. */
+    const pp_variant j = call(world, "add_joint", (pp_variant[]){V_STR("revolute"), V_OBJ(world), V_OBJ(box),
+                                                              V_VEC2(50, 91), V_VEC2(0, 0), V_VEC2(1, 0)}, 6);
+    cr_assert_eq(j.type, PP_VARIANT_INT);
+    const pp_vec2 a = call(world, "get_joint_anchor_a", (pp_variant[]){V_INT(j.as.integer)}, 1).as.vec2;
+    const pp_vec2 b = call(world, "get_joint_anchor_b", (pp_variant[]){V_INT(j.as.integer)}, 1).as.vec2;
+    cr_assert(a.x == 50 && a.y == 91 && fabsf(b.x - 50) < 1e-4f && fabsf(b.y - 91) < 1e-4f, "(%g, %g), (%g, %g)",
+              a.x, a.y, b.x, b.y);
 }
 
 /* A STRING result's text, cleared; "" for any other result. */

@@ -108,6 +108,11 @@ int main(void)
     F(pp_collision_view, intersection); F(pp_collision_view, critical);
     end();
 
+    S(pp_debug_segment);
+    F(pp_debug_segment, a); F(pp_debug_segment, b); F(pp_debug_segment, rgba); F(pp_debug_segment, kind);
+    F(pp_debug_segment, body);
+    end();
+
     S(pp_allocator); F(pp_allocator, alloc); F(pp_allocator, realloc); F(pp_allocator, free); F(pp_allocator, user);
     end();
 

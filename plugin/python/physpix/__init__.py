@@ -8,8 +8,9 @@ the copy an installed package carries, a source checkout's build/ folder, or the
 from typing import Callable, Optional
 
 from . import _native
-from .enums import (CELL_A, CELL_B, CELL_CRITICAL, Backend, BodyType, ContactMode, EditType, EventType, JointType,
-                    NormalMethod, Preset, Status)
+from .enums import (CELL_A, CELL_B, CELL_CRITICAL, DEBUG_DRAW_AABBS, DEBUG_DRAW_ALL, DEBUG_DRAW_CENTERS,
+                    DEBUG_DRAW_CONTACTS, DEBUG_DRAW_JOINTS, DEBUG_DRAW_OUTLINES, DEBUG_DRAW_VELOCITIES, Backend, BodyType,
+                    ContactMode, DebugKind, EditType, EventType, JointType, NormalMethod, Preset, Status)
 from .errors import (AbiError, FormatError, IntegerRangeError, InvalidArgumentError, InvalidHandleError, LimitError,
                      OutOfMemoryError, PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
@@ -43,7 +44,8 @@ __all__ = [
     "World", "Body", "Joint", "Contact", "Event", "RaycastHit", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
     "load_png", "save_png", "image_info", "set_log_hook",
     "Backend", "BodyType", "ContactMode", "EditType", "EventType", "JointType", "NormalMethod", "Preset", "Status",
-    "CELL_A", "CELL_B", "CELL_CRITICAL",
+    "CELL_A", "CELL_B", "CELL_CRITICAL", "DebugKind", "DEBUG_DRAW_OUTLINES", "DEBUG_DRAW_AABBS", "DEBUG_DRAW_CONTACTS",
+    "DEBUG_DRAW_JOINTS", "DEBUG_DRAW_CENTERS", "DEBUG_DRAW_VELOCITIES", "DEBUG_DRAW_ALL",
     "PhysPixError", "InvalidArgumentError", "InvalidHandleError", "OutOfMemoryError", "PhysPixIOError",
     "FormatError", "UnsupportedError", "LimitError", "AbiError", "IntegerRangeError", "library_version",
     "library_path",

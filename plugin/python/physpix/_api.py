@@ -197,6 +197,16 @@ class pp_collision_view(ctypes.Structure):
     ]
 
 
+class pp_debug_segment(ctypes.Structure):
+    _fields_ = [
+        ("a", pp_vec2),
+        ("b", pp_vec2),
+        ("rgba", c_uint32),
+        ("kind", c_enum),
+        ("body", pp_body),
+    ]
+
+
 class pp_body_state(ctypes.Structure):
     _fields_ = [
         ("body", pp_body),
@@ -261,6 +271,7 @@ STRUCTS = {
     "pp_camera": pp_camera,
     "pp_timed_edit": pp_timed_edit,
     "pp_collision_view": pp_collision_view,
+    "pp_debug_segment": pp_debug_segment,
     "pp_body_state": pp_body_state,
     "pp_joint_def": pp_joint_def,
 }
@@ -333,6 +344,7 @@ SIGNATURES = {
     "pp_joint_set_offsets": (STATUS, [pp_world, pp_joint, pp_vec2, c_float]),
     "pp_joint_get_type": (STATUS, [pp_world, pp_joint, P(c_enum)]),
     "pp_joint_get_bodies": (STATUS, [pp_world, pp_joint, P(pp_body), P(pp_body)]),
+    "pp_joint_get_anchors": (STATUS, [pp_world, pp_joint, P(pp_vec2), P(pp_vec2)]),
     "pp_joint_get_user_data": (STATUS, [pp_world, pp_joint, P(c_uint64)]),
     "pp_body_erase_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, P(c_int32)]),
     "pp_body_paint_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, c_uint8, P(c_int32)]),
@@ -352,9 +364,10 @@ SIGNATURES = {
     "pp_world_schedule_edit": (STATUS, [pp_world, P(pp_timed_edit)]),
     "pp_world_get_scheduled_edits": (STATUS, [pp_world, P(pp_timed_edit), c_int32, P(c_int32)]),
     "pp_world_debug_collision": (STATUS, [pp_world, pp_body, pp_body, u8p, P(pp_vec2), c_int64, P(pp_collision_view)]),
+    "pp_world_debug_draw": (STATUS, [pp_world, c_uint32, pp_vec2, pp_vec2, P(pp_debug_segment), c_int32, P(c_int32)]),
     "pp_world_load_scene": (STATUS, [c_char_p, P(pp_world)]),
     "pp_world_save_snapshot": (STATUS, [pp_world, c_char_p]),
     "pp_world_load_snapshot": (STATUS, [c_char_p, P(pp_world)]),
 }
 
-__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_body_state", "pp_joint_def"]
+__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_debug_segment", "pp_body_state", "pp_joint_def"]

@@ -103,6 +103,33 @@ class EditType(NamedEnum):
     PAINT_CIRCLE = 2
 
 
+class DebugKind(NamedEnum):
+    """pp_debug_kind: what a World.debug_draw segment shows."""
+    OUTLINE = 1
+    AABB = 2
+    CONTACT = 3
+    NORMAL = 4
+    JOINT = 5
+    CENTER = 6
+    VELOCITY = 7
+
+
+#: PP_DEBUG_DRAW_OUTLINES: each body's solid-pixel boundary, on the pixel squares' edges (World.debug_draw flags).
+DEBUG_DRAW_OUTLINES = 1 << 0
+#: PP_DEBUG_DRAW_AABBS: each body's world bounds.
+DEBUG_DRAW_AABBS = 1 << 1
+#: PP_DEBUG_DRAW_CONTACTS: a cross at each contact point and its normal.
+DEBUG_DRAW_CONTACTS = 1 << 2
+#: PP_DEBUG_DRAW_JOINTS: anchor to anchor, and each anchor to its body's centre of mass.
+DEBUG_DRAW_JOINTS = 1 << 3
+#: PP_DEBUG_DRAW_CENTERS: the centre of mass with the body's axes.
+DEBUG_DRAW_CENTERS = 1 << 4
+#: PP_DEBUG_DRAW_VELOCITIES: each moving body's velocity.
+DEBUG_DRAW_VELOCITIES = 1 << 5
+#: PP_DEBUG_DRAW_ALL: every flag.
+DEBUG_DRAW_ALL = 0x3F
+
+
 #: PP_CELL_A: the first body is solid in a debug_collision cell.
 CELL_A = 1
 #: PP_CELL_B: the second body is solid in the cell.

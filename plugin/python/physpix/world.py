@@ -18,7 +18,8 @@ from typing import (Any, Callable, Collection, Dict, Iterable, List, Mapping, Op
 import numpy as np
 
 from . import _native as N
-from .enums import Backend, BodyType, ContactMode, EditType, EventType, JointType, NormalMethod, Preset
+from .enums import (DEBUG_DRAW_ALL, Backend, BodyType, ContactMode, EditType, EventType, JointType, NormalMethod,
+                    Preset)
 from .errors import IntegerRangeError, InvalidArgumentError, PhysPixError
 
 try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
@@ -139,6 +140,10 @@ def _dtype_of(struct: Type[ctypes.Structure], shapes: Mapping[str, Tuple[str, Tu
 BODY_STATE_DTYPE = _dtype_of(N.pp_body_state, {
     "body": ("<u8", ()), "position": ("<f4", (2,)), "angle": ("<f4", ()), "linear_velocity": ("<f4", (2,)),
     "angular_velocity": ("<f4", ()), "awake": ("<u4", ()), "user_data": ("<u8", ())})
+
+#: What World.debug_draw returns: pp_debug_segment's fields (kind is a DebugKind value, rgba 0xRRGGBBAA).
+DEBUG_SEGMENT_DTYPE = _dtype_of(N.pp_debug_segment, {
+    "a": ("<f4", (2,)), "b": ("<f4", (2,)), "rgba": ("<u4", ()), "kind": ("<i4", ()), "body": ("<u8", ())})
 
 
 def _read_list(fn: Callable[..., Any], item_type: Type[_S], *args: Any, guess: int = 0) -> List[_S]:
@@ -467,6 +472,24 @@ class World:
     def contacts(self) -> List[Contact]:
         """The contacts of the last substep."""
         return self._contacts(_read_list(lib.pp_world_get_contacts, N.pp_contact, self._handle))
+
+    def debug_draw(self, flags: int = DEBUG_DRAW_ALL, lower: Optional[Vec2Like] = None,
+                   upper: Optional[Vec2Like] = None) -> np.ndarray:
+        """The world's physics as line segments (pp_world_debug_draw), a numpy structured array with fields a and b
+        (world px, 2 floats each), rgba (uint32, 0xRRGGBBAA), kind (a DebugKind value) and body (the body's id, 0 for
+        the static world). flags: DEBUG_DRAW_* bits; lower, upper: the view box, world px (None: unbounded)."""
+        big = 3.4028234663852886e38  # FLT_MAX: the box a float can hold
+        lo = vec2(lower, "lower") if lower is not None else N.pp_vec2(-big, -big)
+        hi = vec2(upper, "upper") if upper is not None else N.pp_vec2(big, big)
+        count = c_int32(0)
+        fl = _c_int(flags, c_uint32, "flags")
+        lib.pp_world_debug_draw(self._handle, fl, lo, hi, None, 0, byref(count))
+        while True:
+            out = np.zeros(count.value, dtype=DEBUG_SEGMENT_DTYPE)
+            ptr = out.ctypes.data_as(POINTER(N.pp_debug_segment))
+            lib.pp_world_debug_draw(self._handle, fl, lo, hi, ptr, len(out), byref(count))
+            if count.value <= len(out):
+                return out[:count.value]
 
     def collide(self, a: Body, b: Body) -> List[Contact]:
         """Run the narrowphase on one pair at the current poses, without stepping; normals point from a to b."""
@@ -946,6 +969,14 @@ class Joint(_InWorld):
         f, t = N.pp_vec2(), c_float()
         self._call(lib.pp_joint_get_reaction, byref(f), byref(t))
         return (f.x, f.y), t.value
+
+    @property
+    def anchors(self) -> Tuple[Vec2, Vec2]:
+        """(anchor_a, anchor_b): where the joint holds each body, world px at the bodies' current poses (the static
+        world's: the point it was given; MOUSE: anchor_a is the target)."""
+        a, b = N.pp_vec2(), N.pp_vec2()
+        self._call(lib.pp_joint_get_anchors, byref(a), byref(b))
+        return (a.x, a.y), (b.x, b.y)
 
     @property
     def value(self) -> Tuple[float, float]:
