@@ -128,7 +128,20 @@ func _on_joint_broken(a, b):
 
 func _iteration(delta):
 	frame += 1
+	if frame == 85:
+		world.debug_draw = true
+	if frame == 89:
+		var edges = []
+		for s in world.debug_segments:
+			if s["kind"] == 1 and s["body"] == crate.body:
+				edges.append(s)
+		check(edges.size() == 4, "debug_draw: the resting 16×16 crate's outline is its 4 edges: %s" % [edges])
+		var overlay = world.get_node("PhysPixDebugOverlay")
+		check(overlay != null and overlay.get_index() == world.get_child_count() - 1,
+			"the overlay is the world's last child, drawn above the bodies")
+		world.debug_draw = false
 	if frame == 90:
+		check(world.debug_segments.empty(), "debug_draw off: the overlay is cleared")
 		rest_y = crate.position.y
 		var p = world.world.get_position(crate.body)
 		check(near(rest_y, 140 - 8, 1.5), "the crate rests on the terrain: y %.2f ≈ 132" % rest_y)

@@ -25,11 +25,15 @@ export(int, 0, 1000) var solver_iterations = 0  # 0: the preset's
 export(String, "auto", "cpu", "gpu") var backend = "auto"
 export var contact_events = false setget set_contact_events
 export var settings = {}  # pp_world_def fields by their C names, e.g. {"allow_sleep": false}; they win
+export var debug_draw = false  # draw PhysPix's overlay (pp_world_debug_draw) over the bodies, each physics frame
+export(int, FLAGS, "outlines", "AABBs", "contacts", "joints", "centres", "velocities") var debug_flags = 63
 
 var world = null  # the native PhysPixWorld, made when the first body or call needs it
 var last_step_ms = 0.0  # what the last physics frame cost: step, events and node updates
 var _nodes = {}  # body int -> PhysPixBody2D
 var _joints = {}  # joint int -> PhysPixJoint2D
+var debug_segments = []  # the overlay drawn: {a, b, rgba, kind, body} in this node's frame, px
+var _overlay = null  # a child drawn above the bodies (a parent draws below its children)
 
 
 # The native world, created from the exported settings on first use.
@@ -71,7 +75,28 @@ func _physics_process(delta):
 		var node = _nodes.get(s["body"])
 		if node != null:
 			node.global_transform = frame * Transform2D(s["angle"], s["position"])
+	_update_overlay()
 	last_step_ms = (OS.get_ticks_usec() - start) / 1000.0
+
+
+# The debug overlay: segments read after the step, drawn by a child kept last so it lies above every body.
+func _update_overlay():
+	if not debug_draw and debug_segments.empty():
+		return
+	debug_segments = world.debug_draw(debug_flags) if debug_draw else []
+	if _overlay == null:
+		_overlay = Node2D.new()
+		_overlay.name = "PhysPixDebugOverlay"
+		_overlay.connect("draw", self, "_draw_overlay")
+		add_child(_overlay)
+	elif _overlay.get_index() != get_child_count() - 1:
+		move_child(_overlay, get_child_count() - 1)
+	_overlay.update()
+
+
+func _draw_overlay():
+	for s in debug_segments:
+		_overlay.draw_line(s["a"], s["b"], Color(s["rgba"]), 1.0)
 
 
 # Erases the pixels of every body within radius (px) of a global point; returns how many.
