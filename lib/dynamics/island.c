@@ -226,10 +226,39 @@ static void list_islands(world *wd, solver_islands *out)
     }
 }
 
-pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
+/* What the islands are made of: the contacts' pairs and the awake set, as a digest (PP_CHECKS builds). */
+static uint64_t plan_digest(const world *wd)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k))
+        h = (h ^ wd->contacts[k].a.id ^ (wd->contacts[k].b.id << 1)) * 0x100000001b3ull;
+    for (int32_t k = 0; k < wd->awake.count; k++)
+        h = (h ^ (uint64_t)wd->awake.slots[k] ^ (uint64_t)awake_mover(wd->bodies[wd->awake.slots[k]]) << 40) *
+            0x100000001b3ull;
+    return h;
+}
+
+/* A still substep's islands are made from what the last plan saw. */
+static void island_validate_still(const world *wd)
+{
+#ifdef PP_CHECKS
+    PP_ASSERT(plan_digest(wd) == wd->islands.planned);
+#else
+    (void)wd;
+    (void)plan_digest;
+#endif
+}
+
+pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_islands *out)
 {
     wd->islands.substep_serial++;
     *out = (solver_islands){{0}, {0}};
+    if (still && wd->islands.node_count > 0) { /* the same nodes, islands and kinds: only the spans move on */
+        island_validate_still(wd);
+        set_spans(wd, pairing);
+        list_islands(wd, out);
+        return PP_OK;
+    }
     wd->islands.node_count = 0;
     /* Nodes come from the awake set and the contacts (joints only extend them): with neither, none. */
     if (wd->body_ids.capacity == 0 || (wd->awake.count == 0 && wd->contact_count == 0))
@@ -241,6 +270,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
         (st = world_slot_array(wd, (void **)&isl->kind, &isl->kind_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->span, &isl->span_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->heaviest, &isl->heaviest_capacity, sizeof *isl->heaviest, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->sleep_group, &isl->sleep_group_capacity, 2 * sizeof *isl->sleep_group,
+                               what)) ||
         (st = collect_nodes(wd)))
         return st;
     /* Per root: the island's rows (the group array's second third), why it may not be solved exactly (NOT_EXACT_*
@@ -308,6 +339,9 @@ pp_status island_plan(world *wd, substep_pairing pairing, solver_islands *out)
             (wd->def.exact_solver || ((r & INT32_MAX) <= limit && !(alone && (not_exact[root] & NOT_EXACT_ALONE)))))
             wd->islands.kind[i] = alone ? ISLAND_EXACT_ALONE : ISLAND_EXACT;
     }
+#ifdef PP_CHECKS
+    wd->islands.planned = plan_digest(wd);
+#endif
     set_spans(wd, pairing);
     list_islands(wd, out);
     return PP_OK;
@@ -325,6 +359,7 @@ void island_list_woken(world *wd)
 bool island_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
+    bool ready = false; /* an awake body slow for sleep_time: only such a body can fall asleep */
     for (int32_t k = 0; k < wd->awake.count; k++) {
         body *bd = wd->bodies[wd->awake.slots[k]];
         if (bd->type != PP_BODY_DYNAMIC || !awake_mover(bd))
@@ -338,12 +373,13 @@ bool island_sleep(world *wd, double h)
         const bool slow = dv_dot(v, v) <= vmax * vmax && fabs(w) <= d->sleep_angular_speed;
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
         bd->slow_time = slow && d->allow_sleep ? dmin(bd->slow_time + h, d->sleep_time) : 0;
+        ready |= bd->slow_time >= d->sleep_time;
     }
-    if (!d->allow_sleep || wd->islands.node_count == 0)
+    if (!d->allow_sleep || !ready || wd->islands.node_count == 0)
         return false; /* no node: nothing awake, and maybe no arrays yet */
     /* Sleep groups: dynamic bodies joined by contacts, over the nodes island_plan collected (every body of a
      * group with an awake body is one: awake, or a contact's). */
-    int32_t *parent = wd->islands.group, *restless = wd->islands.group + wd->islands.group_capacity;
+    int32_t *parent = wd->islands.sleep_group, *restless = wd->islands.sleep_group + wd->islands.sleep_group_capacity;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         parent[wd->islands.nodes[n]] = wd->islands.nodes[n], restless[wd->islands.nodes[n]] = 0;
     for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
@@ -385,5 +421,6 @@ void island_free(island_set *is)
     pp_free(is->kind);
     pp_free(is->span);
     pp_free(is->heaviest);
+    pp_free(is->sleep_group);
     *is = (island_set){0};
 }

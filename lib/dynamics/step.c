@@ -294,7 +294,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
         const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
-        if ((st = island_plan(wd, pairing, &islands)) ||
+        if ((st = island_plan(wd, pairing, still, &islands)) ||
             ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
             return st;
         step_save_contact_bodies(wd);
@@ -347,7 +347,7 @@ static pp_status quiet_substeps(world *wd, float dt)
             wd->stats.backend = choose_backend(wd, 0);
         }
         solver_islands islands;
-        if ((st = island_plan(wd, PAIR_NONE, &islands)) || !solver_step(wd->solver, 0, &islands))
+        if ((st = island_plan(wd, PAIR_NONE, false, &islands)) || !solver_step(wd->solver, 0, &islands))
             return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
     }
     carry_end_step(wd);

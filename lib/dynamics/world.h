@@ -138,7 +138,11 @@ typedef struct island_set {
     int32_t span_capacity;
     double *heaviest;        /* by root: its heaviest dynamic body's mass (island_plan's scratch) */
     int32_t heaviest_capacity;
+    int32_t *sleep_group;    /* two per slot: island_sleep's union-find parents and restless flags, apart from
+                              * `group` so that a still substep's islands stand */
+    int32_t sleep_group_capacity;
     uint64_t substep_serial; /* counts island_plan's calls: which substep a body's sat_out names */
+    uint64_t planned;        /* PP_CHECKS: a digest of the contacts and awake set the islands were made from */
 } island_set;
 
 /* The bodies with a force, torque or gravity scale (forces.c). */
