@@ -89,10 +89,12 @@ static double first_hit(const sweep *sw, const body *other, int32_t thin, int32_
     return 1.0;
 }
 
+/* A body sitting the substep out (island.c's spans) does not move in it: nothing to sweep. */
 static bool sweeps(const world *wd, const body *bd)
 {
     return bd && bd->type == PP_BODY_DYNAMIC && !bd->is_sensor && !raster_empty(&bd->raster) &&
-           solver_body_is_awake(&bd->sb) && (wd->def.continuous || bd->bullet);
+           solver_body_is_awake(&bd->sb) && (wd->def.continuous || bd->bullet) &&
+           wd->islands.span[bd->index] != SPAN_SKIP;
 }
 
 pp_status continuous_begin(world *wd)

@@ -288,16 +288,16 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         if (st)
             return st;
         const double t0 = now_ms();
-        if ((st = continuous_begin(wd)))
-            return st;
         if ((st = solver_reserve_contacts(wd->solver, wd->contact_count)))
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
         const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
         if ((st = island_plan(wd, pairing, still, &islands)) ||
-            ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))))
+            ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))) ||
+            (st = continuous_begin(wd)))
             return st;
-        step_save_contact_bodies(wd);
+        if (!still) /* else its contacts' bodies were saved at the substep before */
+            step_save_contact_bodies(wd);
         contact_joints_add(wd, h);
         joint_prepare(wd, h);
         forces_apply(wd);
