@@ -114,6 +114,7 @@ class Viewer:
         self._drag: Optional[Joint] = None
         self._press: Optional[Tuple[int, int]] = None
         self._font: Any = None
+        self._script: List[Dict[str, Any]] = []
 
     # -- coordinates
     def to_screen(self, p: Sequence[float]) -> Tuple[float, float]:
@@ -327,7 +328,8 @@ class Viewer:
 
     def run(self, frames: int = 0, script: Sequence[Dict[str, Any]] = (), screenshot: Optional[os.PathLike] = None,
             interactive: bool = True) -> None:
-        """Run until closed, or for `frames` frames (0: no limit); script actions run before their frame's step."""
+        """Run until closed, or until `frames` frames have run in all (0: no limit); a script action runs before the
+        step that its frame begins."""
         pg = self.pg
         pg.display.init()
         pg.font.init()
@@ -335,7 +337,10 @@ class Viewer:
         pg.display.set_caption("physpix viewer")
         self._font = pg.font.Font(None, 18)
         clock = pg.time.Clock()
-        pending = sorted(script, key=lambda a: int(a.get("frame", 0)))
+        # Actions wait across runs, so a run that stops at a frame leaves that frame's actions to the next.
+        self._script = sorted(self._script + list(script), key=lambda a: int(a.get("frame", 0)))
+        pending = self._script
+        self.edited()  # the surfaces of an earlier display are gone
         running = True
         while running and (frames <= 0 or self.frame_index < frames):
             while pending and int(pending[0].get("frame", 0)) <= self.frame_index:
