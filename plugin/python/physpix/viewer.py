@@ -91,7 +91,7 @@ def default_world() -> World:
 class Viewer:
     """A world, its view and its tools; `frame()` steps and draws one frame, `run()` a whole session."""
 
-    def __init__(self, world: World, size: Optional[Tuple[int, int]] = None, save_dir: os.PathLike = "."):
+    def __init__(self, world: World, size: Optional[Tuple[int, int]] = None, save_dir: os.PathLike = ".") -> None:
         import pygame  # noqa: F401 (checked by main; here so that a Viewer needs it too)
         self.pg = pygame
         self.world = world
