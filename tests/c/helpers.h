@@ -302,4 +302,14 @@ static inline void patch_json(const char *snap, const char *from, const char *to
     patch_file(path, from, to);
 }
 
+/* Write text to a new file `name` in the folder dir. */
+static inline void write_file(const char *dir, const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f, "could not write %s", path);
+    fputs(text, f);
+    fclose(f);
+}
+
 #endif /* PHYSPIX_TEST_HELPERS_H */

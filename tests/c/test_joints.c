@@ -696,17 +696,6 @@ Test(joints, misuse_is_refused_with_its_status)
     pp_world_destroy(other);
 }
 
-/* Write text to a new file `name` in the folder dir. */
-static void write_file(const char *dir, const char *name, const char *text)
-{
-    char path[256];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "wb");
-    cr_assert_not_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
 Test(joints, a_scene_names_its_joints_bodies)
 {
     char dir[] = "/tmp/pp_joints_XXXXXX";

@@ -535,16 +535,6 @@ Test(joints2, erasing_a_wheels_anchor_breaks_it)
     pp_world_destroy(w);
 }
 
-static void write_file(const char *dir, const char *name, const char *text)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
 Test(joints2, a_scene_makes_wheels_and_motors)
 {
     char dir[] = "/tmp/pp_joints2_XXXXXX";
