@@ -1,6 +1,7 @@
 /* Status names, the thread-local last-error message, the log hook, the version. */
 #include "status.h"
 
+#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -39,6 +40,17 @@ pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity,
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: capacity is negative (%d)", fn, (int)capacity);
     if (capacity > 0 && !out)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out is NULL with capacity %d", fn, (int)capacity);
+    return PP_OK;
+}
+
+pp_status pp_check_box(const char *fn, pp_vec2 lower, pp_vec2 upper)
+{
+    if (!isfinite(lower.x) || !isfinite(lower.y) || !isfinite(upper.x) || !isfinite(upper.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got (%g, %g) and (%g, %g)", fn,
+                       lower.x, lower.y, upper.x, upper.y);
+    if (lower.x > upper.x || lower.y > upper.y)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower (%g, %g) must not exceed upper (%g, %g)", fn, lower.x,
+                       lower.y, upper.x, upper.y);
     return PP_OK;
 }
 

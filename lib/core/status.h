@@ -15,6 +15,9 @@ pp_status pp_fail_in(const char *fn, pp_status status);
 /* Check a caller-owned output buffer (out, capacity, count) as every list call takes it. */
 pp_status pp_check_out_buffer(const char *fn, const void *out, int32_t capacity, const int32_t *count);
 
+/* Check a world box lower..upper (px) as the box queries take it: finite, lower not past upper. */
+pp_status pp_check_box(const char *fn, pp_vec2 lower, pp_vec2 upper);
+
 /* Send a line to the host's log hook, if one is installed. */
 void pp_log(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -325,25 +325,40 @@ PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity,
     return PP_OK;
 }
 
+void world_each_contact(const world *wd, void (*visit)(const pp_contact *c, void *user), void *user)
+{
+    for (int32_t i = 0; i < wd->contact_count; i++)
+        visit(&wd->contacts[i], user);
+    for (int32_t i = 0; i < wd->table.count; i++) {
+        const contact_record *r = &wd->table.records[i];
+        const int32_t points = contact_table_resting_points(wd, r);
+        for (int32_t k = 0; k < points; k++)
+            visit(&r->points[k], user);
+    }
+}
+
+typedef struct contact_list {
+    pp_contact *out;
+    int32_t capacity, total;
+} contact_list;
+
+static void list_contact(const pp_contact *c, void *user)
+{
+    contact_list *l = user;
+    if (l->total < l->capacity)
+        l->out[l->total] = *c;
+    l->total++;
+}
+
 PP_API pp_status pp_world_get_contacts(pp_world w, pp_contact *out, int32_t capacity, int32_t *count)
 {
     pp_status st;
     world *wd = world_lookup_list(w, "pp_world_get_contacts", out, capacity, count, &st);
     if (!wd)
         return st;
-    /* The last substep's contacts, then the manifolds the sleeping pairs keep. */
-    const int32_t n = wd->contact_count < capacity ? wd->contact_count : capacity;
-    if (n > 0)
-        memcpy(out, wd->contacts, (size_t)n * sizeof *out);
-    int32_t total = wd->contact_count;
-    for (int32_t i = 0; i < wd->table.count; i++) {
-        const contact_record *r = &wd->table.records[i];
-        const int32_t points = contact_table_resting_points(wd, r);
-        for (int32_t k = 0; k < points; k++, total++)
-            if (total < capacity)
-                out[total] = r->points[k];
-    }
-    *count = total;
+    contact_list l = {out, capacity, 0};
+    world_each_contact(wd, list_contact, &l);
+    *count = l.total;
     return PP_OK;
 }
 

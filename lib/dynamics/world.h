@@ -197,6 +197,10 @@ void world_free(world *wd);
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* Each contact pp_world_get_contacts lists, in its order: the last substep's, then the manifolds the sleeping
+ * pairs keep. */
+void world_each_contact(const world *wd, void (*visit)(const pp_contact *c, void *user), void *user);
+
 /* The lookup of a call that lists into (out, capacity, count), checked as every list call takes them, or
  * that writes one result through `out` (named out_name in messages); NULL with *st the failure. */
 world *world_lookup_list(pp_world w, const char *fn, const void *out, int32_t capacity, const int32_t *count,

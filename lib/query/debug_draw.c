@@ -88,8 +88,10 @@ static void put_body(seg_out *o, const world *wd, const body *bd, uint32_t flags
     }
 }
 
-static void put_contact(seg_out *o, const pp_contact *c)
+/* A cross at a contact point pp_world_get_contacts lists, and its normal (world_each_contact's visit). */
+static void put_contact(const pp_contact *c, void *user)
 {
+    seg_out *o = user;
     const dvec2 p = dv(c->point.x, c->point.y), n = dv(c->normal.x, c->normal.y);
     if (!in_view(o, p))
         return;
@@ -97,19 +99,6 @@ static void put_contact(seg_out *o, const pp_contact *c)
     put(o, dv(p.x - h, p.y), dv(p.x + h, p.y), PP_DEBUG_COLOR_CONTACT, PP_DEBUG_CONTACT, c->a);
     put(o, dv(p.x, p.y - h), dv(p.x, p.y + h), PP_DEBUG_COLOR_CONTACT, PP_DEBUG_CONTACT, c->a);
     put(o, p, dv_add(p, dv_scale(n, PP_DEBUG_NORMAL_LENGTH)), PP_DEBUG_COLOR_NORMAL, PP_DEBUG_NORMAL, c->a);
-}
-
-/* The contacts pp_world_get_contacts lists, in its order: the last substep's, then the sleeping pairs'. */
-static void put_contacts(seg_out *o, const world *wd)
-{
-    for (int32_t i = 0; i < wd->contact_count; i++)
-        put_contact(o, &wd->contacts[i]);
-    for (int32_t i = 0; i < wd->table.count; i++) {
-        const contact_record *r = &wd->table.records[i];
-        const int32_t points = contact_table_resting_points(wd, r);
-        for (int32_t k = 0; k < points; k++)
-            put_contact(o, &r->points[k]);
-    }
 }
 
 static void put_joints(seg_out *o, world *wd)
@@ -143,12 +132,8 @@ PP_API pp_status pp_world_debug_draw(pp_world w, uint32_t flags, pp_vec2 lower, 
     if (flags & ~PP_DEBUG_DRAW_ALL)
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: flags 0x%x has bits outside PP_DEBUG_DRAW_ALL (0x%x)", fn,
                        (unsigned)flags, (unsigned)PP_DEBUG_DRAW_ALL);
-    if (!finite2(lower.x, lower.y) || !finite2(upper.x, upper.y))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got (%g, %g) and (%g, %g)", fn,
-                       lower.x, lower.y, upper.x, upper.y);
-    if (lower.x > upper.x || lower.y > upper.y)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower (%g, %g) must not exceed upper (%g, %g)", fn, lower.x,
-                       lower.y, upper.x, upper.y);
+    if ((st = pp_check_box(fn, lower, upper)))
+        return st;
     seg_out o = {out, capacity, 0, {lower.x, lower.y, upper.x, upper.y}};
     int32_t *near = NULL, n_near = 0;
     const uint32_t body_flags = PP_DEBUG_DRAW_OUTLINES | PP_DEBUG_DRAW_AABBS | PP_DEBUG_DRAW_CENTERS |
@@ -182,7 +167,7 @@ PP_API pp_status pp_world_debug_draw(pp_world w, uint32_t flags, pp_vec2 lower, 
     }
     pp_free(near);
     if (flags & PP_DEBUG_DRAW_CONTACTS)
-        put_contacts(&o, wd);
+        world_each_contact(wd, put_contact, &o);
     if (flags & PP_DEBUG_DRAW_JOINTS)
         put_joints(&o, wd);
     *count = (int32_t)o.count;

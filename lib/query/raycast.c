@@ -356,17 +356,6 @@ typedef struct query_shape {
     dvec2 a, b;            /* point: a; box: [a, b]; circle: centre a, radius b.x */
 } query_shape;
 
-/* The world of a query, with its output buffer checked; NULL (and *st set) on a bad handle or buffer. */
-static world *query_world(pp_world w, const char *fn, pp_body *out, int32_t capacity, int32_t *count, pp_status *st)
-{
-    world *wd = world_lookup(w, fn);
-    if (!wd)
-        *st = PP_ERR_INVALID_HANDLE;
-    else if ((*st = pp_check_out_buffer(fn, out, capacity, count)))
-        wd = NULL;
-    return wd;
-}
-
 /* Write, in slot order, the bodies passing the filter whose box meets the shape's and that `meets`
  * accepts: up to capacity of them, all counted. */
 static pp_status query_scan(world *wd, const char *fn, uint32_t mask_bits, const query_shape *q,
@@ -437,7 +426,7 @@ PP_API pp_status pp_world_query_point(pp_world w, pp_vec2 point, uint32_t mask_b
 {
     static const char *fn = "pp_world_query_point";
     pp_status st;
-    world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = world_lookup_list(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
     if (!finite2(point.x, point.y))
@@ -503,15 +492,11 @@ PP_API pp_status pp_world_query_aabb(pp_world w, pp_vec2 lower, pp_vec2 upper, u
 {
     static const char *fn = "pp_world_query_aabb";
     pp_status st;
-    world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = world_lookup_list(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
-    if (!finite2(lower.x, lower.y) || !finite2(upper.x, upper.y))
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower and upper must be finite, got (%g, %g) and (%g, %g)", fn,
-                       lower.x, lower.y, upper.x, upper.y);
-    if (lower.x > upper.x || lower.y > upper.y)
-        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: lower (%g, %g) must not exceed upper (%g, %g)", fn, lower.x,
-                       lower.y, upper.x, upper.y);
+    if ((st = pp_check_box(fn, lower, upper)))
+        return st;
     const query_shape q = {lower.x, lower.y, upper.x, upper.y, dv(lower.x, lower.y), dv(upper.x, upper.y)};
     return query_scan(wd, fn, mask_bits, &q, body_meets_box, out, capacity, count);
 }
@@ -543,7 +528,7 @@ PP_API pp_status pp_world_query_circle(pp_world w, pp_vec2 center, float radius,
 {
     static const char *fn = "pp_world_query_circle";
     pp_status st;
-    world *wd = query_world(w, fn, out, capacity, count, &st);
+    world *wd = world_lookup_list(w, fn, out, capacity, count, &st);
     if (!wd)
         return st;
     if (!finite2(center.x, center.y))

@@ -302,6 +302,26 @@ static inline void patch_json(const char *snap, const char *from, const char *to
     patch_file(path, from, to);
 }
 
+/* A joint from its def; the test fails if the call does. */
+static inline pp_joint make_joint(pp_world w, const pp_joint_def *d) {
+    pp_joint j = {0};
+    PP_OK_OR_FAIL(pp_joint_create(w, d, &j));
+    cr_assert_neq(j.id, 0);
+    return j;
+}
+
+/* pp_joint_get_value's value, its speed into *speed when not NULL. */
+static inline float joint_value(pp_world w, pp_joint j, float *speed) {
+    float v = 0, s = 0;
+    PP_OK_OR_FAIL(pp_joint_get_value(w, j, &v, &s));
+    if (speed)
+        *speed = s;
+    return v;
+}
+
+/* Distance between two points, px. */
+static inline double dist(pp_vec2 a, pp_vec2 b) { return hypot(a.x - b.x, a.y - b.y); }
+
 /* Write text to a new file `name` in the folder dir. */
 static inline void write_file(const char *dir, const char *name, const char *text) {
     char path[512];

@@ -14,25 +14,6 @@ PP_TEST_SUITE(joints);
 #define DT (1.0f / 60.0f)
 #define G 980.0f
 
-static pp_joint make_joint(pp_world w, const pp_joint_def *d)
-{
-    pp_joint j = {0};
-    PP_OK_OR_FAIL(pp_joint_create(w, d, &j));
-    cr_assert_neq(j.id, 0);
-    return j;
-}
-
-static float joint_value(pp_world w, pp_joint j, float *speed)
-{
-    float v = 0, s = 0;
-    PP_OK_OR_FAIL(pp_joint_get_value(w, j, &v, &s));
-    if (speed)
-        *speed = s;
-    return v;
-}
-
-static double dist(pp_vec2 a, pp_vec2 b) { return hypot(a.x - b.x, a.y - b.y); }
-
 /* A 10 × 60 px rod hung from the world by a revolute joint `d` px above its centre of mass. */
 static pp_body hung_rod(pp_world w, double d, pp_joint *j)
 {
