@@ -76,38 +76,19 @@ static bool sits_out(const world *wd, const body *bd)
     return !bd->is_sensor && !bd->one_way && (!bd->sb.body || bd->sat_out == wd->islands.substep_serial);
 }
 
-/* The pair carried for these slots among the first n indexed, or NULL. */
-static carried_pair *find_pair(carry *c, int32_t n, uint32_t a, uint32_t b)
+/* The record carried for these slots, its index in *at, or NULL. */
+static const contact_record *carried_pair(const world *wd, uint32_t a, uint32_t b, int32_t *at)
 {
-    const int32_t i = pair_map_get(&c->by_slots, pair_key(a, b));
-    return i >= 0 && i < n ? &c->pairs[i] : NULL;
+    *at = contact_table_lookup(wd, a, b);
+    const contact_record *r = *at >= 0 ? &wd->table.records[*at] : NULL;
+    return r && r->carried ? r : NULL;
 }
 
-/* Drop the pairs carried no further than before substep k and index the rest (unless the pairs and their index
- * are as they were). */
-static void keep_from(carry *c, int32_t k, bool added)
+/* Carried into substep k or later. */
+static bool carried_into(const world *wd, const contact_record *r, const void *k)
 {
-    int32_t n = 0;
-    for (int32_t i = 0; i < c->pair_count; i++)
-        if (c->pairs[i].last >= k)
-            c->pairs[n++] = c->pairs[i];
-    if (n == c->pair_count && !added)
-        return;
-    c->pair_count = n;
-    (void)carry_index(c); /* the pairs were unique before */
-}
-
-bool carry_index(carry *c)
-{
-    PP_ASSERT(2 * c->pair_count <= c->by_slots.capacity || c->pair_count == 0);
-    pair_map_clear(&c->by_slots);
-    for (int32_t i = 0; i < c->pair_count; i++) {
-        const uint64_t key = pair_key(c->pairs[i].a, c->pairs[i].b);
-        if (pair_map_get(&c->by_slots, key) >= 0)
-            return false;
-        pair_map_set(&c->by_slots, key, i);
-    }
-    return true;
+    (void)wd;
+    return r->carry_last >= *(const int32_t *)k;
 }
 
 /* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */
@@ -130,50 +111,50 @@ static pp_status start_step(world *wd)
 
 pp_status carry_record(world *wd, double dt, int32_t k)
 {
-    carry *c = &wd->carry;
-    keep_from(c, k, false);
-    const int32_t n = wd->contact_count, pairs_before = c->pair_count;
+    contact_table_keep_carried(wd, carried_into, &k);
+    const int32_t n = wd->contact_count, before = wd->table.carry_count;
     if (n == 0)
         return PP_OK;
-    if (!ARRAY_RESERVE(c->contacts, c->contact_capacity, c->contact_count + n) ||
-        !ARRAY_RESERVE(c->pairs, c->pair_capacity, c->pair_count + n) ||
-        !pair_map_reserve(&c->by_slots, c->pair_count + n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to carry %d contacts", (int)n);
+    pp_status st = contact_table_reserve_carried(wd, before + n, "pp_world_step");
+    if (st)
+        return st;
     for (int32_t i = 0, end; i < n; i = end) {
         const pp_contact *ct = &wd->contacts[i];
         end = contact_pair_end(wd, i);
         const body *a = body_of(wd, ct->a), *b = body_of(wd, ct->b);
         const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
-        PP_ASSERT(sa < sb); /* contacts keep the broadphase pair's order */
+        PP_ASSERT(sa < sb && end - i <= PP_MAX_CONTACTS_PER_PAIR); /* contacts keep the broadphase pair's order */
+        const int32_t at = contact_table_lookup(wd, sa, sb);
+        PP_ASSERT(at >= 0); /* every contact's pair was found */
+        const contact_record *rec = &wd->table.records[at];
+        const bool carried_before = rec->carried && rec->carried <= before;
         /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
          * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
          * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
         const bool stack = sits_out(wd, a) && sits_out(wd, b);
-        carried_pair *held = k == 0 ? find_pair(c, pairs_before, sa, sb) : NULL;
-        if (held) { /* held from the steps before: no longer a stack's, it is collided from the next substep */
-            if (held->stack && !stack)
-                held->last = 0;
+        if (k == 0 && carried_before) { /* held from the steps before: no longer a stack's, it is collided from
+                                           the next substep */
+            if ((rec->carry_flags & CARRY_STACK) && !stack)
+                contact_table_edit(wd, at)->carry_last = 0;
             continue;
         }
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
         const bool slow = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
-        const bool still =
-            !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !find_pair(c, pairs_before, sa, sb));
+        const bool still = !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !carried_before);
         if (k == 0 && !slow)
-            strike(c, a), strike(c, b);
+            strike(&wd->carry, a), strike(&wd->carry, b);
         if (!slow && !still)
             continue;
-        c->pairs[c->pair_count++] = (carried_pair){
-            sa, sb, c->contact_count, end - i, slow ? wd->def.substeps - 1 : k + 1, false, false, slow, stack};
-        const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
-        for (int32_t j = i; j < end; j++)
-            c->contacts[c->contact_count++] =
-                (carried_contact){wd->contacts[j], com_a, com_b, a->cos_a, a->sin_a, b->cos_a, b->sin_a};
+        contact_table_carry(wd, at);
+        contact_record *r = contact_table_edit(wd, at);
+        r->carry_count = (int8_t)(end - i);
+        r->carry_last = (int8_t)(slow ? wd->def.substeps - 1 : k + 1);
+        r->carry_flags = (slow ? CARRY_HELD : 0) | (stack ? CARRY_STACK : 0);
+        r->carry_pose = (carried_pose){body_com_world(a), body_com_world(b), a->cos_a, a->sin_a, b->cos_a, b->sin_a};
+        memcpy(r->carry_points, ct, (size_t)(end - i) * sizeof *ct);
     }
-    if (c->pair_count > pairs_before)
-        keep_from(c, k, true);
-    c->active = c->pair_count > 0;
+    wd->carry.active = wd->table.carry_count > 0;
     return PP_OK;
 }
 
@@ -182,15 +163,16 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
     carry *c = &wd->carry;
     /* At a step's first substep only held pairs are carried: nothing sat the substep before out. */
     const bool still = c->substep > 0 && sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
-    carried_pair *p = c->active ? find_pair(c, c->pair_count, a, b) : NULL;
+    int32_t at = -1;
+    const contact_record *p = c->active ? carried_pair(wd, a, b, &at) : NULL;
     /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
      * bodies were pushed nowhere. */
-    if (p && p->last >= c->substep && (still || !(struck(c, a) || struck(c, b)))) {
-        p->claimed = true;
+    if (p && p->carry_last >= c->substep && (still || !(struck(c, a) || struck(c, b)))) {
+        contact_table_edit(wd, at)->carry_flags |= CARRY_CLAIMED;
         return true;
     }
-    if (p && p->last >= c->substep)
-        p->missed = true;
+    if (p && p->carry_last >= c->substep)
+        contact_table_edit(wd, at)->carry_flags |= CARRY_MISSED;
     return still; /* then it made no contact last substep, and nothing has moved since */
 }
 
@@ -202,25 +184,34 @@ static dvec2 moved(const body *bd, dvec2 com, dvec2 com0, double c0, double s0, 
     return dv_sub(dv_add(com, dv_rot(local, bd->cos_a, bd->sin_a)), p);
 }
 
+/* How far a carried point p0 has moved with each body: *ua with a, *ub with b, px. */
+static void moved_pair(const contact_record *r, const body *a, const body *b, dvec2 com_a, dvec2 com_b, dvec2 p0,
+                       dvec2 *ua, dvec2 *ub)
+{
+    const carried_pose *q = &r->carry_pose;
+    *ua = moved(a, com_a, q->com_a, q->cos_a, q->sin_a, p0);
+    *ub = moved(b, com_b, q->com_b, q->cos_b, q->sin_b, p0);
+}
+
 /* A carried pair's contacts at the bodies' poses now: each point at the midpoint of where its two material
  * points went, its depth less their separation along the normal. Points pulled apart are dropped. */
-static void move_pair(const world *wd, const carried_pair *p, np_result *r)
+static void move_pair(const world *wd, const contact_record *p, np_result *r)
 {
     r->count = 0;
     r->samples = 0;
-    const body *a = wd->bodies[p->a], *b = wd->bodies[p->b];
+    const body *a = wd->bodies[handle_slot(p->a)], *b = wd->bodies[handle_slot(p->b)];
     const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
-    for (int32_t k = 0; k < p->count; k++) {
-        const carried_contact *cc = &wd->carry.contacts[p->first + k];
-        PP_ASSERT(cc->c.a.id == a->handle.id && cc->c.b.id == b->handle.id);
-        const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y), n = dv(cc->c.normal.x, cc->c.normal.y);
-        const dvec2 ua = moved(a, com_a, cc->com_a, cc->cos_a, cc->sin_a, p0);
-        const dvec2 ub = moved(b, com_b, cc->com_b, cc->cos_b, cc->sin_b, p0);
-        const double depth = cc->c.depth - dv_dot(dv_sub(ub, ua), n);
+    for (int32_t k = 0; k < p->carry_count; k++) {
+        const pp_contact *cc = &p->carry_points[k];
+        PP_ASSERT(cc->a.id == a->handle.id && cc->b.id == b->handle.id);
+        const dvec2 p0 = dv(cc->point.x, cc->point.y), n = dv(cc->normal.x, cc->normal.y);
+        dvec2 ua, ub;
+        moved_pair(p, a, b, com_a, com_b, p0, &ua, &ub);
+        const double depth = cc->depth - dv_dot(dv_sub(ub, ua), n);
         if (!(depth >= -CARRY_GAP_PX))
             continue;
         pp_contact *out = &r->contacts[r->count++];
-        *out = cc->c;
+        *out = *cc;
         const dvec2 at = dv_add(p0, dv_scale(dv_add(ua, ub), 0.5));
         out->point = (pp_vec2){(float)at.x, (float)at.y};
         out->depth = (float)dmax(depth, 0.0); /* a contact reports overlap, never a gap */
@@ -238,18 +229,19 @@ void carry_strike(world *wd)
 
 pp_status carry_push(world *wd)
 {
-    carry *c = &wd->carry;
-    if (!c->active)
+    if (!wd->carry.active)
         return PP_OK;
-    for (int32_t i = 0; i < c->pair_count; i++) {
-        const carried_pair *p = &c->pairs[i];
-        if (!p->claimed)
-            continue; /* the broadphase no longer pairs them: apart */
+    const contact_table *t = &wd->table;
+    /* contact_table_found finds every carried record where it is: none is made or ended meanwhile. */
+    for (int32_t k = 0; k < t->carry_count; k++) {
+        const int32_t i = t->carry_order[k];
+        if (i < 0 || !(t->records[i].carry_flags & CARRY_CLAIMED))
+            continue; /* ended, or the broadphase no longer pairs them: apart */
         np_result r;
-        move_pair(wd, p, &r);
+        move_pair(wd, &t->records[i], &r);
         if (r.count == 0)
             continue;
-        const body *a = wd->bodies[p->a], *b = wd->bodies[p->b];
+        const body *a = wd->bodies[handle_slot(t->records[i].a)], *b = wd->bodies[handle_slot(t->records[i].b)];
         bool keep = true;
         pp_status st = contact_table_found(wd, a, b, &r, &keep);
         if (st)
@@ -259,8 +251,8 @@ pp_status carry_push(world *wd)
         if (!ARRAY_RESERVE(wd->contacts, wd->contact_capacity, wd->contact_count + r.count))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts",
                            (int)(wd->contact_count + r.count));
-        for (int32_t k = 0; k < r.count; k++)
-            wd->contacts[wd->contact_count++] = r.contacts[k];
+        for (int32_t m = 0; m < r.count; m++)
+            wd->contacts[wd->contact_count++] = r.contacts[m];
     }
     return PP_OK;
 }
@@ -275,46 +267,26 @@ static bool turned_little(const body *bd, double c0, double s0)
 /* Whether a held pair stays within its bound through a step of dt s: its points' motion against each other
  * since the raster found them, plus what the bodies' velocities add this step; neither body turned past
  * CARRY_TURN_RAD since. */
-static bool still_held(const world *wd, const carried_pair *p, const void *step_dt)
+static bool still_held(const world *wd, const contact_record *p, const void *step_dt)
 {
     const double dt = *(const double *)step_dt;
-    const double bound = p->stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
-    const carried_contact *cc = &wd->carry.contacts[p->first];
-    const body *a = body_find(wd, cc->c.a), *b = body_find(wd, cc->c.b);
+    const double bound = (p->carry_flags & CARRY_STACK) ? CARRY_STACK_PX : CARRY_MOTION_PX;
+    const carried_pose *q = &p->carry_pose;
+    const body *a = body_find(wd, (pp_body){p->a}), *b = body_find(wd, (pp_body){p->b});
     if (!a || !b)
         return false;
-    if (!turned_little(a, cc->cos_a, cc->sin_a) || !turned_little(b, cc->cos_b, cc->sin_b))
+    if (!turned_little(a, q->cos_a, q->sin_a) || !turned_little(b, q->cos_b, q->sin_b))
         return false;
     double drift = 0;
     const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
-    for (int32_t k = 0; k < p->count; k++, cc++) {
-        const dvec2 p0 = dv(cc->c.point.x, cc->c.point.y);
-        const dvec2 ua = moved(a, com_a, cc->com_a, cc->cos_a, cc->sin_a, p0);
-        const dvec2 ub = moved(b, com_b, cc->com_b, cc->cos_b, cc->sin_b, p0);
+    for (int32_t k = 0; k < p->carry_count; k++) {
+        const dvec2 p0 = dv(p->carry_points[k].point.x, p->carry_points[k].point.y);
+        dvec2 ua, ub;
+        moved_pair(p, a, b, com_a, com_b, p0, &ua, &ub);
         drift = dmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
     }
     drift = sqrt(drift);
     return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);
-}
-
-/* Keep the pairs for which keep(…, arg) holds, in order, their contacts packed; then index them. */
-static void keep_pairs(world *wd, bool (*keep)(const world *, const carried_pair *, const void *), const void *arg)
-{
-    carry *c = &wd->carry;
-    int32_t n = 0, m = 0;
-    for (int32_t i = 0; i < c->pair_count; i++) {
-        carried_pair p = c->pairs[i];
-        if (!keep(wd, &p, arg))
-            continue;
-        if (p.first != m)
-            memmove(&c->contacts[m], &c->contacts[p.first], (size_t)p.count * sizeof *c->contacts);
-        p.first = m, m += p.count;
-        c->pairs[n++] = p;
-    }
-    const bool dropped = n < c->pair_count; /* else every pair is where the index has it */
-    c->pair_count = n, c->contact_count = m;
-    if (dropped)
-        (void)carry_index(c); /* the pairs were unique before */
 }
 
 pp_status carry_begin(world *wd, int32_t k, double dt)
@@ -325,66 +297,37 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
         pp_status st = start_step(wd);
         if (st)
             return st;
-        keep_pairs(wd, still_held, &dt);
-        c->active = c->pair_count > 0;
+        contact_table_keep_carried(wd, still_held, &dt);
+        c->active = wd->table.carry_count > 0;
     }
-    for (int32_t i = 0; i < c->pair_count; i++)
-        c->pairs[i].claimed = false;
+    const contact_table *t = &wd->table;
+    for (int32_t i = 0; i < t->carry_count; i++)
+        if (t->carry_order[i] >= 0 && (t->records[t->carry_order[i]].carry_flags & CARRY_CLAIMED))
+            contact_table_edit(wd, t->carry_order[i])->carry_flags &= (uint8_t)~CARRY_CLAIMED;
     return PP_OK;
 }
 
 /* Carried through the whole step and never collided: the raster's contacts, moved. */
-static bool to_hold(const world *wd, const carried_pair *p, const void *unused)
+static bool to_hold(const world *wd, const contact_record *p, const void *unused)
 {
-    return p->held && p->last == wd->def.substeps - 1 && p->claimed && !p->missed;
+    (void)unused;
+    return (p->carry_flags & (CARRY_HELD | CARRY_CLAIMED | CARRY_MISSED)) == (CARRY_HELD | CARRY_CLAIMED) &&
+           p->carry_last == wd->def.substeps - 1;
 }
 
 void carry_end_step(world *wd)
 {
-    keep_pairs(wd, to_hold, NULL);
+    contact_table_keep_carried(wd, to_hold, NULL);
     wd->carry.active = false;
 }
 
-pp_status carry_save(world *wd)
+static bool not_of(const world *wd, const contact_record *p, const void *slot)
 {
-    carry *c = &wd->carry;
-    if (!ARRAY_RESERVE(c->saved_pairs, c->saved_pair_capacity, c->pair_count) ||
-        !ARRAY_RESERVE(c->saved_contacts, c->saved_contact_capacity, c->contact_count))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d held pairs", (int)c->pair_count);
-    if (c->pair_count > 0) {
-        memcpy(c->saved_pairs, c->pairs, (size_t)c->pair_count * sizeof *c->pairs);
-        memcpy(c->saved_contacts, c->contacts, (size_t)c->contact_count * sizeof *c->contacts);
-    }
-    c->saved_pair_count = c->pair_count, c->saved_contact_count = c->contact_count;
-    return PP_OK;
+    (void)wd;
+    const uint32_t s = *(const uint32_t *)slot;
+    return handle_slot(p->a) != s && handle_slot(p->b) != s;
 }
 
-void carry_restore(world *wd)
-{
-    carry *c = &wd->carry;
-    /* The arrays only grow, and they held these counts when they were saved. */
-    PP_ASSERT(c->saved_pair_count <= c->pair_capacity && c->saved_contact_count <= c->contact_capacity);
-    if (c->saved_pair_count > 0) {
-        memcpy(c->pairs, c->saved_pairs, (size_t)c->saved_pair_count * sizeof *c->pairs);
-        memcpy(c->contacts, c->saved_contacts, (size_t)c->saved_contact_count * sizeof *c->contacts);
-    }
-    c->pair_count = c->saved_pair_count, c->contact_count = c->saved_contact_count;
-    c->active = false;
-}
+void carry_forget(world *wd, uint32_t slot) { contact_table_keep_carried(wd, not_of, &slot); }
 
-static bool not_of(const world *wd, const carried_pair *p, const void *slot)
-{
-    return p->a != *(const uint32_t *)slot && p->b != *(const uint32_t *)slot;
-}
-
-void carry_forget(world *wd, uint32_t slot) { keep_pairs(wd, not_of, &slot); }
-
-void carry_free(carry *c)
-{
-    pp_free(c->struck);
-    pp_free(c->contacts);
-    pp_free(c->pairs);
-    pair_map_free(&c->by_slots);
-    pp_free(c->saved_pairs);
-    pp_free(c->saved_contacts);
-}
+void carry_free(carry *c) { pp_free(c->struck); }

@@ -16,7 +16,6 @@
 #define PP_CARRY_H
 
 #include "math2d.h"
-#include "pair_map.h"
 #include "physpix.h"
 
 #include <stdbool.h>
@@ -24,36 +23,12 @@
 
 struct world;
 
-/* A contact as found at the step's first substep, with its bodies' poses then. */
-typedef struct carried_contact {
-    pp_contact c;
-    dvec2 com_a, com_b;          /* centres of mass, px */
-    double cos_a, sin_a, cos_b, sin_b;
-} carried_contact;
-
-/* A pair's run of carried contacts. */
-typedef struct carried_pair {
-    uint32_t a, b;               /* body slots, a < b (the broadphase's pair) */
-    int32_t first, count;        /* in carry.contacts */
-    int32_t last;                /* the last substep (0 = the step's first) it is carried into */
-    bool claimed;                /* the substep's broadphase still pairs them */
-    bool missed;                 /* collided at a substep it was carried into */
-    bool held;                   /* resting at the substep that found it: may be held into later steps */
-    bool stack;                  /* its bodies sat that substep out: bound CARRY_STACK_PX, else CARRY_MOTION_PX */
-} carried_pair;
-
+/* The carried pairs themselves are contact records (contact_table.h: carry_* fields, and the table's carry
+ * order); what is left here is the step's own state. */
 typedef struct carry {
-    carried_contact *contacts;
-    int32_t contact_count, contact_capacity;
-    carried_pair *pairs;         /* in the order the first substep found them */
-    int32_t pair_count, pair_capacity;
-    pair_map by_slots;           /* a pair's slots → its place in pairs, for carry_claim */
-    carried_contact *saved_contacts; /* the held pairs as the step found them, put back if it fails */
-    carried_pair *saved_pairs;
-    int32_t saved_contact_count, saved_contact_capacity, saved_pair_count, saved_pair_capacity;
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
-    uint32_t step;               /* counts the steps carry_record started, from 1 */
+    uint32_t step;               /* counts the steps carry_begin started, from 1 */
     int32_t substep;             /* the substep now, 0 = the step's first */
     bool active;                 /* a later substep: carried pairs are not collided */
 } carry;
@@ -78,12 +53,6 @@ pp_status carry_push(struct world *wd);
 pp_status carry_begin(struct world *wd, int32_t k, double dt);
 /* After a step's last substep: keep the pairs to hold (carried through it, never collided) and drop the rest. */
 void carry_end_step(struct world *wd);
-/* Before a step changes the held pairs, a copy; carry_restore puts it back (cannot fail). */
-pp_status carry_save(struct world *wd);
-void carry_restore(struct world *wd);
-/* Index the pairs by their slots (carry_claim finds a pair by them), room reserved for pair_count; false if two
- * pairs have the same slots. */
-bool carry_index(carry *c);
 /* Drop the held pairs of the body in this slot: its pixels, type or existence changed outside a step. */
 void carry_forget(struct world *wd, uint32_t slot);
 void carry_free(carry *c);

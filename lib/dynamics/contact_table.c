@@ -53,11 +53,20 @@ static contact_record *edit(contact_table *t, int32_t i)
     return &t->records[i];
 }
 
+/* The record now at i: the hash and the carry order find it there. */
+static void placed(contact_table *t, int32_t i)
+{
+    const contact_record *r = &t->records[i];
+    if (!(r->flags & CT_GONE))
+        pair_map_set(&t->index, key_of(r), i);
+    if (r->carried)
+        t->carry_order[r->carried - 1] = i;
+}
+
 static void move(contact_table *t, int32_t from, int32_t to)
 {
     *edit(t, to) = t->records[from];
-    if (!(t->records[to].flags & CT_GONE))
-        pair_map_set(&t->index, key_of(&t->records[to]), to);
+    placed(t, to);
 }
 
 static void swap(contact_table *t, int32_t i, int32_t j)
@@ -67,8 +76,7 @@ static void swap(contact_table *t, int32_t i, int32_t j)
     const contact_record ri = t->records[i];
     move(t, j, i);
     *edit(t, j) = ri;
-    if (!(ri.flags & CT_GONE))
-        pair_map_set(&t->index, key_of(&ri), j);
+    placed(t, j);
 }
 
 /* A resting record into the awake part; returns where it is now. */
@@ -91,6 +99,8 @@ static void remove_record(contact_table *t, int32_t i)
     PP_ASSERT(i < t->awake);
     if (!(t->records[i].flags & CT_GONE))
         pair_map_remove(&t->index, key_of(&t->records[i]));
+    if (t->records[i].carried) /* its place in the carry order stays empty until carry.c keeps the rest */
+        t->carry_order[t->records[i].carried - 1] = -1;
     const int32_t last_awake = t->awake - 1, last = t->count - 1;
     if (i != last_awake)
         move(t, last_awake, i);
@@ -108,9 +118,55 @@ static int32_t insert_record(contact_table *t, const contact_record *rec)
     const int32_t i = t->awake++;
     t->count++;
     *edit(t, i) = *rec;
-    if (!(rec->flags & CT_GONE))
-        pair_map_set(&t->index, key_of(rec), i);
+    placed(t, i);
     return i;
+}
+
+int32_t contact_table_lookup(const world *wd, uint32_t a, uint32_t b) { return lookup(&wd->table, pair_key(a, b)); }
+
+contact_record *contact_table_edit(world *wd, int32_t i)
+{
+    PP_ASSERT(i >= 0 && i < wd->table.count);
+    return edit(&wd->table, i);
+}
+
+/* ---- the carry order ------------------------------------------------------------------------------- */
+
+pp_status contact_table_reserve_carried(world *wd, int32_t n, const char *fn)
+{
+    contact_table *t = &wd->table;
+    if (!ARRAY_RESERVE(t->carry_order, t->carry_capacity, n))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to carry %d pairs", fn, (int)n);
+    return PP_OK;
+}
+
+void contact_table_carry(world *wd, int32_t i)
+{
+    contact_table *t = &wd->table;
+    PP_ASSERT(t->carry_count < t->carry_capacity && !t->records[i].carried && !(t->records[i].flags & CT_GONE));
+    t->carry_order[t->carry_count++] = i;
+    edit(t, i)->carried = t->carry_count;
+}
+
+void contact_table_keep_carried(world *wd, bool (*keep)(const world *, const contact_record *, const void *),
+                                const void *arg)
+{
+    contact_table *t = &wd->table;
+    int32_t n = 0;
+    for (int32_t k = 0; k < t->carry_count; k++) {
+        const int32_t i = t->carry_order[k];
+        if (i < 0)
+            continue; /* ended */
+        if (!keep(wd, &t->records[i], arg)) {
+            contact_record *r = edit(t, i);
+            r->carried = 0, r->carry_count = 0, r->carry_last = 0, r->carry_flags = 0;
+            continue;
+        }
+        if (t->records[i].carried != n + 1)
+            edit(t, i)->carried = n + 1;
+        t->carry_order[n++] = i;
+    }
+    t->carry_count = n;
 }
 
 const contact_record *contact_table_find(const world *wd, uint64_t x, uint64_t y)
@@ -150,7 +206,8 @@ static void anchor_turn(contact_record *t)
     t->anchor_sin = sin(t->anchor[2]);
 }
 
-/* Keep the old anchor while every contact point is within ANCHOR_SLIP_PX of it and the pair has not turned. */
+/* Keep the old anchor while every contact point is within ANCHOR_SLIP_PX of it and the pair has not turned
+ * (old may be out). */
 static void set_anchor(const contact_record *old, const body *a, const body *b, const np_result *r,
                        contact_record *out)
 {
@@ -161,10 +218,10 @@ static void set_anchor(const contact_record *old, const body *a, const body *b, 
         const dvec2 slip = contact_anchor_slip(old, a, b, dv(r->contacts[c].point.x, r->contacts[c].point.y));
         keep = dv_dot(slip, slip) <= ANCHOR_SLIP_PX * ANCHOR_SLIP_PX;
     }
-    if (keep) {
+    if (keep && old != out) {
         memcpy(out->anchor, old->anchor, sizeof now);
         out->anchor_cos = old->anchor_cos, out->anchor_sin = old->anchor_sin;
-    } else {
+    } else if (!keep) {
         memcpy(out->anchor, now, sizeof now);
         anchor_turn(out);
     }
@@ -222,41 +279,39 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
     if (st || (i < 0 && (st = reserve(t, t->count + 1, fn))))
         return st;
     const bool sensor = a->is_sensor || b->is_sensor, one_way = a->one_way || b->one_way;
-    contact_record rec = {.a = a->handle.id, .b = b->handle.id, .found = t->substep,
-                          .flags = sensor ? CT_SENSOR | (a->is_sensor ? 0 : CT_SENSOR_B) : 0};
-    if (i >= 0) { /* the pair as it was: its flags and manifold */
+    contact_record fresh, *rec = &fresh;
+    if (i >= 0) { /* the pair as it was: its flags, manifold and carried contacts */
         if (i >= t->awake)
             i = wake_record(t, i); /* a sleeper an awake body roused */
-        const contact_record *old = &t->records[i];
-        set_anchor(old, a, b, r, &rec);
-        rec.flags = old->flags & ~(uint32_t)CT_UNANCHORED;
-        rec.point_count = old->point_count;
-        memcpy(rec.points, old->points, sizeof rec.points);
+        rec = edit(t, i);
+        set_anchor(rec, a, b, r, rec);
+        rec->flags &= ~(uint32_t)CT_UNANCHORED;
     } else {
-        set_anchor(NULL, a, b, r, &rec);
+        fresh = (contact_record){.a = a->handle.id, .b = b->handle.id,
+                                 .flags = sensor ? CT_SENSOR | (a->is_sensor ? 0 : CT_SENSOR_B) : 0};
+        set_anchor(NULL, a, b, r, rec);
         if (!sensor && one_way && one_way_passes(a, b, r))
-            rec.flags |= CT_PASSING;
+            rec->flags |= CT_PASSING;
     }
-    *keep = !(rec.flags & (CT_SENSOR | CT_PASSING));
+    rec->found = t->substep;
+    *keep = !(rec->flags & (CT_SENSOR | CT_PASSING));
     if (!*keep)
-        rec.point_count = 0;
+        rec->point_count = 0;
     t->found_count++;
-    if (!(rec.flags & CT_PASSING)) {
+    if (!(rec->flags & CT_PASSING)) {
         if (sensor) { /* the sensor is the event's body */
             if (i < 0)
                 world_queue_event(wd, a->is_sensor ? begin_event(wd, PP_EVENT_SENSOR_BEGIN, a, b, a, r)
                                                    : begin_event(wd, PP_EVENT_SENSOR_BEGIN, b, a, a, r));
         } else if (!wd->def.contact_events) {
-            rec.flags &= ~(uint32_t)CT_BEGUN; /* switched off: ends silently, begins again if switched on */
-        } else if (!(rec.flags & CT_BEGUN)) { /* new, or touching since events were switched on */
+            rec->flags &= ~(uint32_t)CT_BEGUN; /* switched off: ends silently, begins again if switched on */
+        } else if (!(rec->flags & CT_BEGUN)) { /* new, or touching since events were switched on */
             world_queue_event(wd, begin_event(wd, PP_EVENT_CONTACT_BEGIN, a, b, a, r));
-            rec.flags |= CT_BEGUN;
+            rec->flags |= CT_BEGUN;
         }
     }
     if (i < 0)
-        insert_record(t, &rec);
-    else
-        *edit(t, i) = rec;
+        insert_record(t, rec);
     return PP_OK;
 }
 
@@ -368,6 +423,7 @@ pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn
         return st;
     contact_record r = *rec;
     anchor_turn(&r);
+    r.carried = 0, r.carry_count = 0; /* carry.c's pairs join the carry order themselves */
     r.found = t->substep - 1; /* not found at the last substep: a resting pair lists its own points */
     if (!live) {
         r.flags |= CT_GONE, r.point_count = 0;
@@ -388,10 +444,15 @@ pp_status contact_table_save(world *wd)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d touching pairs", (int)t->count);
     if (t->logged_capacity > had)
         memset(t->logged + had, 0, (size_t)(t->logged_capacity - had) * sizeof *t->logged);
+    if (!ARRAY_RESERVE(t->saved_order, t->saved_order_capacity, t->carry_count))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to save %d carried pairs", (int)t->carry_count);
     if (++t->step == 0) { /* wrapped: no stale mark may match */
         memset(t->logged, 0, (size_t)t->logged_capacity * sizeof *t->logged);
         t->step = 1;
     }
+    if (t->carry_count > 0)
+        memcpy(t->saved_order, t->carry_order, (size_t)t->carry_count * sizeof *t->carry_order);
+    t->saved_order_count = t->carry_count;
     t->log_count = 0;
     t->saved_count = t->count, t->saved_awake = t->awake, t->saved_gone = t->gone, t->saved_substep = t->substep;
     return PP_OK;
@@ -403,6 +464,10 @@ void contact_table_restore(world *wd)
     for (int32_t k = 0; k < t->log_count; k++)
         t->records[t->log_at[k]] = t->log[k];
     t->count = t->saved_count, t->awake = t->saved_awake, t->gone = t->saved_gone, t->substep = t->saved_substep;
+    /* The order only grows within a step (carry_capacity ≥ the saved count), as do the records. */
+    if (t->saved_order_count > 0)
+        memcpy(t->carry_order, t->saved_order, (size_t)t->saved_order_count * sizeof *t->carry_order);
+    t->carry_count = t->saved_order_count;
     index_rebuild(t); /* it held at least this many: no room to find */
     contact_table_commit(wd);
 }
@@ -440,6 +505,20 @@ void contact_table_validate(const world *wd)
                   (!wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake));
     }
     PP_ASSERT(t->index.count == keyed);
+    int32_t carried = 0;
+    for (int32_t k = 0; k < t->carry_count; k++) {
+        const int32_t i = t->carry_order[k];
+        PP_ASSERT(i >= -1 && i < t->count);
+        if (i < 0)
+            continue;
+        const contact_record *r = &t->records[i];
+        PP_ASSERT(r->carried == k + 1 && !(r->flags & (CT_GONE | CT_SENSOR | CT_PASSING)));
+        PP_ASSERT(r->carry_count >= 1 && r->carry_count <= PP_MAX_CONTACTS_PER_PAIR);
+        carried++;
+    }
+    for (int32_t i = 0; i < t->count; i++)
+        carried -= t->records[i].carried != 0;
+    PP_ASSERT(carried == 0); /* every carried record is in the order once */
 #else
     (void)wd;
 #endif
@@ -452,5 +531,7 @@ void contact_table_free(contact_table *t)
     pp_free(t->log);
     pp_free(t->log_at);
     pp_free(t->logged);
+    pp_free(t->carry_order);
+    pp_free(t->saved_order);
     *t = (contact_table){0};
 }

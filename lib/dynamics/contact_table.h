@@ -32,6 +32,20 @@ enum {
     CT_GONE = 32,       /* a body was removed: the pair ends at the next substep (out of the hash meanwhile) */
 };
 
+/* A carried pair's flags (carry.c): what its substeps have done with it. */
+enum {
+    CARRY_CLAIMED = 1, /* the substep's broadphase still pairs them: its contacts are moved, not collided */
+    CARRY_MISSED = 2,  /* collided at a substep it was carried into */
+    CARRY_HELD = 4,    /* resting at the substep that found it: may be held into later steps */
+    CARRY_STACK = 8,   /* its bodies sat that substep out: bound CARRY_STACK_PX, else CARRY_MOTION_PX */
+};
+
+/* Both bodies' centres of mass (px) and rotations when a carried pair's contacts were found. */
+typedef struct carried_pose {
+    dvec2 com_a, com_b;
+    double cos_a, sin_a, cos_b, sin_b;
+} carried_pose;
+
 /* One touching pair: a is the body in the lower slot (the broadphase's order). */
 typedef struct contact_record {
     uint64_t a, b;         /* body handle ids */
@@ -42,12 +56,21 @@ typedef struct contact_record {
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
     int32_t reserved;
     pp_contact points[PP_MAX_CONTACTS_PER_PAIR];
+    /* Carried (carry.h): the contacts the raster found, moved with the bodies through later substeps. */
+    int32_t carried;       /* 1 + its place in the table's carry order, or 0: not carried */
+    int8_t carry_count;    /* carry_points in use */
+    int8_t carry_last;     /* the last substep (0 = the step's first) it is carried into */
+    uint8_t carry_flags;   /* CARRY_* */
+    carried_pose carry_pose;
+    pp_contact carry_points[PP_MAX_CONTACTS_PER_PAIR];
 } contact_record;
 
 typedef struct contact_table {
     contact_record *records; /* [0, awake): a body awake at the last substep; [awake, count): resting */
     int32_t count, awake, capacity;
     pair_map index;          /* the pair's slots → its record (not the gone ones) */
+    int32_t *carry_order;    /* the carried records' indices in the order carry.c found them; −1: ended since */
+    int32_t carry_count, carry_capacity;
     uint32_t substep;        /* counts the substeps that looked for pairs */
     int32_t found_count;     /* pairs found in this one */
     bool resting_stale;      /* a body entered the awake set: resting pairs with an awake body are tested again */
@@ -61,6 +84,8 @@ typedef struct contact_table {
     uint32_t step;           /* counts the steps saved, from 1 */
     int32_t saved_count, saved_awake, saved_gone; /* the counts the step found; saved_count 0 outside a step */
     uint32_t saved_substep;
+    int32_t *saved_order;    /* carry_order as the step found it */
+    int32_t saved_order_count, saved_order_capacity;
 } contact_table;
 
 /* Start a substep's search. */
@@ -78,6 +103,24 @@ pp_status contact_table_end_substep(struct world *wd);
 
 /* After a substep's solve: each solved contact's pair keeps its points and impulses as its manifold. */
 void contact_table_store(struct world *wd);
+
+/* The index of the record of the bodies in these slots (a < b), or −1. */
+int32_t contact_table_lookup(const struct world *wd, uint32_t a, uint32_t b);
+
+/* The record at index i, to be changed: logged first for a failed step. */
+contact_record *contact_table_edit(struct world *wd, int32_t i);
+
+/* Carry the record at index i (not carried yet): it joins the end of the carry order. Room reserved with
+ * contact_table_reserve_carried. */
+void contact_table_carry(struct world *wd, int32_t i);
+
+/* Room for n carried records; fn names the call in the message. */
+pp_status contact_table_reserve_carried(struct world *wd, int32_t n, const char *fn);
+
+/* Keep the carried records for which keep(…, arg) holds, in their order; the rest are carried no more. */
+void contact_table_keep_carried(struct world *wd,
+                                bool (*keep)(const struct world *, const contact_record *, const void *),
+                                const void *arg);
 
 /* The record of two bodies (handle ids, either order), or NULL. */
 const contact_record *contact_table_find(const struct world *wd, uint64_t x, uint64_t y);

@@ -329,7 +329,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
  * step of such a world finds nothing, solves nothing and moves nothing. */
 static bool world_is_quiet(const world *wd)
 {
-    return wd->awake.count == 0 && wd->contact_count == 0 && wd->carry.pair_count == 0 && wd->forced.count == 0 &&
+    return wd->awake.count == 0 && wd->contact_count == 0 && wd->table.carry_count == 0 && wd->forced.count == 0 &&
            wd->joints.ids.live == 0 && wd->table.gone == 0 && !wd->table.resting_stale;
 }
 

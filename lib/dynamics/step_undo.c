@@ -42,6 +42,8 @@ static uint64_t fingerprint(const world *wd)
     }
     for (int32_t k = 0; k < wd->table.count; k++)
         MIX(h, wd->table.records[k]);
+    for (int32_t k = 0; k < wd->table.carry_count; k++)
+        MIX(h, wd->table.carry_order[k]);
     const uint64_t steps = solver_get_steps(wd->solver);
     MIX(h, wd->contact_count), MIX(h, wd->table.count), MIX(h, wd->table.awake), MIX(h, wd->events.count);
     MIX(h, wd->stats.pairs), MIX(h, wd->stats.contacts), MIX(h, steps);
@@ -89,8 +91,7 @@ pp_status step_save(world *wd)
 #ifdef PP_CHECKS
     u->fingerprint = fingerprint(wd);
 #endif
-    pp_status st = contact_table_save(wd);
-    return st ? st : carry_save(wd);
+    return contact_table_save(wd);
 }
 
 void step_save_contact_bodies(world *wd)
@@ -131,7 +132,7 @@ void step_restore(world *wd)
     solver_set_steps(wd->solver, u->solver_steps);
     contact_table_restore(wd);
     wd->events.count = u->event_count;
-    carry_restore(wd);
+    wd->carry.active = false;
     awake_rebuild(wd); /* poses and sleep came back behind the set's back */
     contact_table_validate(wd);
     PP_ASSERT(fingerprint(wd) == u->fingerprint);

@@ -378,11 +378,10 @@ static pp_status restore_touching(const json_ctx *c, const cJSON *root, world *w
     return st;
 }
 
-/* One held pair's contacts, in order, into the carry's arrays (room made). */
-static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, const char *where, world *wd,
-                                       pp_body a, pp_body b)
+/* One held pair's contacts, in order, into its record's carried contacts; the poses their bodies had, which every
+ * contact of a pair shares. */
+static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, const char *where, contact_record *r)
 {
-    carry *cy = &wd->carry;
     int32_t k = 0;
     char at[64];
     for (const cJSON *it = arr->child; it; it = it->next, k++) {
@@ -396,15 +395,19 @@ static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, cons
                              "expected %d finite numbers: point, unit normal, depth, pixel count, impulse, two centres "
                              "of mass, two (cos, sin) pairs",
                              HELD_NUMBERS);
-        carried_contact *cc = &cy->contacts[cy->contact_count++];
-        cc->c = saved_contact(a, b, v);
-        cc->com_a = dv(v[7], v[8]), cc->com_b = dv(v[9], v[10]);
-        cc->cos_a = v[11], cc->sin_a = v[12], cc->cos_b = v[13], cc->sin_b = v[14];
+        const carried_pose q = {dv(v[7], v[8]), dv(v[9], v[10]), v[11], v[12], v[13], v[14]};
+        if (k > 0 && memcmp(&q, &r->carry_pose, sizeof q) != 0)
+            return json_fail(c, PP_ERR_FORMAT, at, NULL,
+                             "expected the centres of mass and rotations of the pair's first contact");
+        r->carry_pose = q;
+        r->carry_points[k] = saved_contact((pp_body){r->a}, (pp_body){r->b}, v);
     }
+    r->carry_count = (int8_t)k;
     return PP_OK;
 }
 
-/* The held pairs; absent in snapshots from before pairs were held from step to step. */
+/* The held pairs, each a touching pair's record; absent in snapshots from before pairs were held from step to
+ * step. */
 static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
 {
     static const char *const keys[] = {"a", "b", "stack", "contacts", NULL};
@@ -415,10 +418,8 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
         return st;
     if (wd->def.substeps < 2) /* one substep carries nothing: such a world never holds a pair */
         return json_fail(c, PP_ERR_FORMAT, "held", NULL, "expected none in a world of one substep");
-    carry *cy = &wd->carry;
-    if (!ARRAY_RESERVE(cy->pairs, cy->pair_capacity, n) ||
-        !pair_map_reserve(&cy->by_slots, n))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
+    if ((st = contact_table_reserve_carried(wd, n, c->fn)))
+        return st;
     char where[32];
     int32_t i = 0;
     for (const cJSON *it = arr->child; it && st == PP_OK; it = it->next, i++) {
@@ -429,8 +430,16 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
         if ((st = check_keys(c, it, where, NULL, keys)) || (st = read_body_handle(c, it, where, "a", false, wd, &a)) ||
             (st = read_body_handle(c, it, where, "b", false, wd, &b)))
             break;
-        if (!body_find(wd, (pp_body){a}) || !body_find(wd, (pp_body){b}) || handle_slot(a) >= handle_slot(b))
+        const bool live = body_find(wd, (pp_body){a}) && body_find(wd, (pp_body){b});
+        const int32_t at = live && handle_slot(a) < handle_slot(b)
+                               ? contact_table_lookup(wd, handle_slot(a), handle_slot(b)) : -1;
+        const contact_record *r = at >= 0 ? &wd->table.records[at] : NULL;
+        if (!live || handle_slot(a) >= handle_slot(b))
             st = json_fail(c, PP_ERR_FORMAT, where, "a", "expected two live bodies, a in the lower slot");
+        else if (!r || (r->flags & (CT_SENSOR | CT_PASSING)))
+            st = json_fail(c, PP_ERR_FORMAT, where, NULL, "expected a pair in \"touching\" that makes contacts");
+        else if (r->carried)
+            st = json_fail(c, PP_ERR_FORMAT, "held", NULL, "a pair is held twice");
         else if (!cJSON_IsBool(stack))
             st = json_fail(c, PP_ERR_FORMAT, where, "stack", "expected true or false");
         else if (!cJSON_IsArray(points) || cJSON_GetArraySize(points) < 1 ||
@@ -438,21 +447,12 @@ static pp_status restore_held(const json_ctx *c, const cJSON *root, world *wd)
             st = json_fail(c, PP_ERR_FORMAT, where, "contacts", "expected 1 to %d contacts", PP_MAX_CONTACTS_PER_PAIR);
         if (st)
             break;
-        const int32_t first = cy->contact_count;
-        if (!ARRAY_RESERVE(cy->contacts, cy->contact_capacity, first + cJSON_GetArraySize(points))) {
-            st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d held pairs", c->fn, (int)n);
-            break;
-        }
-        if ((st = restore_held_contacts(c, points, where, wd, (pp_body){a}, (pp_body){b})))
-            break;
-        cy->pairs[cy->pair_count++] = (carried_pair){handle_slot(a), handle_slot(b), first, cy->contact_count - first,
-                                                     (int32_t)wd->def.substeps - 1, false, false, true,
-                                                     cJSON_IsTrue(stack)};
+        contact_table_carry(wd, at);
+        contact_record *e = contact_table_edit(wd, at);
+        e->carry_last = (int8_t)(wd->def.substeps - 1);
+        e->carry_flags = CARRY_HELD | (cJSON_IsTrue(stack) ? CARRY_STACK : 0);
+        st = restore_held_contacts(c, points, where, e);
     }
-    if (!st && !carry_index(cy))
-        st = json_fail(c, PP_ERR_FORMAT, "held", NULL, "a pair is held twice");
-    if (st)
-        cy->pair_count = cy->contact_count = 0;
     return st;
 }
 

@@ -335,21 +335,24 @@ static bool write_touching(const world *wd, cJSON *root)
 /* The pairs held from step to step (carry.h), in their order: the next step carries them uncollided. */
 static bool write_held(const world *wd, cJSON *root)
 {
-    const carry *c = &wd->carry;
+    const contact_table *t = &wd->table;
     cJSON *arr = cJSON_CreateArray();
     bool ok = arr != NULL;
-    for (int32_t i = 0; ok && i < c->pair_count; i++) {
-        const carried_pair *p = &c->pairs[i];
-        const carried_contact *first = &c->contacts[p->first];
+    for (int32_t i = 0; ok && i < t->carry_count; i++) {
+        if (t->carry_order[i] < 0)
+            continue; /* ended: a step never leaves one (carry_end_step packs the order) */
+        const contact_record *r = &t->records[t->carry_order[i]];
+        const carried_pose *q = &r->carry_pose;
         cJSON *e = cJSON_CreateObject(), *points = NULL;
-        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(first->c.a.id))) &&
-             add(e, "b", json_handle(handle_saved(first->c.b.id))) && add(e, "stack", cJSON_CreateBool(p->stack)) &&
+        ok = e && cJSON_AddItemToArray(arr, e) && add(e, "a", json_handle(handle_saved(r->a))) &&
+             add(e, "b", json_handle(handle_saved(r->b))) &&
+             add(e, "stack", cJSON_CreateBool((r->carry_flags & CARRY_STACK) != 0)) &&
              add(e, "contacts", points = cJSON_CreateArray());
-        for (int32_t k = 0; ok && k < p->count; k++) {
-            const carried_contact *cc = &first[k];
-            const double v[HELD_NUMBERS] = {cc->c.point.x, cc->c.point.y, cc->c.normal.x, cc->c.normal.y, cc->c.depth,
-                                            cc->c.pixel_count, cc->c.normal_impulse, cc->com_a.x, cc->com_a.y,
-                                            cc->com_b.x, cc->com_b.y, cc->cos_a, cc->sin_a, cc->cos_b, cc->sin_b};
+        for (int32_t k = 0; ok && k < r->carry_count; k++) {
+            const pp_contact *c = &r->carry_points[k];
+            const double v[HELD_NUMBERS] = {c->point.x, c->point.y, c->normal.x, c->normal.y, c->depth,
+                                            c->pixel_count, c->normal_impulse, q->com_a.x, q->com_a.y,
+                                            q->com_b.x, q->com_b.y, q->cos_a, q->sin_a, q->cos_b, q->sin_b};
             cJSON *nums = json_doubles(v, HELD_NUMBERS);
             ok = nums && cJSON_AddItemToArray(points, nums);
             if (!ok)

@@ -1,5 +1,6 @@
 /* Contacts carried through a step's substeps (lib/dynamics/carry.h): the raster narrowphase runs once a step for
  * pairs that touch at its start, and the later substeps move their contacts with the bodies. */
+#include <cjson/cJSON.h>
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -174,5 +175,53 @@ Test(carry, broken_held_pairs_in_a_snapshot_are_refused)
         EXPECT_ERR(pp_world_load_snapshot(dir, &out), PP_ERR_FORMAT, cases[i].words);
         remove_tree(dir);
     }
+    pp_world_destroy(w);
+}
+
+/* The snapshot in dir without the "touching" record of its first held pair. */
+static void drop_first_held_record(const char *dir)
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s/world.json", dir);
+    static char text[1 << 20];
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f);
+    text[fread(text, 1, sizeof text - 1, f)] = 0;
+    fclose(f);
+    cJSON *root = cJSON_Parse(text);
+    cr_assert_not_null(root);
+    const cJSON *held = cJSON_GetArrayItem(cJSON_GetObjectItem(root, "held"), 0);
+    cr_assert_not_null(held, "no held pair in the snapshot");
+    const char *a = cJSON_GetObjectItem(held, "a")->valuestring, *b = cJSON_GetObjectItem(held, "b")->valuestring;
+    cJSON *touching = cJSON_GetObjectItem(root, "touching");
+    int dropped = 0;
+    for (int i = cJSON_GetArraySize(touching) - 1; i >= 0; i--) {
+        const cJSON *t = cJSON_GetArrayItem(touching, i);
+        if (!strcmp(cJSON_GetObjectItem(t, "a")->valuestring, a) && !strcmp(cJSON_GetObjectItem(t, "b")->valuestring, b))
+            cJSON_DeleteItemFromArray(touching, i), dropped++;
+    }
+    cr_assert_eq(dropped, 1, "the held pair's record was listed %d times", dropped);
+    char *out = cJSON_Print(root);
+    f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    fputs(out, f);
+    fclose(f);
+    cJSON_free(out);
+    cJSON_Delete(root);
+}
+
+Test(carry, a_held_pair_without_its_touching_record_is_refused)
+{
+    /* A held pair's carried contacts live in its contact record: a snapshot that lists none is broken. */
+    pp_world w = towers(4);
+    step_until_held(w);
+    char dir[] = "/tmp/pp_held_XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    PP_OK_OR_FAIL(pp_world_save_snapshot(w, dir));
+    drop_first_held_record(dir);
+    pp_world out = {0};
+    EXPECT_ERR(pp_world_load_snapshot(dir, &out), PP_ERR_FORMAT,
+               "held[0]: expected a pair in \"touching\" that makes contacts");
+    remove_tree(dir);
     pp_world_destroy(w);
 }
