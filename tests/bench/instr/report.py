@@ -4,8 +4,9 @@
 Runs build/bench/bench_instr under callgrind once per scene, reads the callgrind.out file itself and charges
 every instruction of the measured steps to a stage: a function's own instructions to the stage of its source
 file in lib/ (STAGES below) or to ODE (libode), and a call into libc, libm or ld.so at its inclusive cost to the
-caller's stage, so qsort from carry.c is carry's and sqrt from ODE is ODE's. Instruction counts do not depend on
-a noisy machine. Standard library only.
+caller's stage, so qsort from carry.c is carry's and sqrt from ODE is ODE's. So is a call into lib/'s shared
+helpers: raster.c (the narrowphase reads masks through it, an erase writes them) and the headers' out-of-line
+functions. Instruction counts do not depend on a noisy machine. Standard library only.
 
     report.py [--binary build/bench/bench_instr] [--scene NAME]... [--csv PATH] [--keep DIR]
 """
@@ -40,6 +41,8 @@ STAGES = {
 }
 ODE = "ODE"
 SYSTEM = "(system)"  # libc, libm, ld.so: charged to whoever called them
+HELPER = "(helper)"  # lib/'s shared helpers: raster.c and the headers' out-of-line functions, charged likewise
+HELPER_FILES = {"raster.c"}  # the narrowphase reads masks through it, an erase writes them
 BENCH = "(benchmark program)"  # bench_instr's own code: not a stage
 NOT_BOOKKEEPING = {ODE, "narrowphase"}
 LIB_FILE = re.compile(r"(?:^|/)lib/(core|collide|dynamics|edit|query|io)/([^/]+)$")
@@ -55,6 +58,8 @@ def stage_of(obj, path, binary_name):
     if not m:
         return BENCH
     folder, name = m.groups()
+    if name.endswith(".h") or name in HELPER_FILES:
+        return HELPER
     if folder == "edit":
         return "edits"
     if name.startswith("joint"):
@@ -128,9 +133,10 @@ class Profile:
 
 
 def charge(profile, binary_name):
-    """Ir by stage. Own instructions go to their function's stage. A call from outside the system libraries into
-    them is charged, inclusive, to the caller; a call back out of them (qsort's comparator) is taken off its
-    callee's stage, which already has it as own instructions, so each instruction is counted once."""
+    """Ir by stage. Own instructions go to their function's stage. A call from outside the system libraries and
+    the helpers into them is charged, inclusive, to the caller; a call back out of them (qsort's comparator) is
+    taken off its callee's stage, which already has it as own instructions, so each instruction is counted
+    once."""
     stage = {}
 
     def of(key):
@@ -138,14 +144,17 @@ def charge(profile, binary_name):
             stage[key] = stage_of(key[0], key[1] or "", binary_name)
         return stage[key]
 
+    def shared(key):
+        return of(key) in (SYSTEM, HELPER)
+
     ir = defaultdict(int)
     for key, n in profile.self_ir.items():
-        if of(key) != SYSTEM:
+        if not shared(key):
             ir[of(key)] += n
     for (caller, callee), n in profile.calls.items():
-        if of(caller) != SYSTEM and of(callee) == SYSTEM:
+        if not shared(caller) and shared(callee):
             ir[of(caller)] += n
-        elif of(caller) == SYSTEM and of(callee) != SYSTEM:
+        elif shared(caller) and not shared(callee):
             ir[of(callee)] -= n
     return ir
 
@@ -184,7 +193,7 @@ def main():
     print("bench_instr under callgrind: instructions (Ir) of the measured steps only, PhysPix BALANCED, CPU\n"
           "backend, one thread. /step: per measured step; /awake body: over the sum of pp_step_stats.awake_bodies\n"
           "over those steps; /contact: over the sum of contact points (last substep's) over them. Calls into libc,\n"
-          "libm and ld.so count toward their caller's stage.\n")
+          "libm, ld.so, raster.c and lib/'s headers count toward their caller's stage.\n")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         out_dir = args.keep or tmp
