@@ -13,7 +13,7 @@ from physpix import World
 from physpix.viewer import Viewer
 
 WIDTH, HEIGHT = 640, 360
-# Blasts: (frame, world point). Each lands under a crate's edge.
+# Blasts: (frame, world point). Each lands just under a crate.
 BLASTS = [(20, (180.0, 220.0)), (50, (330.0, 222.0)), (80, (470.0, 216.0))]
 
 
@@ -34,7 +34,7 @@ class Terrain(Viewer):
         box = common.sprite(np.ones((24, 24)), (214, 150, 70), edge=(120, 80, 40))
         self.crates = [world.create_body(rgba=box, position=(x, 160.0)) for x in (180, 330, 470)]
         super().__init__(world, size)
-        self.erased = 0  # terrain pixels the blasts took, as the library counted them
+        self.erased = 0  # pixels the blasts took from every body, as the library counted them
         self.pending: List[Tuple[int, Tuple[float, float]]] = list(BLASTS)
 
     def step(self) -> None:
