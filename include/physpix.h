@@ -853,6 +853,9 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
                                       const uint8_t *mask, const uint8_t *weights);
 /// Copy the collision mask, one byte per pixel (1 solid, 0 empty), rows top to bottom; capacity in bytes ≥ width·height.
 PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
+/// Copy the weight plane, one byte per pixel (0..255 relative mass; 255 where solid without a plane, 0 where empty),
+/// rows top to bottom; capacity in bytes ≥ width·height.
+PP_API pp_status pp_body_read_weights(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
 /// Copy the body's look as RGBA8 rows: the sprite where solid, transparent where not; without a sprite, solid
 /// pixels are opaque gray of their weight. Capacity in bytes ≥ width·height·4.
 PP_API pp_status pp_body_read_rgba(pp_world w, pp_body b, uint8_t *out, int64_t capacity);

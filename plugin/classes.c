@@ -781,16 +781,27 @@ static void body_paint_circle(plugin_object *self, const pp_variant *a, pp_varia
         ret_int(ret, changed);
 }
 
-static void body_read_mask(plugin_object *self, const pp_variant *a, pp_variant *ret)
+/* A whole bitmap plane of width*height bytes per pixel (pp_body_read_mask, _read_weights, _read_rgba) into ret. */
+static void body_read_plane(plugin_object *self, pp_variant *ret, const char *m, int bytes_per_pixel,
+                            pp_status (*read)(pp_world, pp_body, uint8_t *, int64_t))
 {
-    const char *m = "PhysPixBody.read_mask";
     int32_t w, h;
     if (!ret_ok(ret, pp_body_get_size(self->world, self->body, &w, &h), m))
         return;
-    const int64_t size = (int64_t)w * h;
-    uint8_t *mask = ret_bytes(ret, size);
-    if (mask && !ret_ok(ret, pp_body_read_mask(self->world, self->body, mask, size), m))
-        free(mask); /* ret now holds the error, not the bytes */
+    const int64_t size = (int64_t)w * h * bytes_per_pixel;
+    uint8_t *plane = ret_bytes(ret, size);
+    if (plane && !ret_ok(ret, read(self->world, self->body, plane, size), m))
+        free(plane); /* ret now holds the error, not the bytes */
+}
+
+static void body_read_mask(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    body_read_plane(self, ret, "PhysPixBody.read_mask", 1, pp_body_read_mask);
+}
+
+static void body_read_weights(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    body_read_plane(self, ret, "PhysPixBody.read_weights", 1, pp_body_read_weights);
 }
 
 static void body_get_size(plugin_object *self, const pp_variant *a, pp_variant *ret)
@@ -815,14 +826,7 @@ static void body_get_type(plugin_object *self, const pp_variant *a, pp_variant *
 
 static void body_get_rgba(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
-    const char *m = "PhysPixBody.get_rgba";
-    int32_t w, h;
-    if (!ret_ok(ret, pp_body_get_size(self->world, self->body, &w, &h), m))
-        return;
-    const int64_t size = (int64_t)w * h * 4;
-    uint8_t *rgba = ret_bytes(ret, size);
-    if (rgba && !ret_ok(ret, pp_body_read_rgba(self->world, self->body, rgba, size), m))
-        free(rgba); /* ret now holds the error, not the bytes */
+    body_read_plane(self, ret, "PhysPixBody.get_rgba", 4, pp_body_read_rgba);
 }
 
 static void body_set_type(plugin_object *self, const pp_variant *a, pp_variant *ret)

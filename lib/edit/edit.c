@@ -368,9 +368,10 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
     return PP_OK;
 }
 
-PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity)
+/* One byte a pixel into out, rows top to bottom: 1 where solid (the mask) or the solid pixels' weights. The plane
+ * may keep a byte under an empty pixel; it weighs nothing, so it reads 0. */
+static pp_status read_plane(pp_world w, pp_body b, uint8_t *out, int64_t capacity, bool weights, const char *fn)
 {
-    static const char *fn = "pp_body_read_mask";
     world *wd;
     body *bd;
     pp_status st = world_body_lookup(w, b, fn, &wd, &bd);
@@ -382,9 +383,21 @@ PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t 
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: out must hold width × height = %lld bytes, got %scapacity %lld", fn,
                        (long long)need, out ? "" : "NULL with ", (long long)capacity);
     for (int32_t y = 0; y < r->height; y++)
-        for (int32_t x = 0; x < r->width; x++)
-            out[(int64_t)y * r->width + x] = raster_solid(r, x, y);
+        for (int32_t x = 0; x < r->width; x++) {
+            const bool solid = raster_solid(r, x, y);
+            out[(int64_t)y * r->width + x] = (uint8_t)(weights && solid ? raster_weight(r, x, y) : solid);
+        }
     return PP_OK;
+}
+
+PP_API pp_status pp_body_read_mask(pp_world w, pp_body b, uint8_t *out, int64_t capacity)
+{
+    return read_plane(w, b, out, capacity, false, "pp_body_read_mask");
+}
+
+PP_API pp_status pp_body_read_weights(pp_world w, pp_body b, uint8_t *out, int64_t capacity)
+{
+    return read_plane(w, b, out, capacity, true, "pp_body_read_weights");
 }
 
 PP_API pp_status pp_body_get_size(pp_world w, pp_body b, int32_t *width, int32_t *height)

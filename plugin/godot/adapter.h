@@ -101,6 +101,7 @@ bool pixels_plane(call *c, const godot_variant *src, const char *what, const pp_
                   uint8_t **out);
 godot_variant add_body_image(call *c);
 godot_variant read_mask(call *c);
+godot_variant read_weights(call *c);
 godot_variant read_rgba(call *c);
 godot_variant write_pixels(call *c);
 

@@ -257,6 +257,7 @@ static const method_def METHODS[] = {
     {"apply_torque", "bf", api_apply_torque, "apply_torque(body: int, torque: float)"},
     {"apply_angular_impulse", "bf", api_apply_angular_impulse, "apply_angular_impulse(body: int, impulse: float)"},
     {"read_mask", "b", read_mask, "read_mask(body: int) -> PoolByteArray"},
+    {"read_weights", "b", read_weights, "read_weights(body: int) -> PoolByteArray"},
     {"read_rgba", "b|ii", read_rgba, "read_rgba(body: int, first_row: int = 0, rows: int = all) -> PoolByteArray"},
     {"write_pixels", "biiiiM|M", write_pixels, "write_pixels(body: int, x: int, y: int, width: int, height: int, mask: PoolByteArray, weights: PoolByteArray = all 255) -> bool"},
     {"erase_circle", "bvf", api_erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"},

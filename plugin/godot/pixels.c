@@ -241,7 +241,7 @@ bool pixels_plane(call *c, const godot_variant *src, const char *what, const pp_
     return good;
 }
 
-/* pp_body_read_mask and pp_body_read_rgba: a whole bitmap plane into out. */
+/* pp_body_read_mask, _read_weights and _read_rgba: a whole bitmap plane into out. */
 typedef pp_status (*read_fn)(pp_world w, pp_body b, uint8_t *out, int64_t capacity);
 
 /* Bytes [skip, skip + len) of the plane fn reads (n bytes in all) as a PoolByteArray; nil if the read fails. */
@@ -275,10 +275,21 @@ static bool body_size(call *c, int32_t *w, int32_t *h)
     return ok(c, pp_body_get_size(c->self->world, c->a[0].body, w, h));
 }
 
-godot_variant read_mask(call *c)
+/* A one-byte-a-pixel plane whole. */
+static godot_variant read_byte_plane(call *c, read_fn fn)
 {
     int32_t w, h;
-    return body_size(c, &w, &h) ? read_pool(c, pp_body_read_mask, (int64_t)w * h, 0, (int64_t)w * h) : gdn_nil();
+    return body_size(c, &w, &h) ? read_pool(c, fn, (int64_t)w * h, 0, (int64_t)w * h) : gdn_nil();
+}
+
+godot_variant read_mask(call *c)
+{
+    return read_byte_plane(c, pp_body_read_mask);
+}
+
+godot_variant read_weights(call *c)
+{
+    return read_byte_plane(c, pp_body_read_weights);
 }
 
 godot_variant read_rgba(call *c)

@@ -265,6 +265,67 @@ Test(edit, bad_edits_are_refused_and_change_nothing) {
     pp_world_destroy(w);
 }
 
+/* Sum of a weight plane's bytes over 255: the body's mass at density 1. */
+static float plane_mass(const uint8_t *weights, int n) {
+    long sum = 0;
+    for (int k = 0; k < n; k++) sum += weights[k];
+    return (float)sum / 255.0f;
+}
+
+Test(edit, read_weights_gives_each_pixels_weight_after_painting_and_erasing) {
+    enum { W = 20, H = 10 };
+    pp_world w = make_world(0, 0);
+    /* Pivot at the centre, angle 0: pixel (i, j)'s centre is at world (90 + i + 0.5, 95 + j + 0.5). */
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), W, H);
+    uint8_t got[W * H], want[W * H];
+    PP_OK_OR_FAIL(pp_body_read_weights(w, b, got, sizeof got));
+    memset(want, 255, sizeof want);
+    cr_assert_eq(memcmp(got, want, sizeof got), 0, "without a weight plane every solid pixel reads 255");
+    /* A plus of five pixels around (5, 2) painted 60; pixel (15, 7) erased. */
+    int32_t changed = 0;
+    PP_OK_OR_FAIL(pp_body_paint_circle(w, b, v2(95.5f, 97.5f), 1.2f, 60, &changed));
+    cr_assert_eq(changed, 5);
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, b, v2(105.5f, 102.5f), 0.4f, &changed));
+    cr_assert_eq(changed, 1);
+    const int plus[5][2] = {{5, 2}, {4, 2}, {6, 2}, {5, 1}, {5, 3}};
+    for (int k = 0; k < 5; k++) want[plus[k][1] * W + plus[k][0]] = 60;
+    want[7 * W + 15] = 0;
+    PP_OK_OR_FAIL(pp_body_read_weights(w, b, got, sizeof got));
+    for (int k = 0; k < W * H; k++)
+        cr_assert_eq(got[k], want[k], "pixel (%d, %d) reads %d, painted %d", k % W, k / W, got[k], want[k]);
+    /* The bytes are the mass: density 1 gives Σ weight / 255. */
+    float m;
+    body_mass(w, b, &m, NULL, NULL);
+    cr_assert_float_eq(m, plane_mass(got, W * H), 1e-3f, "mass %g against the plane's %g", m, plane_mass(got, W * H));
+    /* Written weights, a solid pixel of weight 0 among them, read back as written. */
+    const uint8_t mask[3] = {1, 1, 0}, weights[3] = {7, 0, 200};
+    PP_OK_OR_FAIL(pp_body_write_pixels(w, b, 0, 9, 3, 1, mask, weights));
+    PP_OK_OR_FAIL(pp_body_read_weights(w, b, got, sizeof got));
+    cr_assert(got[9 * W] == 7 && got[9 * W + 1] == 0 && got[9 * W + 2] == 0 && got[9 * W + 3] == 255,
+              "row 9 starts %d %d %d %d, written 7 0 (empty) 255", got[9 * W], got[9 * W + 1], got[9 * W + 2],
+              got[9 * W + 3]);
+    pp_world_destroy(w);
+}
+
+Test(edit, read_weights_refuses_stale_handles_short_and_null_buffers) {
+    pp_world w = make_world(0, 0);
+    pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);
+    pp_body gone = add_rect(w, body_def(PP_BODY_DYNAMIC, 200, 100, 0), 4, 4);
+    PP_OK_OR_FAIL(pp_body_destroy(w, gone));
+    uint8_t out[200], small[199];
+    memset(out, 0xab, sizeof out);
+    EXPECT_ERR(pp_body_read_weights(w, gone, out, sizeof out), PP_ERR_INVALID_HANDLE, "body");
+    EXPECT_ERR(pp_body_read_weights(w, (pp_body){0}, out, sizeof out), PP_ERR_INVALID_HANDLE, "body");
+    EXPECT_ERR(pp_body_read_weights((pp_world){12345}, b, out, sizeof out), PP_ERR_INVALID_HANDLE, "world");
+    EXPECT_ERR(pp_body_read_weights(w, b, small, sizeof small), PP_ERR_INVALID_ARGUMENT, "200");
+    EXPECT_ERR(pp_body_read_weights(w, b, out, -1), PP_ERR_INVALID_ARGUMENT, "200");
+    EXPECT_ERR(pp_body_read_weights(w, b, NULL, sizeof out), PP_ERR_INVALID_ARGUMENT, "NULL");
+    cr_assert_eq(out[0], 0xab, "a refused read wrote into out");
+    PP_OK_OR_FAIL(pp_body_read_weights(w, b, out, INT64_MAX));
+    cr_assert_eq(out[0], 255);
+    pp_world_destroy(w);
+}
+
 Test(edit, painting_adds_weighted_pixels_and_a_static_body_splits_only_when_asked) {
     pp_world w = make_world(0, 0);
     pp_body b = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, 100, 0), 20, 10);

@@ -576,13 +576,14 @@ static void op_body_reads(reader *r)
         int32_t bw = 0, bh = 0;
         st = ST(pp_body_get_size(w, b, &bw, &bh));
         int64_t need = st == PP_OK ? (int64_t)bw * bh : 16;
-        const int rgba = (k >> 3) % 12 >= 10;
+        const int rgba = (k >> 3) % 12 >= 10, weights = (k >> 3) == 21; /* 21 % 12 = 9: half the mask reads */
         if (rgba)
             need *= 4;
         const int64_t cap = need - (int64_t)(u8(r) % 3) + 1; /* short by one, exact, one over */
         uint8_t *out = malloc((size_t)(cap > 0 ? cap : 1));
-        st = rgba ? ST(pp_body_read_rgba(w, b, null_out ? NULL : out, cap))
-                  : ST(pp_body_read_mask(w, b, null_out ? NULL : out, cap));
+        st = rgba      ? ST(pp_body_read_rgba(w, b, null_out ? NULL : out, cap))
+             : weights ? ST(pp_body_read_weights(w, b, null_out ? NULL : out, cap))
+                       : ST(pp_body_read_mask(w, b, null_out ? NULL : out, cap));
         if (t && !stale && b.id && cap < need)
             FUZZ_CHECK(st != PP_OK, "read with capacity %lld < %lld accepted", (long long)cap, (long long)need);
         free(out);

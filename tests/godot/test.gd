@@ -326,6 +326,7 @@ func test_pixel_calls_with_huge_arguments():
 			p.read_rgba(box, n, n),
 			p.read_rgba(box, n, 1),
 			p.read_mask(n),
+			p.read_weights(n),
 			p.paint_circle(box, Vector2(50, 50), 2.0, n),
 			p.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(), "dynamic", {"weights": PoolByteArray([n & 255])}),
 		]
@@ -397,6 +398,8 @@ func test_native_gains():
 		w4.append(51)
 	var light = g.add_body_mask(solid_mask(4, 4), 4, 4, Vector2(-200, 0), "dynamic", {"weights": w4})
 	check(near(g.get_mass(light), 16 * 51.0 / 255.0, 1e-4), "weights 51/255 make a 4×4 body of mass %s" % g.get_mass(light))
+	var lw = g.read_weights(light)
+	check(typeof(lw) == TYPE_RAW_ARRAY and lw.size() == 16 and lw[0] == 51 and lw[15] == 51, "read_weights: 16 × 51")
 
 	# Pixels: read the mask, clear a 5×6 half with write_pixels, read the look's rows.
 	var mask = g.read_mask(box)
@@ -490,6 +493,8 @@ func test_native_gains():
 	check(is_int(masked) and near(g.get_mass(masked), 42 * 0.2, 1e-4) and g.read_mask(masked)[5] == 1
 		and g.read_mask(masked)[6] == 0, "collision_mask (L8, white solid) and weights (grey 51) images: mass %s %s"
 		% [g.get_mass(masked), g.get_last_error()])
+	var mw = g.read_weights(masked)
+	check(mw.size() == 84 and mw[5] == 51 and mw[6] == 0, "read_weights: 51 where solid, 0 where not: %d %d" % [mw[5], mw[6]])
 	check(g.add_body_image(tex, Vector2(), "dynamic", {"collision_mask": grey.get_rect(Rect2(0, 0, 4, 4))}) == null
 		and g.get_last_error().find("4 × 4 pixels") >= 0, "a mask image of another size refused: %s" % g.get_last_error())
 	img.save_png("res://never_imported.png")

@@ -397,6 +397,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"erase_circle", {V_VEC2(1000, 1000), V_FLOAT(2)}},
         {"paint_circle", {V_VEC2(1000, 1000), V_FLOAT(2), V_INT(255)}},
         {"read_mask", {{0}}},
+        {"read_weights", {{0}}},
         {"get_size", {{0}}},
         {"get_world", {{0}}},
         {"get_pivot", {{0}}},
@@ -545,6 +546,19 @@ Test(methods, bodies_made_through_the_plugin_have_the_mass_of_their_pixels_and_f
     cr_assert_eq(mask.as.bytes.length, BOX * BOX);
     cr_assert_eq(memcmp(mask.as.bytes.data, box_mask, BOX * BOX), 0, "read_mask gives back the mask");
     plugin.api.variant_clear(&mask);
+    /* Pixel (0, 0) of the box at (50, 91), pivot at its centre, has its centre at (40.5, 81.5): paint it 51. */
+    cr_assert_eq(call(box, "paint_circle", (pp_variant[]){V_VEC2(40.5, 81.5), V_FLOAT(0.4), V_INT(51)}, 3).as.integer, 1);
+    pp_variant weights = call(box, "read_weights", NULL, 0);
+    cr_assert_eq(weights.type, PP_VARIANT_BYTES);
+    cr_assert_eq(weights.as.bytes.length, BOX * BOX);
+    int heavy = 0;
+    for (int k = 1; k < BOX * BOX; k++)
+        heavy += weights.as.bytes.data[k] == 255;
+    cr_assert(weights.as.bytes.data[0] == 51 && heavy == BOX * BOX - 1, "read_weights: %d then %d of 255",
+              weights.as.bytes.data[0], heavy);
+    plugin.api.variant_clear(&weights);
+    cr_assert(fabs(call(box, "get_mass", NULL, 0).as.real - (BOX * BOX - 1 + 51.0 / 255)) < 1e-4, "mass %g",
+              call(box, "get_mass", NULL, 0).as.real);
 
     /* The PNG crate falls freely: N = 60 semi-implicit Euler substeps of h = 1/240 s (15 steps, 4 substeps
      * each, the default) move it g·h²·N(N+1)/2 with g = 980 px/s². */

@@ -2,6 +2,7 @@
 import numpy as np
 import pytest
 
+import physpix
 from pphelpers import rect
 
 
@@ -88,3 +89,26 @@ def test_write_pixels_with_weights(space):
     b.write_pixels(0, 0, np.ones((2, 2)), weights=np.full((2, 2), 51, dtype=np.uint8))
     assert b.mass == pytest.approx(196.0 + 4 * 0.2, abs=1e-4)
     assert b.read_mask().sum() == 200
+
+
+def test_read_weights_gives_the_plane_the_mass_comes_from(space):
+    rng = np.random.default_rng(5)
+    mask = rng.random((12, 18)) < 0.7
+    weights = rng.integers(1, 256, size=mask.shape, dtype=np.uint8)
+    b = space.create_body(mask=mask, weights=weights, density=2.0)
+    got = b.read_weights()
+    assert got.shape == (12, 18) and got.dtype == np.uint8
+    assert np.array_equal(got, np.where(mask, weights, 0))
+    m, c, inertia = pixel_sums(got > 0, got, 2.0)
+    assert b.mass == pytest.approx(m, rel=1e-5)
+    assert b.center_of_mass == pytest.approx(c, abs=1e-3)
+    # Without a plane, solid pixels read 255; painting writes its weight where it reaches.
+    plain = rect(space, 10, 6, position=(100, 100))
+    assert np.array_equal(plain.read_weights(), np.full((6, 10), 255, dtype=np.uint8))
+    assert plain.paint_circle((95.5, 97.5), 0.4, weight=40) == 1
+    want = np.full((6, 10), 255, dtype=np.uint8)
+    want[0, 0] = 40
+    assert np.array_equal(plain.read_weights(), want)
+    plain.destroy()
+    with pytest.raises(physpix.InvalidHandleError):
+        plain.read_weights()

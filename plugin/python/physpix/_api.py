@@ -350,6 +350,7 @@ SIGNATURES = {
     "pp_body_paint_circle": (STATUS, [pp_world, pp_body, pp_vec2, c_float, c_uint8, P(c_int32)]),
     "pp_body_write_pixels": (STATUS, [pp_world, pp_body, c_int32, c_int32, c_int32, c_int32, u8p, u8p]),
     "pp_body_read_mask": (STATUS, [pp_world, pp_body, u8p, c_int64]),
+    "pp_body_read_weights": (STATUS, [pp_world, pp_body, u8p, c_int64]),
     "pp_body_get_size": (STATUS, [pp_world, pp_body, P(c_int32), P(c_int32)]),
     "pp_body_get_user_data": (STATUS, [pp_world, pp_body, P(c_uint64)]),
     "pp_image_info": (STATUS, [c_char_p, P(c_int32), P(c_int32)]),

@@ -40,7 +40,7 @@ def _snapshot_id(body: Body) -> str:
 
 def body_planes(body: Body) -> Tuple[Dict[str, Any], Dict[str, np.ndarray]]:
     """A body's scene entry and its planes (mask, weights, sprite as RGBA arrays) as a snapshot writes them: the
-    only place the library hands out a weight plane."""
+    only place the library hands out every field of a body's def."""
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp) / "snap"
         body.world.save_snapshot(folder)
@@ -51,14 +51,6 @@ def body_planes(body: Body) -> Tuple[Dict[str, Any], Dict[str, np.ndarray]]:
     for key in ("handle", "serial", "state", "mask", "weights", "sprite"):
         entry.pop(key, None)
     return entry, planes
-
-
-def weight_plane(body: Body) -> np.ndarray:
-    """The body's weights (h, w) uint8, 0 where empty."""
-    _, planes = body_planes(body)
-    mask = planes["mask"][:, :, 0] >= 128
-    weights = planes["weights"][:, :, 0] if "weights" in planes else np.full(mask.shape, 255, np.uint8)
-    return np.where(mask, weights, 0).astype(np.uint8)
 
 
 def save_body(body: Body, folder: os.PathLike, name: str = "painted") -> Path:
@@ -235,7 +227,7 @@ class Viewer:
         """The weight plane as a translucent heat map: transparent where empty, redder where heavier."""
         pg = self.pg
         if body.id not in self._weights:
-            wt = weight_plane(body)
+            wt = body.read_weights()
             rgba = np.zeros(wt.shape + (4,), np.uint8)
             rgba[..., 0] = 255
             rgba[..., 1] = 255 - wt

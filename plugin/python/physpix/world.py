@@ -923,6 +923,14 @@ class Body(_InWorld):
         self._call(lib.pp_body_read_mask, _u8_ptr(out), out.nbytes)
         return out
 
+    def read_weights(self) -> npt.NDArray[np.uint8]:
+        """The weight plane as a (height, width) uint8 array: 0..255 relative mass, 255 where solid without a
+        weight plane, 0 where empty."""
+        w, h = self.size
+        out = np.empty((h, w), dtype=np.uint8)
+        self._call(lib.pp_body_read_weights, _u8_ptr(out), out.nbytes)
+        return out
+
     def read_rgba(self) -> npt.NDArray[np.uint8]:
         """The body's look as a (height, width, 4) uint8 RGBA array: its sprite where solid, clear elsewhere;
         without a sprite, solid pixels are opaque gray of their weight."""
