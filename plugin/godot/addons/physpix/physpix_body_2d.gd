@@ -28,8 +28,8 @@ var _texture_flags = 0  # of its own texture: no mipmaps (rows are updated in pl
 
 
 func _ready():
-	if body != 0:
-		return  # a piece: its world made it
+	if body != 0 or Engine.editor_hint:
+		return  # a piece: its world made it; in the editor the world draws the body nodes itself
 	world_node = _find_world()
 	if world_node == null:
 		push_error("PhysPixBody2D %s: no PhysPixWorld2D above it" % name)
@@ -45,24 +45,12 @@ func _find_world():
 
 
 func _make_body():
-	var source = texture if texture != null else collision_mask
-	if source == null:
+	var spec = world_node._body_spec(self)
+	if spec == null:
 		push_error("PhysPixBody2D %s: neither a texture nor a collision_mask to take its bitmap from" % name)
 		return
-	# The node's origin is the body's pivot: where the Sprite draws the texture's point (centre - offset).
-	var size = source.get_size()
-	var pivot = (size / 2 if centered else Vector2()) - offset
-	var local = world_node.global_transform.affine_inverse() * global_transform
-	var options = {"pivot": pivot, "angle": local.get_rotation(), "density": density, "friction": friction,
-		"restitution": restitution, "fixed_rotation": fixed_rotation, "is_sensor": is_sensor, "one_way": one_way,
-		"detach_islands": detach_islands, "alpha_threshold": alpha_threshold, "linear_velocity": linear_velocity,
-		"angular_velocity": angular_velocity}
-	if collision_mask != null:
-		options["collision_mask"] = collision_mask
-	if weights != null:
-		options["weights"] = weights
 	var w = world_node.get_world()
-	var b = w.add_body_image(source, local.origin, body_type, options)
+	var b = w.add_body_image(spec[0], spec[1], body_type, spec[2])
 	if b == null:
 		push_error("PhysPixBody2D %s: %s" % [name, w.get_last_error()])
 		return

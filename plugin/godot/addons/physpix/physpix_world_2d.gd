@@ -1,8 +1,11 @@
+tool
 extends Node2D
 class_name PhysPixWorld2D
 # A PhysPix world: PhysPixBody2D nodes under it are its bodies. It steps in _physics_process, moves each
 # awake body's node to its pose, and turns PhysPix's events into signals with the nodes they concern.
 # Positions given to its methods are global; the world's own frame is this node's.
+# In the editor nothing steps; with debug_draw on, the overlay shows the bodies as placed (outlines, boxes,
+# centres of mass), made from each PhysPixBody2D's settings and following its node as it is moved.
 
 signal body_split(parent, piece)  # PhysPixBody2D, and the new PhysPixBody2D sibling drawn with its pixels
 signal body_destroyed(body)  # PhysPixBody2D left without pixels; it is freed after the signal
@@ -34,6 +37,7 @@ var _nodes = {}  # body int -> PhysPixBody2D
 var _joints = {}  # joint int -> PhysPixJoint2D
 var debug_segments = []  # the overlay drawn: {a, b, rgba, kind, body} in this node's frame, px
 var _overlay = null  # a child drawn above the bodies (a parent draws below its children)
+var _editor_bodies = {}  # in the editor: a PhysPixBody2D node's instance id -> [body int, str() of what made it]
 
 
 # The native world, created from the exported settings on first use.
@@ -65,6 +69,8 @@ func set_contact_events(on):
 
 
 func _physics_process(delta):
+	if Engine.editor_hint:
+		return  # the editor shows the scene as placed
 	var start = OS.get_ticks_usec()
 	# Joint nodes whose bodies are made by now make their joints (REALTIME: call_group alone defers the calls).
 	get_tree().call_group_flags(SceneTree.GROUP_CALL_REALTIME, JOINTS_PENDING, "_try_make", false)
@@ -77,6 +83,80 @@ func _physics_process(delta):
 			node.global_transform = frame * Transform2D(s["angle"], s["position"])
 	_update_overlay()
 	last_step_ms = (OS.get_ticks_usec() - start) / 1000.0
+
+
+func _process(_delta):
+	if Engine.editor_hint:
+		_editor_overlay()
+
+
+# What a PhysPixBody2D node's body is made from, read from its properties (in the editor its script does not
+# run, but its exported values are there): [bitmap texture, position and options for add_body_image], or null.
+func _body_spec(node):
+	var source = node.texture if node.texture != null else node.get("collision_mask")
+	if source == null:
+		return null
+	# The node's origin is the body's pivot: where the Sprite draws the texture's point (centre - offset).
+	var pivot = (source.get_size() / 2 if node.centered else Vector2()) - node.offset
+	var local = global_transform.affine_inverse() * node.global_transform
+	var options = {"pivot": pivot, "angle": local.get_rotation()}
+	for k in ["density", "friction", "restitution", "fixed_rotation", "is_sensor", "one_way", "detach_islands",
+			"alpha_threshold", "linear_velocity", "angular_velocity"]:
+		options[k] = node.get(k)
+	for k in ["collision_mask", "weights"]:
+		if node.get(k) != null:
+			options[k] = node.get(k)
+	return [source, local.origin, options]
+
+
+# The PhysPixBody2D nodes under n.
+func _body_nodes(n, out = []):
+	for c in n.get_children():
+		if c.get_script() == load(BODY_PATH):
+			out.append(c)
+		_body_nodes(c, out)
+	return out
+
+
+# In the editor: each body node's body made once (again when its bitmap, type or shape settings change) and moved
+# to its node, then the overlay drawn; nothing steps. Off, the editor's world goes.
+func _editor_overlay():
+	if not debug_draw:
+		if world != null:
+			_editor_bodies = {}
+			world = null
+			_update_overlay()  # clears it
+		return
+	var w = get_world()
+	var seen = {}
+	for node in _body_nodes(self):
+		var id = node.get_instance_id()  # not the node: a freed node's key reads back as null
+		seen[id] = true
+		var spec = _body_spec(node)
+		var made_from = ""  # the bitmap and settings, not the pose: moving the node moves the body
+		if spec != null:
+			var settings = spec[2].duplicate()
+			settings.erase("angle")
+			made_from = str([spec[0], node.get("body_type"), settings])
+		var entry = _editor_bodies.get(id)
+		if entry != null and entry[1] != made_from:
+			w.destroy_body(entry[0])
+			entry = null
+		if entry == null and spec != null:
+			var b = w.add_body_image(spec[0], spec[1], node.get("body_type"), spec[2])
+			entry = [b, made_from] if b != null else null
+			if entry != null:
+				_editor_bodies[id] = entry
+		if entry != null:
+			var local = global_transform.affine_inverse() * node.global_transform
+			w.set_transform(entry[0], local.origin, local.get_rotation())
+		elif _editor_bodies.has(id):
+			_editor_bodies.erase(id)
+	for id in _editor_bodies.keys():
+		if not seen.has(id):
+			w.destroy_body(_editor_bodies[id][0])
+			_editor_bodies.erase(id)
+	_update_overlay()
 
 
 # The debug overlay: segments read after the step, drawn by a child kept last so it lies above every body.
