@@ -62,6 +62,19 @@ static void strike(carry *c, const body *bd)
 
 static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
 
+void carry_collided(world *wd, uint32_t a, uint32_t b)
+{
+    carry *c = &wd->carry;
+    if ((int32_t)b < c->collided_capacity) /* a < b; one substep makes no room: nothing pairs then */
+        c->collided[a] = c->collided[b] = c->step;
+}
+
+bool carry_was_collided(const world *wd, uint32_t slot)
+{
+    const carry *c = &wd->carry;
+    return (int32_t)slot < c->collided_capacity && c->collided[slot] == c->step;
+}
+
 bool carry_struck(const world *wd, uint32_t slot)
 {
     const carry *c = &wd->carry;
@@ -95,15 +108,19 @@ static bool carried_into(const world *wd, const contact_record *r, const void *k
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    const int32_t had = c->struck_capacity;
+    const int32_t had = c->struck_capacity, had_collided = c->collided_capacity;
     pp_status st =
         world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
-    if (st)
+    if (st || (st = world_slot_array(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided,
+                                     "the carried pairs")))
         return st;
     if (c->struck_capacity > had)
         memset(c->struck + had, 0, (size_t)(c->struck_capacity - had) * sizeof *c->struck);
+    if (c->collided_capacity > had_collided)
+        memset(c->collided + had_collided, 0, (size_t)(c->collided_capacity - had_collided) * sizeof *c->collided);
     if (++c->step == 0) { /* wrapped: no stale stamp may match */
         memset(c->struck, 0, (size_t)c->struck_capacity * sizeof *c->struck);
+        memset(c->collided, 0, (size_t)c->collided_capacity * sizeof *c->collided);
         c->step = 1;
     }
     return PP_OK;
@@ -131,7 +148,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
          * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
          * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
-        const bool stack = sits_out(wd, a) && sits_out(wd, b);
+        const bool stack = sits_out(wd, a) && sits_out(wd, b) &&
+                           wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_QUICK_STACK;
         if (k == 0 && carried_before) { /* held from the steps before: no longer a stack's, it is collided from
                                            the next substep */
             if ((rec->carry_flags & CARRY_STACK) && !stack)
@@ -330,4 +348,8 @@ static bool not_of(const world *wd, const contact_record *p, const void *slot)
 
 void carry_forget(world *wd, uint32_t slot) { contact_table_keep_carried(wd, not_of, &slot); }
 
-void carry_free(carry *c) { pp_free(c->struck); }
+void carry_free(carry *c)
+{
+    pp_free(c->struck);
+    pp_free(c->collided);
+}

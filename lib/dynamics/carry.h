@@ -28,6 +28,8 @@ struct world;
 typedef struct carry {
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
+    uint32_t *collided;          /* by slot: the last step in which the narrowphase found one of its pairs touching */
+    int32_t collided_capacity;
     uint32_t step;               /* counts the steps carry_begin started, from 1 */
     int32_t substep;             /* the substep now, 0 = the step's first */
     bool active;                 /* a later substep: carried pairs are not collided */
@@ -46,6 +48,11 @@ void carry_strike(struct world *wd);
 /* Whether a pair the narrowphase collided touched the body in this slot in this step (so far): something
  * landed on it, or it moved too fast against another body for its pair to be carried. */
 bool carry_struck(const struct world *wd, uint32_t slot);
+/* The narrowphase found a pair of these two bodies touching (at any substep). */
+void carry_collided(struct world *wd, uint32_t a, uint32_t b);
+/* Whether the narrowphase found a pair of the body in this slot touching in this step (so far): none of its
+ * contacts is carried or held, at rest. */
+bool carry_was_collided(const struct world *wd, uint32_t slot);
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through contact_table_found. */
 pp_status carry_push(struct world *wd);
 /* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that

@@ -21,8 +21,10 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * a kinematic body (an island that sat a substep out and then solved one lost that substep of the body's
  * prescribed motion: a frame turning at 25°/s round 50 tumbling boxes strayed 0.53 rad in 10 s), all solved
  * every substep; an awake body that sat the last substep out, and one that did not; a body a collided pair
- * touched this step (carry_struck: the island is not at rest). */
-enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8 };
+ * touched this step (carry_struck: the island is not at rest); a contact; a pair the narrowphase found
+ * touching this step (carry_was_collided: a lone body with contacts and none collided is at rest). */
+enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8, ROOT_TOUCHING = 16,
+       ROOT_COLLIDED = 32 };
 /* The span ROOT_* flags decide; ROOT_STRUCK only chooses the iterations. */
 #define ROOT_SPAN_FLAGS (ROOT_EVERY_SUBSTEP | ROOT_BEHIND | ROOT_CURRENT)
 enum { HARD_MASS_RATIO = 4 };
@@ -166,11 +168,23 @@ static void set_spans(world *wd, substep_pairing pairing)
             *f |= ROOT_EVERY_SUBSTEP;
         if (at_rest_known && carry_struck(wd, bd->index))
             *f |= ROOT_STRUCK;
+        if (wd->islands.kind[bd->index] == ISLAND_EXACT_ALONE) {
+            /* Its island's rows, but a fixed rotation's, are its contacts' (a joint's island is not alone). */
+            const int32_t rows = wd->islands.group[wd->islands.group_capacity + world_group_root(parent, bd->index)];
+            *f |= (rows & INT32_MAX) > (bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0) ? ROOT_TOUCHING : 0;
+            *f |= carry_was_collided(wd, bd->index) ? ROOT_COLLIDED : 0;
+        }
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int32_t i = wd->islands.nodes[n], f = flags[world_group_root(parent, i)];
         uint8_t span = SPAN_ONE;
-        if (wd->islands.kind[i] == ISLAND_QUICK_STACK) {
+        /* A lone body solved exactly pairs its substeps while it rests: it has contacts, every one carried or held
+         * (it moves under CARRY_MOTION_PX a step against what it touches), none collided this step. A free fall,
+         * a bounce, a landing and a roll (a round body's pairs are collided) keep every substep. */
+        const bool lone_at_rest =
+            wd->islands.kind[i] == ISLAND_EXACT_ALONE && (f & (ROOT_TOUCHING | ROOT_COLLIDED)) == ROOT_TOUCHING;
+        if (wd->islands.kind[i] == ISLAND_QUICK_STACK || lone_at_rest ||
+            (wd->islands.kind[i] == ISLAND_EXACT_ALONE && pairing == PAIR_SECOND)) {
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
             else if (pairing == PAIR_SECOND && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND)
@@ -194,7 +208,8 @@ static int list_of(world *wd, int32_t i)
     if (wd->islands.group[wd->islands.group_capacity + root] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
     if (island_exact(wd->islands.kind[i]))
-        return SOLVE_EXACT;
+        return wd->islands.span[i] == SPAN_TWO ? SOLVE_EXACT_TWO : wd->islands.span[i] == SPAN_SKIP ? SOLVE_IDLE
+                                                                                                     : SOLVE_EXACT;
     if (!awake_mover(bd))
         return -1;
     const bool struck = (wd->islands.group[2 * wd->islands.group_capacity + root] & ROOT_STRUCK) != 0;

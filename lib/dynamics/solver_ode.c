@@ -737,7 +737,7 @@ static int step_exact(pp_solver *s, double h, solver_body *const *list, int32_t 
 
 /* ODE steps only enabled bodies' islands, and no contact joins two islands: hiding the other lists' bodies
  * while one list's method runs steps each island once, by its own method, time step and iterations. The exact
- * list goes first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
+ * lists go first: dWorldStep wakes every body of its islands, sleepers touched included, so showing them again
  * wakes nothing that it did not. The idle bodies stay hidden throughout. */
 static int step_methods(pp_solver *s, double h, const solver_islands *is)
 {
@@ -755,8 +755,9 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
         const bool rest = i == SOLVE_QUICK_TWO_REST;
         if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->rest_iterations);
-        const double span = i == SOLVE_QUICK_TWO || i == SOLVE_QUICK_TWO_REST ? 2 * h : h;
-        ok &= i == SOLVE_EXACT ? step_exact(s, h, is->list[i], is->count[i]) : dWorldQuickStep(s->world, span);
+        const double span = i == SOLVE_EXACT_TWO || i == SOLVE_QUICK_TWO || i == SOLVE_QUICK_TWO_REST ? 2 * h : h;
+        ok &= i == SOLVE_EXACT || i == SOLVE_EXACT_TWO ? step_exact(s, span, is->list[i], is->count[i])
+                                                     : dWorldQuickStep(s->world, span);
         if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->iterations);
         for (int j = 0; j < SOLVE_IDLE && runs > 1; j++)
@@ -776,7 +777,7 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
 {
     const bool stepped[2] = {
         is->count[SOLVE_EXACT] + is->count[SOLVE_QUICK] > 0,
-        is->count[SOLVE_QUICK_TWO] + is->count[SOLVE_QUICK_TWO_REST] > 0};
+        is->count[SOLVE_EXACT_TWO] + is->count[SOLVE_QUICK_TWO] + is->count[SOLVE_QUICK_TWO_REST] > 0};
     const bool reversed[2] = {(s->steps & 1) != 0, (s->steps >> 1 & 1) != 0};
     for (int twice = 0; twice < 2; twice++)
         for (int32_t n = 0; stepped[twice] && n < s->pending_count; n++) {
@@ -799,7 +800,9 @@ static void empty_contacts(pp_solver *s)
 
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
-    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, islands->count[SOLVE_EXACT])) {
+    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity,
+                       islands->count[SOLVE_EXACT] > islands->count[SOLVE_EXACT_TWO] ? islands->count[SOLVE_EXACT]
+                                                                                    : islands->count[SOLVE_EXACT_TWO])) {
         s->pending_count = 0; /* nothing attached: the caller undoes the step */
         return false;
     }

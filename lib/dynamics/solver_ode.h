@@ -172,10 +172,11 @@ uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
 /* How a substep's awake islands are solved, in the order solver_step runs them: ODE's exact dWorldStep (every
- * body of its islands, sleepers included), QuickStep over h, over 2·h (the stacks that sat the substep before
+ * body of its islands, sleepers included) over h, and over 2·h (a lone body at rest that sat the substep before
+ * out: island.c), QuickStep over h, over 2·h (the stacks that sat the substep before
  * out), over 2·h at rest (no pair of the stack collided this step: island.c), with fewer iterations, and not at
  * all (islands sitting this substep out). */
-enum { SOLVE_EXACT, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE, SOLVE_LISTS };
+enum { SOLVE_EXACT, SOLVE_EXACT_TWO, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE, SOLVE_LISTS };
 
 /* The bodies of one substep's awake islands, by how they are solved (SOLVE_*). */
 typedef struct solver_islands {

@@ -215,6 +215,8 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         bool keep = true;
         if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, &keep)))
             return st;
+        if (r.count > 0)
+            carry_collided(wd, a->index, b->index);
         for (int32_t c = 0; keep && c < r.count; c++) {
             r.contacts[c].a = a->handle;
             r.contacts[c].b = b->handle;

@@ -122,3 +122,87 @@ Test(spans, a_snapshot_of_a_settling_quickstep_pile_continues_it_exactly)
     pp_world_destroy(w);
     pp_world_destroy(back);
 }
+
+/* A default world (lone bodies solved exactly), sleep off, with the ground of quick_world. */
+static pp_world exact_world(void)
+{
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    return w;
+}
+
+Test(spans, a_lone_crate_at_rest_reports_its_weight_per_substep_and_stays_put)
+{
+    /* A lone body whose contacts are all held solves every other substep over 2·h (island.c): the ground still
+     * reports its weight × h a substep, and it rests where it would. */
+    pp_world w = exact_world();
+    const pp_body crate = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 15, 0), 32, 32);
+    step_n(w, DT, 120);
+    const pp_vec2 rest = body_pos(w, crate);
+    step_n(w, DT, 120);
+    float m = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, crate, &m, NULL, NULL));
+    pp_contact c[8];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_contacts(w, c, 8, &n));
+    double ground = 0;
+    for (int i = 0; i < n; i++)
+        ground += c[i].normal_impulse;
+    const double weight_h = m * G * DT / 4;
+    cr_assert_float_eq(ground, weight_h, 0.02 * weight_h, "ground impulses %g against m·g·h %g", ground, weight_h);
+    const pp_vec2 now = body_pos(w, crate);
+    cr_assert(fabsf(now.x - rest.x) < 0.01f && fabsf(now.y - rest.y) < 0.01f, "it moved from (%g, %g) to (%g, %g)",
+              rest.x, rest.y, now.x, now.y);
+    cr_assert_float_eq(rest.y, GROUND_TOP - 16, 1.0f, "it rests on the ground: y %g", rest.y);
+    pp_world_destroy(w);
+}
+
+Test(spans, a_force_on_a_lone_crate_at_rest_acts_once_a_step)
+{
+    /* Held up by a force equal to its weight, a resting crate stays put: counted again in a substep it sits out,
+     * the force would lift it at g. */
+    pp_world w = exact_world();
+    const pp_body crate = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 15, 0), 32, 32);
+    step_n(w, DT, 60);
+    float m = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, crate, &m, NULL, NULL));
+    const pp_vec2 start = body_pos(w, crate);
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_body_apply_force(w, crate, v2(0, (float)(-m * G)), body_pos(w, crate)));
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+    }
+    const float moved = body_pos(w, crate).y - start.y;
+    cr_assert_lt(fabsf(moved), 0.5f, "the held crate moved %g px", moved);
+    pp_world_destroy(w);
+}
+
+Test(spans, a_lone_crate_landing_and_coming_to_rest_continues_exactly_from_a_snapshot)
+{
+    /* Whether a lone body rests is decided inside a step, from what its pairs did in it: a world loaded while the
+     * crate lands and settles steps it as the saved one does. */
+    pp_world w = exact_world();
+    const pp_body crate = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 60, 0.2f), 32, 24);
+    step_n(w, DT, 25);
+    pp_world back = snapshot_round_trip(w);
+    for (int k = 0; k < 90; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        PP_OK_OR_FAIL(pp_world_step(back, DT));
+    }
+    pp_body_state s[2][2];
+    int32_t n[2] = {0, 0};
+    PP_OK_OR_FAIL(pp_world_get_body_states(w, s[0], 2, &n[0]));
+    PP_OK_OR_FAIL(pp_world_get_body_states(back, s[1], 2, &n[1]));
+    cr_assert(n[0] == 2 && n[1] == 2);
+    for (int i = 0; i < 2; i++)
+        cr_assert(s[0][i].position.x == s[1][i].position.x && s[0][i].position.y == s[1][i].position.y &&
+                      s[0][i].angle == s[1][i].angle,
+                  "body %d: (%.9g, %.9g) against (%.9g, %.9g) after the load", i, s[0][i].position.x,
+                  s[0][i].position.y, s[1][i].position.x, s[1][i].position.y);
+    const pp_vec2 at = body_pos(w, crate);
+    cr_assert(fabsf(body_angle(w, crate)) < 0.01f || fabsf(fabsf(body_angle(w, crate)) - 1.5707963f) < 0.01f,
+              "it settles flat: %g rad, at (%g, %g)", body_angle(w, crate), at.x, at.y);
+    pp_world_destroy(w);
+    pp_world_destroy(back);
+}
