@@ -348,6 +348,31 @@ static bool not_of(const world *wd, const contact_record *p, const void *slot)
 
 void carry_forget(world *wd, uint32_t slot) { contact_table_keep_carried(wd, not_of, &slot); }
 
+/* How far from a pair's overlap the raster reads pixels for its contacts, px: the corner normal's 6 px
+ * (corner.c) and a pixel of bilinear coverage, with one to spare. */
+#define CARRY_EDIT_REACH_PX 8.0
+
+typedef struct edited {
+    uint32_t slot;
+    pp_aabb region; /* grown by CARRY_EDIT_REACH_PX */
+} edited;
+
+static bool clear_of(const world *wd, const contact_record *p, const void *arg)
+{
+    const edited *e = arg;
+    const uint32_t a = handle_slot(p->a), b = handle_slot(p->b);
+    if (a != e->slot && b != e->slot)
+        return true;
+    return !aabb_overlap(&wd->bodies[a == e->slot ? b : a]->aabb, &e->region);
+}
+
+void carry_forget_near(world *wd, uint32_t slot, pp_aabb region)
+{
+    const double m = CARRY_EDIT_REACH_PX;
+    const edited e = {slot, {region.x0 - m, region.y0 - m, region.x1 + m, region.y1 + m}};
+    contact_table_keep_carried(wd, clear_of, &e);
+}
+
 void carry_free(carry *c)
 {
     pp_free(c->struck);

@@ -15,6 +15,7 @@
 #ifndef PP_CARRY_H
 #define PP_CARRY_H
 
+#include "broadphase.h"
 #include "math2d.h"
 #include "physpix.h"
 
@@ -62,6 +63,11 @@ pp_status carry_begin(struct world *wd, int32_t k, double dt);
 void carry_end_step(struct world *wd);
 /* Drop the held pairs of the body in this slot: its pixels, type or existence changed outside a step. */
 void carry_forget(struct world *wd, uint32_t slot);
+/* The pixels of the static body in this slot changed within `region` (a world box) and nowhere else: drop its
+ * held pairs with a body whose box comes within CARRY_EDIT_REACH_PX of the region. The others touch it as they
+ * did (the raster reads no pixel farther from their overlap), and stay held: an erase at one end of a terrain
+ * does not make every crate resting on it collide again. */
+void carry_forget_near(struct world *wd, uint32_t slot, pp_aabb region);
 void carry_free(carry *c);
 
 #endif

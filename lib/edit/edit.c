@@ -158,10 +158,16 @@ static void job_commit(world *wd, edit_job *j, pp_aabb *woken)
     if (e->changed == 0)
         return;
     raster_edit_done(&bd->raster, e->y0, e->y1);
-    carry_forget(wd, bd->index); /* its held contacts are the old pixels' */
+    const pp_aabb region = edited_region(bd, e);
+    /* Held contacts near the edit are the old pixels'. A static body's centre of mass does not move with its
+     * pixels, and unless it splits they change only in the region; a movable body's moves, and so do the
+     * carried points measured from it. */
+    if (!bd->sb.body && j->plan.count <= 1)
+        carry_forget_near(wd, bd->index, region);
+    else
+        carry_forget(wd, bd->index);
     body_update_pose_cache(bd);
     awake_moved(wd, bd); /* new bounds, even for a static body */
-    const pp_aabb region = edited_region(bd, e);
     if (woken)
         *woken = (pp_aabb){fmin(woken->x0, region.x0), fmin(woken->y0, region.y0), fmax(woken->x1, region.x1),
                            fmax(woken->y1, region.y1)};

@@ -133,6 +133,30 @@ Test(carry, a_held_pair_is_dropped_when_its_pixels_or_pose_change)
     }
 }
 
+Test(carry, an_erase_far_from_a_held_pair_keeps_it_held)
+{
+    /* The static block is edited 30 px from the box: the pair's overlap is as it was, so it stays held (a step
+     * tests no raster sample) and the box stays put; an erase under the box drops it, and it falls. */
+    pp_body block, box;
+    pp_world w = box_on_block(&block, &box);
+    const pp_vec2 rest = body_pos(w, box);
+    int32_t erased = 0;
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, block, v2(370, GROUND_TOP - 100), 3, &erased));
+    cr_assert_gt(erased, 0);
+    for (int k = 0; k < 5; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        cr_assert_eq(pixels_tested(w), 0, "step %d after the far erase tested %lld samples", k,
+                     (long long)pixels_tested(w));
+    }
+    cr_assert_float_eq(body_pos(w, box).y, rest.y, 0.01f, "the box moved from %g to %g", rest.y, body_pos(w, box).y);
+    PP_OK_OR_FAIL(pp_body_erase_circle(w, block, v2(400, GROUND_TOP - 108), 10, NULL));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    cr_assert_gt(pixels_tested(w), 0, "the erase under the box dropped its held pair");
+    step_n(w, DT, 10);
+    cr_assert_gt(body_pos(w, box).y - rest.y, 2.0f, "the box sank into the hole: %g px", body_pos(w, box).y - rest.y);
+    pp_world_destroy(w);
+}
+
 Test(carry, a_snapshot_keeps_the_held_pairs)
 {
     /* The loaded world carries the same held pairs uncollided, and goes on bit for bit. */
