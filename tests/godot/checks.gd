@@ -1,5 +1,6 @@
 extends SceneTree
-# What the Godot test scripts share: a check that prints its line, a tolerance, and the ending run.sh reads.
+# What the Godot test scripts share: a check that prints its line, a tolerance, a texture of one colour, and
+# the ending run.sh reads.
 
 var failures = 0
 
@@ -8,6 +9,16 @@ func check(cond, what):
 	print(("ok   " if cond else "FAIL ") + what)
 	if not cond:
 		failures += 1
+
+
+# An ImageTexture w × h of one colour.
+func texture(w, h, colour = Color(0.8, 0.6, 0.2)):
+	var img = Image.new()
+	img.create(w, h, false, Image.FORMAT_RGBA8)
+	img.fill(colour)
+	var t = ImageTexture.new()
+	t.create_from_image(img, 0)
+	return t
 
 
 func near(a, b, tol):

@@ -15,15 +15,6 @@ var crate
 var crate_body = 0
 
 
-func texture(w, h):
-	var img = Image.new()
-	img.create(w, h, false, Image.FORMAT_RGBA8)
-	img.fill(Color(0.8, 0.6, 0.2))
-	var t = ImageTexture.new()
-	t.create_from_image(img, 0)
-	return t
-
-
 func body(name, tex, at, options = {}):
 	var b = Body2D.new()
 	b.name = name

@@ -25,18 +25,6 @@ var moved_crate
 var pebble_at
 
 
-
-
-# An ImageTexture w × h of one colour.
-func texture(w, h, colour):
-	var img = Image.new()
-	img.create(w, h, false, Image.FORMAT_RGBA8)
-	img.fill(colour)
-	var t = ImageTexture.new()
-	t.create_from_image(img, 0)
-	return t
-
-
 func body(name, tex, at, options = {}):
 	var b = Body2D.new()
 	b.name = name
