@@ -5,7 +5,8 @@ extends "res://checks.gd"
 # lamp still at 60 px with its weight as the reaction, and removing the rope's node frees the lamp to fall; the
 # hinge taken out and put back makes a new joint, and freed lets the bob fly; a weld whose break_force is half
 # its box's weight breaks at once (the node's `broken` signal and the world's joint_broken); a node_b that is no
-# body makes nothing; a motor switched on and set at run time drives its hinge. Prints "RESULT: PASS" and quits 0 only if every check holds; quits 1 if frames run out.
+# body makes nothing; a motor switched on and set at run time drives its hinge, a wheel's spin and a winch's
+# length, and limits set at run time hold a wheel's slide. Prints "RESULT: PASS" and quits 0 only if every check holds; quits 1 if frames run out.
 
 const World2D = preload("res://addons/physpix/physpix_world_2d.gd")
 const Body2D = preload("res://addons/physpix/physpix_body_2d.gd")
@@ -24,6 +25,10 @@ var weak
 var weld
 var stray
 var wheel  # a box on a hinge at its centre, its motor switched on at run time
+var spinner  # a box on a wheel joint to the world (vertical slide on a spring), its motor and limits set at run time
+var spun  # its box
+var winch  # a distance joint from the world to a box, a rope 20..80 px, its motor switched on at run time
+var hung  # its box
 var worst_length = 0.0  # the bob's largest |distance to the hinge − 40| while it swings
 var lowest = 0.0  # the bob's largest y while it swings
 var broken = 0  # the weld node's broken signals
@@ -78,6 +83,16 @@ func _initialize():
 	weld.connect("broken", self, "_on_weld_broken")
 	world.add_child(weld)
 	check(weld.joint != 0, "a joint node entering the tree after its body makes its joint at once")
+	spun = box("Spun", Vector2(900, 100))
+	world.add_child(spun)
+	spinner = joint("Spinner", "wheel", Vector2(900, 100), NodePath("../Spun"),
+		{"axis": Vector2(0, 1), "spring_hertz": 4.0, "spring_damping_ratio": 1.0})
+	world.add_child(spinner)
+	hung = box("Hung", Vector2(1100, 105))
+	world.add_child(hung)
+	winch = joint("Winch", "distance", Vector2(1100, 50), NodePath("../Hung"),
+		{"anchor_b": Vector2(0, 50), "min_length": 20.0, "max_length": 80.0})
+	world.add_child(winch)
 	var wheel_box = box("Wheel", Vector2(700, 100))
 	world.add_child(wheel_box)
 	wheel = joint("Axle", "revolute", Vector2(700, 100), NodePath("../Wheel"))
@@ -107,6 +122,8 @@ func _iteration(_delta):
 		check(stray.joint == 0 and not stray.is_in_group(Joint2D.PENDING), "the stray gave up and made none")
 		first_hinge = hinge.joint
 		wheel.set_motor(true, 3.0, 1e9)
+		spinner.set_motor(true, 3.0, 1e9)
+		winch.set_motor(true, 30.0, 2e5)  # twice the box's weight: it pays out no faster, and the stop holds
 	if frame >= 2 and frame <= 60:
 		worst_length = max(worst_length, abs(bob.position.distance_to(HINGE_AT) - 40))
 		lowest = max(lowest, bob.position.y)
@@ -124,6 +141,9 @@ func _iteration(_delta):
 		check(near(wheel.get_value()["speed"], 3.0, 0.01), "set_motor at run time turns the wheel at 3 rad/s: %s"
 			% [wheel.get_value()])
 		wheel.motor_speed = -2.0
+		check(near(spun.get_angular_velocity(), 3.0, 0.01), "set_motor at run time spins the wheel joint's box at 3 rad/s: %s"
+			% spun.get_angular_velocity())
+		spinner.set_limits(true, -0.5, 0.5)
 		var weight = 100 * 980.0
 		var r = rope.get_reaction()
 		var v = rope.get_value()
@@ -138,15 +158,24 @@ func _iteration(_delta):
 		world.remove_child(hinge)
 		check(hinge.joint == 0 and world.world.get_joints().size() == n - 2, "so does the hinge's")
 		world.add_child(hinge)
+	if frame == 30:
+		var paid = winch.get_value()
+		check(near(paid["speed"], 30.0, 0.5) and paid["value"] > 55 and paid["value"] < 80,
+			"set_motor at run time pays the winch's rope out at 30 px/s: %s" % [paid])
 	if frame == 61:
 		check(hinge.joint != 0 and hinge.joint != first_hinge and world.world.get_joints().has(hinge.joint)
-			and world.world.get_joints().size() == 2,
+			and world.world.get_joints().size() == 4,
 			"the hinge put back made a new joint: %s" % [world.world.get_joints()])
 		hinge.queue_free()
 		bob_freed_at = bob.position
 	if frame == 90:
 		check(lamp.position.y > ROPE_TOP.y + 65 + 50, "without its rope the lamp fell: y %.2f" % lamp.position.y)
-		check(world.world.get_joints() == [wheel.joint], "freeing the hinge's node destroyed its joint")
+		var left = world.world.get_joints()
+		check(left.size() == 3 and left.has(wheel.joint) and left.has(spinner.joint) and left.has(winch.joint),
+			"freeing the hinge's node destroyed its joint: %s" % [left])
+		var slide = spinner.get_value()["value"]
+		check(abs(slide) <= 0.5 + 0.01, "set_limits at run time holds the wheel's slide within 0.5 px: %.3f" % slide)
+		check(near(winch.get_value()["value"], 80.0, 0.5), "the winch stops at the rope's 80 px: %s" % [winch.get_value()])
 		check(near(wheel.get_value()["speed"], -2.0, 0.01), "setting motor_speed reached the joint: %s" % [wheel.get_value()])
 		check(bob.position.distance_to(HINGE_AT) > 45 and bob.get_linear_velocity().y > 150,
 			"without its hinge the bob flew off: %.2f px from the anchor, falling at %.0f px/s"

@@ -18,12 +18,12 @@ export var anchor_a = Vector2()  # in this node's frame; REVOLUTE, WELD and MOUS
 export var anchor_b = Vector2()  # in this node's frame (PRISMATIC, DISTANCE)
 export var axis = Vector2(1, 0)  # PRISMATIC: the slide direction, in this node's frame
 export var collide_connected = false
-export var enable_limit = false setget set_enable_limit  # REVOLUTE, PRISMATIC: lower..upper hold
+export var enable_limit = false setget set_enable_limit  # REVOLUTE, PRISMATIC, WHEEL (its slide): lower..upper hold
 export var lower = 0.0 setget set_lower  # rad or px
 export var upper = 0.0 setget set_upper
-export var enable_motor = false setget set_enable_motor  # REVOLUTE, PRISMATIC
+export var enable_motor = false setget set_enable_motor  # REVOLUTE, PRISMATIC, WHEEL (its spin), DISTANCE (its length)
 export var motor_speed = 0.0 setget set_motor_speed  # rad/s or px/s, b relative to a
-export var max_motor_force = 0.0 setget set_max_motor_force  # mass·px/s², or a torque mass·px²/s² for REVOLUTE
+export var max_motor_force = 0.0 setget set_max_motor_force  # mass·px/s², or a torque mass·px²/s² for REVOLUTE, WHEEL
 export var min_length = 0.0 setget set_min_length  # DISTANCE, px; 0 and 0 keep the creation length rigid
 export var max_length = 0.0 setget set_max_length  # DISTANCE, px; a rope has min 0
 export var spring_hertz = -1.0  # DISTANCE, WELD, MOUSE: Hz, 0 rigid; < 0 the type's default (0; MOUSE 5)
@@ -197,14 +197,14 @@ func set_max_length(v):
 
 
 func _send_motor():
-	if joint != 0 and joint_type in ["revolute", "prismatic"] and is_joined():
+	if joint != 0 and joint_type in ["revolute", "prismatic", "wheel", "distance"] and is_joined():
 		world_node.world.set_joint_motor(joint, enable_motor, motor_speed, max_motor_force)
 
 
 func _send_limits():
 	if joint == 0 or not is_joined():
 		return
-	if joint_type in ["revolute", "prismatic"]:
+	if joint_type in ["revolute", "prismatic", "wheel"]:
 		world_node.world.set_joint_limits(joint, enable_limit, lower, upper)
 	elif joint_type == "distance":
 		world_node.world.set_joint_limits(joint, min_length != 0 or max_length != 0, min_length, max_length)
