@@ -145,9 +145,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         PP_ASSERT(at >= 0); /* every contact's pair was found */
         const contact_record *rec = &wd->table.records[at];
         const bool carried_before = rec->carried && rec->carried <= before;
-        /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
-         * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
-         * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
+        /* A QuickStep stack's pair that sat this substep out: bound CARRY_STACK_PX. A lone body at rest sits out
+         * too, but keeps a resting pair's bound. */
         const bool stack = sits_out(wd, a) && sits_out(wd, b) &&
                            wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_QUICK_STACK;
         if (k == 0 && carried_before) { /* held from the steps before: no longer a stack's, it is collided from
@@ -157,6 +156,9 @@ pp_status carry_record(world *wd, double dt, int32_t k)
             continue;
         }
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
+        /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
+         * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
+         * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
         const bool slow = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                           body_round_radius(a) == 0 && body_round_radius(b) == 0 && slow_pair(wd, a, b, dt, bound);
         const bool still = !slow && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !carried_before);
