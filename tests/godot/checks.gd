@@ -1,6 +1,6 @@
 extends SceneTree
-# What the Godot test scripts share: a check that prints its line, a tolerance, a texture of one colour, and
-# the ending run.sh reads.
+# What the Godot test scripts share: a check that prints its line, a tolerance, a texture of one colour, a body
+# node, and the ending run.sh reads.
 
 var failures = 0
 
@@ -19,6 +19,18 @@ func texture(w, h, colour = Color(0.8, 0.6, 0.2)):
 	var t = ImageTexture.new()
 	t.create_from_image(img, 0)
 	return t
+
+
+# A PhysPixBody2D node drawing tex at `at`, with the given properties, added under parent.
+func add_body(parent, name, tex, at, options = {}):
+	var b = load("res://addons/physpix/physpix_body_2d.gd").new()
+	b.name = name
+	b.texture = tex
+	b.position = at
+	for k in options:
+		b.set(k, options[k])
+	parent.add_child(b)
+	return b
 
 
 func near(a, b, tol):

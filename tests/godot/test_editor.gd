@@ -6,7 +6,6 @@ extends "res://checks.gd"
 # Runs over idle frames (_idle); prints "RESULT: PASS" and quits 0 only if every check holds.
 
 const World2D = preload("res://addons/physpix/physpix_world_2d.gd")
-const Body2D = preload("res://addons/physpix/physpix_body_2d.gd")
 
 var frame = 0
 var world
@@ -16,14 +15,7 @@ var crate_body = 0
 
 
 func body(name, tex, at, options = {}):
-	var b = Body2D.new()
-	b.name = name
-	b.texture = tex
-	b.position = at
-	for k in options:
-		b.set(k, options[k])
-	world.add_child(b)
-	return b
+	return add_body(world, name, tex, at, options)
 
 
 # The outline segments (kind 1) of a body of the editor's world.

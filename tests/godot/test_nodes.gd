@@ -26,14 +26,7 @@ var pebble_at
 
 
 func body(name, tex, at, options = {}):
-	var b = Body2D.new()
-	b.name = name
-	b.texture = tex
-	b.position = at
-	for k in options:
-		b.set(k, options[k])
-	world.add_child(b)
-	return b
+	return add_body(world, name, tex, at, options)
 
 
 func alpha_at(tex, x, y):
