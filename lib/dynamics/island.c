@@ -180,11 +180,11 @@ static void set_spans(world *wd, substep_pairing pairing)
         uint8_t span = SPAN_ONE;
         /* A lone body solved exactly pairs its substeps while it rests: it has contacts, every one carried or held
          * (it moves under CARRY_MOTION_PX a step against what it touches), none collided this step. A free fall,
-         * a bounce, a landing and a roll (a round body's pairs are collided) keep every substep. */
-        const bool lone_at_rest =
-            wd->islands.kind[i] == ISLAND_EXACT_ALONE && (f & (ROOT_TOUCHING | ROOT_COLLIDED)) == ROOT_TOUCHING;
-        if (wd->islands.kind[i] == ISLAND_QUICK_STACK || lone_at_rest ||
-            (wd->islands.kind[i] == ISLAND_EXACT_ALONE && pairing == PAIR_SECOND)) {
+         * a bounce, a landing and a roll (a round body's pairs are collided) keep every substep. Whether it sat
+         * the first of a pair out is what the second asks. */
+        const int kind = wd->islands.kind[i];
+        const bool at_rest = (f & (ROOT_TOUCHING | ROOT_COLLIDED)) == ROOT_TOUCHING;
+        if (kind == ISLAND_QUICK_STACK || (kind == ISLAND_EXACT_ALONE && (at_rest || pairing == PAIR_SECOND))) {
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
             else if (pairing == PAIR_SECOND && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND)
