@@ -54,10 +54,9 @@ typedef struct contact_record {
     double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
     double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it */
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
-    int32_t reserved;
+    int32_t carried;       /* 1 + its place in the table's carry order, or 0: not carried (carry.h) */
     pp_contact points[PP_MAX_CONTACTS_PER_PAIR];
-    /* Carried (carry.h): the contacts the raster found, moved with the bodies through later substeps. */
-    int32_t carried;       /* 1 + its place in the table's carry order, or 0: not carried */
+    /* Carried: the contacts the raster found, moved with the bodies through later substeps. */
     int8_t carry_count;    /* carry_points in use */
     int8_t carry_last;     /* the last substep (0 = the step's first) it is carried into */
     uint8_t carry_flags;   /* CARRY_* */
