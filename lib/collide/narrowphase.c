@@ -9,18 +9,35 @@
 static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
 
 
+/* The other body's solid bounds in reference-local coordinates, as a box: M, t map reference-local to
+ * other-local (q = M·l + t). */
+static void other_box(const pp_raster *rb, double mc, double ms, dvec2 t, double *lo_x, double *lo_y, double *hi_x,
+                      double *hi_y)
+{
+    *lo_x = *lo_y = INFINITY, *hi_x = *hi_y = -INFINITY;
+    const double cx[2] = {rb->x0, rb->x1}, cy[2] = {rb->y0, rb->y1};
+    for (int k = 0; k < 4; k++) {
+        const dvec2 l = dv_unrot(dv_sub(dv(cx[k & 1], cy[k >> 1]), t), mc, ms);
+        *lo_x = fmin(*lo_x, l.x), *hi_x = fmax(*hi_x, l.x);
+        *lo_y = fmin(*lo_y, l.y), *hi_y = fmax(*hi_y, l.y);
+    }
+}
+
+/* M = R(θA − θB) and t = pivotB + R(−θB)(posA − posB) − M·pivotA, which map A-local to B-local: q = M·l + t. */
+static void relative_map(const np_body *A, const np_body *B, double *mc, double *ms, dvec2 *t)
+{
+    *mc = A->c * B->c + A->s * B->s, *ms = A->s * B->c - A->c * B->s;
+    const dvec2 d = dv_unrot(dv_sub(A->pos, B->pos), B->c, B->s);
+    *t = dv_sub(dv_add(B->pivot, d), dv_rot(A->pivot, *mc, *ms));
+}
+
 /* The rectangle of the reference grid where the two bodies can overlap; false when empty.
  * M, t map reference-local to other-local: q = M·l + t. */
 static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, double ms, dvec2 t, int32_t stride,
                          np_pair *p)
 {
-    double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
-    const double cx[2] = {rb->x0, rb->x1}, cy[2] = {rb->y0, rb->y1};
-    for (int k = 0; k < 4; k++) {
-        const dvec2 l = dv_unrot(dv_sub(dv(cx[k & 1], cy[k >> 1]), t), mc, ms);
-        lo_x = fmin(lo_x, l.x), hi_x = fmax(hi_x, l.x);
-        lo_y = fmin(lo_y, l.y), hi_y = fmax(hi_y, l.y);
-    }
+    double lo_x, lo_y, hi_x, hi_y;
+    other_box(rb, mc, ms, t, &lo_x, &lo_y, &hi_x, &hi_y);
     /* A margin of one cell plus one pixel so unit shifts of the other body stay inside. */
     const double margin = stride + 1;
     /* Clamped on both sides: a pair far apart (pp_world_collide takes any pair) gives bounds past int64
@@ -65,7 +82,35 @@ static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
     }
 }
 
-bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
+/* Whether any inner cell can be in both bodies: the count needs one, and a pair with none has no contact
+ * (the grid's margin is for the normal's unit shifts, which matter only where the bodies meet). Adjacent
+ * bodies (a pile's crates side by side, their boxes sharing an edge) are dropped here, before any raster is
+ * read. On the other body's axes the test is exact: the samples' fixed-point points are an affine map of the
+ * cell indices, so the grid's corners bound their pixels. On the reference's axes, its cell centres against
+ * the other's box, with the fixed-point steps' rounding as tolerance. */
+static bool cells_can_meet(const np_pair *p, double mc, double ms, dvec2 t)
+{
+    const pp_raster *rb = p->rb;
+    int64_t lx = INT64_MAX, ly = INT64_MAX, hx = INT64_MIN, hy = INT64_MIN;
+    for (int k = 0; k < 4; k++) {
+        const int64_t i = NP_RING + ((k & 1) ? p->nx - 1 : 0), j = NP_RING + ((k >> 1) ? p->ny - 1 : 0);
+        const int64_t qx = (p->qx0 + i * p->dix + j * p->djx) >> NP_FIX_BITS;
+        const int64_t qy = (p->qy0 + i * p->diy + j * p->djy) >> NP_FIX_BITS;
+        lx = qx < lx ? qx : lx, hx = qx > hx ? qx : hx;
+        ly = qy < ly ? qy : ly, hy = qy > hy ? qy : hy;
+    }
+    if (hx < rb->x0 || lx >= rb->x1 || hy < rb->y0 || ly >= rb->y1)
+        return false;
+    double lo_x, lo_y, hi_x, hi_y;
+    other_box(rb, mc, ms, t, &lo_x, &lo_y, &hi_x, &hi_y);
+    /* Each rounded step (and the origin) is off by at most 2^-17 px a component, and a sample point adds up to
+     * nx + ny + 4·RING of them: tol is over √2 times that, the most it moves along any axis. */
+    const double tol = (double)(p->nx + p->ny + 2 * NP_RING + 1) / (1 << NP_FIX_BITS) + 1e-9;
+    const dvec2 c0 = np_grid_to_local(p, 0, 0), c1 = np_grid_to_local(p, p->nx - 1, p->ny - 1);
+    return c1.x >= lo_x - tol && c0.x <= hi_x + tol && c1.y >= lo_y - tol && c0.y <= hi_y + tol;
+}
+
+bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
 {
     if (raster_empty(a->raster) || raster_empty(b->raster))
         return false;
@@ -75,10 +120,9 @@ bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, n
     const np_body *A = p->swap ? b : a, *B = p->swap ? a : b;
     p->ra = A->raster, p->rb = B->raster;
 
-    /* q = M·l + t maps A-local to B-local: M = R(θA − θB), t = pivotB + R(−θB)(posA − posB) − M·pivotA. */
-    const double mc = A->c * B->c + A->s * B->s, ms = A->s * B->c - A->c * B->s;
-    const dvec2 d = dv_unrot(dv_sub(A->pos, B->pos), B->c, B->s);
-    const dvec2 t = dv_sub(dv_add(B->pivot, d), dv_rot(A->pivot, mc, ms));
+    double mc, ms;
+    dvec2 t;
+    relative_map(A, B, &mc, &ms, &t);
     if (!overlap_grid(p->ra, p->rb, mc, ms, t, set->stride, p))
         return false;
     sampling_steps(p, mc, ms, t);
@@ -91,6 +135,16 @@ bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, n
     p->fallback_nqx = (int32_t)lround(p->fallback_n.x * NP_NORMAL_ONE);
     p->fallback_nqy = (int32_t)lround(p->fallback_n.y * NP_NORMAL_ONE);
     return true;
+}
+
+bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
+{
+    if (!np_pair_grid(set, a, b, p))
+        return false;
+    double mc, ms;
+    dvec2 t;
+    relative_map(p->swap ? b : a, p->swap ? a : b, &mc, &ms, &t);
+    return cells_can_meet(p, mc, ms, t);
 }
 
 /* round(2^14·a/√r2) for 0 ≤ a ≤ √r2 < 2^15.5, exactly: the k with (2k−1)²·r2 ≤ 2^30·a² < (2k+1)²·r2.

@@ -93,8 +93,12 @@ static inline dvec2 np_grid_to_local(const np_pair *p, double ci, double cj)
     return dv((p->i0 + ci) * p->s + p->off + 0.5, (p->j0 + cj) * p->s + p->off + 0.5);
 }
 
-/* Set a pair up; false when the bodies' boxes cannot overlap (no contact, nothing to run). */
+/* Set a pair up; false when no cell of the grid can be in both bodies (no contact, nothing to run). */
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p);
+
+/* np_pair_setup's grid alone (false only when the boxes cannot overlap); the tests check against it that a pair
+ * np_pair_setup drops has no intersection cell. */
+bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p);
 
 /* Cells of the sampled plane (inner grid plus ring), and the most strips the pair can have: the
  * inner cells' tangent coordinates span at most (nx − 1) + (ny − 1) cells, so their rounded values

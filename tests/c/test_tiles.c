@@ -233,6 +233,53 @@ Test(tiles, the_tiled_core_matches_the_dense_core_on_random_pairs, .timeout = 12
     for (int k = 0; k < KINDS; k++) cr_assert_gt(kinds[k], 100, "mask kind %d drawn only %d times", k, kinds[k]);
 }
 
+Test(tiles, a_pair_dropped_at_set_up_has_no_intersection_cell) {
+    /* Boxes side by side, a gap of −1..2 px between them along a random axis of the first, turned by a little or
+     * by multiples of 90°: whenever np_pair_setup drops a pair its grid would give (np_pair_grid), the dense
+     * core on that grid counts no cell in both. Exactly adjacent boxes on the pixel grid are dropped. */
+    np_scratch dense = {0};
+    int grids = 0, dropped = 0, adjacent = 0;
+    for (int i = 0; i < 4000; i++) {
+        int kind;
+        const int w0 = rnd_in(4, 64), h0 = rnd_in(4, 64), w1 = rnd_in(4, 64), h1 = rnd_in(4, 64);
+        uint8_t *ma = i % 2 ? rect_mask(w0, h0) : random_mask(w0, h0, &kind), *mb = rect_mask(w1, h1);
+        pp_raster ra = raster_from(w0, h0, ma), rb = raster_from(w1, h1, mb);
+        const bool square = i % 4 < 2; /* both on the pixel grid, no turn: the gap is exact */
+        const double turn_a = square ? 0 : (rnd01() - 0.5) * 0.2 + (rnd() % 4) * (M_PI / 2);
+        const double turn_b = square ? 0 : turn_a + (rnd01() - 0.5) * 0.2;
+        const int axis = rnd() % 4;
+        const double gap = square ? rnd_in(-1, 2) : (rnd01() * 3 - 1);
+        const double along = (axis % 2 ? w0 + w1 : h0 + h1) / 2.0 + gap, across = square ? rnd_in(-8, 8) : rnd01() * 16 - 8;
+        const double ux = axis == 0 ? 0 : axis == 1 ? 1 : axis == 2 ? 0 : -1, uy = axis == 0 ? 1 : axis == 2 ? -1 : 0;
+        const double c = cos(turn_a), sn = sin(turn_a);
+        const double lx = ux * along - uy * across, ly = uy * along + ux * across; /* in a's frame */
+        const np_body a = {.raster = &ra, .pos = {100, 100}, .pivot = {w0 / 2.0, h0 / 2.0}, .c = c, .s = sn};
+        const np_body b = {.raster = &rb, .pos = {100 + c * lx - sn * ly, 100 + sn * lx + c * ly},
+                           .pivot = {w1 / 2.0, h1 / 2.0}, .c = cos(turn_b), .s = sin(turn_b)};
+        const np_settings set = {PP_NORMAL_AREA_GRADIENT, PP_CONTACT_MANIFOLD, 1 << (rnd() % 3)};
+        np_pair p;
+        if (np_pair_grid(&set, &a, &b, &p)) {
+            grids++;
+            const bool kept = np_pair_setup(&set, &a, &b, &p);
+            np_core core;
+            PP_OK_OR_FAIL(narrow_cpu_core_dense(&set, &p, &dense, &core));
+            cr_assert(kept || core.count == 0, "pair %d (%dx%d and %dx%d, gap %g px, stride %d) dropped with %lld "
+                      "cells in both", i, w0, h0, w1, h1, gap, set.stride, (long long)core.count);
+            dropped += !kept;
+            if (square && gap == 0 && i % 2) {
+                adjacent++;
+                cr_assert(!kept, "pair %d: boxes sharing an edge were set up", i);
+            }
+        }
+        raster_free(&ra), raster_free(&rb);
+        free(ma), free(mb);
+    }
+    np_scratch_free(&dense);
+    cr_log_info("set-up filter: %d grids, %d dropped, %d adjacent boxes", grids, dropped, adjacent);
+    cr_assert_gt(adjacent, 100, "only %d adjacent pairs", adjacent);
+    cr_assert_gt(dropped, grids / 4, "only %d of %d pairs dropped", dropped, grids);
+}
+
 #else
 
 Test(tiles, run_where_the_tests_link_the_library_objects) {
