@@ -107,7 +107,12 @@ static bool cells_can_meet(const np_pair *p, double mc, double ms, dvec2 t)
      * nx + ny + 4·RING of them: tol is over √2 times that, the most it moves along any axis. */
     const double tol = (double)(p->nx + p->ny + 2 * NP_RING + 1) / (1 << NP_FIX_BITS) + 1e-9;
     const dvec2 c0 = np_grid_to_local(p, 0, 0), c1 = np_grid_to_local(p, p->nx - 1, p->ny - 1);
-    return c1.x >= lo_x - tol && c0.x <= hi_x + tol && c1.y >= lo_y - tol && c0.y <= hi_y + tol;
+    if (!(c1.x >= lo_x - tol && c0.x <= hi_x + tol && c1.y >= lo_y - tol && c0.y <= hi_y + tol))
+        return false;
+    /* The reference's pixels whose centres lie in that box: none solid (a crate over a crater in a terrain, whose
+     * own box is the terrain's), no cell in both. */
+    return raster_rect_state(p->ra, (int64_t)ceil(lo_x - tol - 0.5), (int64_t)ceil(lo_y - tol - 0.5),
+                             (int64_t)floor(hi_x + tol - 0.5) + 1, (int64_t)floor(hi_y + tol - 0.5) + 1) != RASTER_EMPTY;
 }
 
 bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)

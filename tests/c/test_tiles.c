@@ -233,12 +233,29 @@ Test(tiles, the_tiled_core_matches_the_dense_core_on_random_pairs, .timeout = 12
     for (int k = 0; k < KINDS; k++) cr_assert_gt(kinds[k], 100, "mask kind %d drawn only %d times", k, kinds[k]);
 }
 
+/* Set a pair up with and without np_pair_setup's filter: a pair it drops has no cell in both (the dense core on
+ * np_pair_grid's grid counts none). 1 if it was dropped, 0 if set up, −1 if no grid. */
+static int dropped_pair(const np_body *a, const np_body *b, np_scratch *dense, int i)
+{
+    const np_settings set = {PP_NORMAL_AREA_GRADIENT, PP_CONTACT_MANIFOLD, 1 << (rnd() % 3)};
+    np_pair p;
+    if (!np_pair_grid(&set, a, b, &p))
+        return -1;
+    const bool kept = np_pair_setup(&set, a, b, &p);
+    np_core core;
+    PP_OK_OR_FAIL(narrow_cpu_core_dense(&set, &p, dense, &core));
+    cr_assert(kept || core.count == 0, "pair %d (%dx%d and %dx%d, stride %d) dropped with %lld cells in both", i,
+              a->raster->width, a->raster->height, b->raster->width, b->raster->height, set.stride,
+              (long long)core.count);
+    return !kept;
+}
+
 Test(tiles, a_pair_dropped_at_set_up_has_no_intersection_cell) {
     /* Boxes side by side, a gap of −1..2 px between them along a random axis of the first, turned by a little or
-     * by multiples of 90°: whenever np_pair_setup drops a pair its grid would give (np_pair_grid), the dense
-     * core on that grid counts no cell in both. Exactly adjacent boxes on the pixel grid are dropped. */
+     * by multiples of 90°; then crates over a terrain whose upper half is air, their boxes inside the terrain's.
+     * Exactly adjacent boxes on the pixel grid are dropped, and so are crates hovering 1 px over the ground. */
     np_scratch dense = {0};
-    int grids = 0, dropped = 0, adjacent = 0;
+    int grids = 0, dropped = 0, adjacent = 0, hovering = 0, hovering_dropped = 0;
     for (int i = 0; i < 4000; i++) {
         int kind;
         const int w0 = rnd_in(4, 64), h0 = rnd_in(4, 64), w1 = rnd_in(4, 64), h1 = rnd_in(4, 64);
@@ -256,27 +273,44 @@ Test(tiles, a_pair_dropped_at_set_up_has_no_intersection_cell) {
         const np_body a = {.raster = &ra, .pos = {100, 100}, .pivot = {w0 / 2.0, h0 / 2.0}, .c = c, .s = sn};
         const np_body b = {.raster = &rb, .pos = {100 + c * lx - sn * ly, 100 + sn * lx + c * ly},
                            .pivot = {w1 / 2.0, h1 / 2.0}, .c = cos(turn_b), .s = sin(turn_b)};
-        const np_settings set = {PP_NORMAL_AREA_GRADIENT, PP_CONTACT_MANIFOLD, 1 << (rnd() % 3)};
-        np_pair p;
-        if (np_pair_grid(&set, &a, &b, &p)) {
-            grids++;
-            const bool kept = np_pair_setup(&set, &a, &b, &p);
-            np_core core;
-            PP_OK_OR_FAIL(narrow_cpu_core_dense(&set, &p, &dense, &core));
-            cr_assert(kept || core.count == 0, "pair %d (%dx%d and %dx%d, gap %g px, stride %d) dropped with %lld "
-                      "cells in both", i, w0, h0, w1, h1, gap, set.stride, (long long)core.count);
-            dropped += !kept;
-            if (square && gap == 0 && i % 2) {
-                adjacent++;
-                cr_assert(!kept, "pair %d: boxes sharing an edge were set up", i);
-            }
+        const int d = dropped_pair(&a, &b, &dense, i);
+        grids += d >= 0, dropped += d > 0;
+        if (square && gap == 0 && i % 2) {
+            adjacent++;
+            cr_assert_eq(d, 1, "pair %d: boxes sharing an edge were set up", i);
         }
         raster_free(&ra), raster_free(&rb);
         free(ma), free(mb);
     }
+    uint8_t *terrain = rect_mask(256, 128);
+    memset(terrain, 0, 256 * 64); /* rows 0..63 air: the ground's top at y = 64 */
+    pp_raster rt = raster_from(256, 128, terrain);
+    for (int i = 0; i < 1000; i++) {
+        const int w = rnd_in(4, 48), h = rnd_in(4, 48);
+        uint8_t *m = rect_mask(w, h);
+        pp_raster rb = raster_from(w, h, m);
+        const double turn = i % 2 ? 0 : (rnd01() - 0.5) * 0.1, over = i % 2 ? rnd_in(-1, 3) : rnd01() * 4 - 1;
+        const np_body ground = {.raster = &rt, .pos = {0, 0}, .pivot = {0, 0}, .c = 1, .s = 0};
+        const np_body crate = {.raster = &rb, .pos = {rnd_in(40, 200), 64 - over - h / 2.0},
+                               .pivot = {w / 2.0, h / 2.0}, .c = cos(turn), .s = sin(turn)};
+        const int d = dropped_pair(&ground, &crate, &dense, 4000 + i);
+        grids += d >= 0, dropped += d > 0;
+        if (i % 2 && over == 1) {
+            hovering++;
+            hovering_dropped += d > 0;
+        }
+        raster_free(&rb);
+        free(m);
+    }
+    raster_free(&rt);
+    free(terrain);
     np_scratch_free(&dense);
-    cr_log_info("set-up filter: %d grids, %d dropped, %d adjacent boxes", grids, dropped, adjacent);
+    cr_log_info("set-up filter: %d grids, %d dropped, %d adjacent boxes, %d of %d hovering crates", grids, dropped,
+                adjacent, hovering_dropped, hovering);
     cr_assert_gt(adjacent, 100, "only %d adjacent pairs", adjacent);
+    cr_assert_gt(hovering, 50, "only %d hovering crates", hovering);
+    cr_assert_eq(hovering_dropped, hovering, "%d of %d crates 1 px over the ground set up", hovering - hovering_dropped,
+                 hovering);
     cr_assert_gt(dropped, grids / 4, "only %d of %d pairs dropped", dropped, grids);
 }
 
