@@ -2,7 +2,8 @@
  * runs at a step's first substep;
  * each later substep moves a touching pair's points with its two bodies and its depths along the
  * (fixed) normals by their relative motion, as Box2D's substeps do, instead of colliding the rasters
- * again. Pairs that move fast against each other, round bodies and islands the exact solver takes are
+ * again, for pairs moving under 2 px a step against themselves. Pairs that move faster, round bodies and
+ * islands the exact solver takes are
  * collided at every substep, and so is a pair that did not touch at the step's start, until it does: a
  * body that lands mid-step is caught at the substep it lands in.
  * A pair whose bodies sat a substep out (island.h: QuickStep stacks solve every other substep) is where it

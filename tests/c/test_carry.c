@@ -47,6 +47,43 @@ Test(carry, the_narrowphase_runs_once_a_step_whatever_the_substeps)
     pp_world_destroy(four);
 }
 
+/* A frictionless 16 px box sunk 1 px into the ground, sliding at `speed` px/s; the steps' raster samples summed
+ * over 30 steps, and where it ends. */
+static int64_t slide(int32_t substeps, float speed, pp_vec2 *end)
+{
+    pp_world w = quickstep_world(substeps, GROUND_TOP);
+    pp_body_def d = body_def(PP_BODY_DYNAMIC, 100, GROUND_TOP - 7, 0);
+    d.friction = 0;
+    const pp_body box = add_rect(w, d, 16, 16);
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, box, v2(speed, 0), 0));
+    int64_t samples = 0;
+    for (int k = 0; k < 30; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        samples += pixels_tested(w);
+    }
+    *end = body_pos(w, box);
+    pp_world_destroy(w);
+    return samples;
+}
+
+Test(carry, a_pair_moving_under_two_pixels_a_step_is_collided_once_a_step)
+{
+    /* 90 px/s is 1.5 px a step: too fast to rest, carried through each step all the same, so four substeps test
+     * about what one does, and the box slides on at its speed, on the ground. At 300 px/s (5 px a step) each
+     * substep collides the pair again. */
+    pp_vec2 end_one, end_four;
+    const int64_t one = slide(1, 90, &end_one), four = slide(4, 90, &end_four);
+    cr_assert_gt(one, 0);
+    cr_assert_lt(four, 3 * one / 2, "4 substeps tested %lld samples in 30 steps, one %lld", (long long)four,
+                 (long long)one);
+    cr_assert_float_eq(end_four.x, 100 + 90 * 30 * DT, 0.5, "the box slid to x = %g", end_four.x);
+    cr_assert(end_four.y >= GROUND_TOP - 8.5f && end_four.y <= GROUND_TOP - 7, "the box is at y = %g", end_four.y);
+    const int64_t fast_one = slide(1, 300, &end_one), fast_four = slide(4, 300, &end_four);
+    cr_assert_gt(fast_four, 3 * fast_one, "at 300 px/s 4 substeps tested %lld samples, one %lld", (long long)fast_four,
+                 (long long)fast_one);
+    cr_assert_float_eq(end_four.x, 100 + 300 * 30 * DT, 0.5, "the fast box slid to x = %g", end_four.x);
+}
+
 Test(carry, carried_contacts_hold_a_quickstep_tower_at_its_resting_height)
 {
     /* A carried contact's depth follows the bodies, so each of the five contacts under the top box sinks

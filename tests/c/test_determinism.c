@@ -153,8 +153,8 @@ static const struct {
     uint64_t hash;
 } golden[] = {
     {PP_PRESET_FAST, "FAST", 0x6aa41e345f8b02feull},
-    {PP_PRESET_BALANCED, "BALANCED", 0x85edcc5563f6e576ull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0x85edcc5563f6e576ull},
+    {PP_PRESET_BALANCED, "BALANCED", 0x9aebbd1e7cb0999dull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0x9aebbd1e7cb0999dull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {
