@@ -201,6 +201,7 @@ pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t s
         return st;
     if (!ARRAY_RESERVE(bp->stack, bp->stack_cap, height + 3))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for a query's walk");
+    bp->tree_serial++;
     if (leaf >= 0)
         detach_leaf(bp, leaf);
     else
@@ -215,6 +216,7 @@ void broadphase_remove(pp_broadphase *bp, uint32_t slot)
 {
     if (slot >= (uint32_t)bp->leaf_cap || bp->leaf[slot] < 0)
         return;
+    bp->tree_serial++;
     detach_leaf(bp, bp->leaf[slot]);
     give_node(bp, bp->leaf[slot]);
     bp->leaf[slot] = -1;
@@ -406,8 +408,9 @@ static pp_status sweep_awake(pp_broadphase *bp, const bp_proxy *px)
     return PP_OK;
 }
 
-pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
-                                int32_t awake_count)
+/* broadphase_find_pairs; *first: where the roused sleepers' static pairs start. */
+static pp_status find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                            int32_t awake_count, int32_t *first_out)
 {
     bp->pair_count = 0;
     pp_status st = reserve_slots(bp, slots);
@@ -432,7 +435,151 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
         if (s != UINT32_MAX)
             bp->roused[s] = 0;
     }
+    *first_out = first;
     return st ? st : sort_pairs(bp, proxies, first, first, bp->pair_count);
+}
+
+pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                int32_t awake_count)
+{
+    int32_t first;
+    bp->cand_valid = false;
+    return find_pairs(bp, proxies, slots, awake, awake_count, &first);
+}
+
+/* Pairs [from, to) into the sweep's order: the candidates keep the order of the grown boxes they were found
+ * with, near the order of the boxes now, so an insertion sort mostly runs in linear time; past a few moves a
+ * pair (bodies spawned into one spot overlap in every order) the rest goes to sort_pairs. */
+static pp_status settle_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from, int32_t to)
+{
+    int64_t budget = 8 * (int64_t)(to - from);
+    for (int32_t i = from + 1; i < to; i++) {
+        const bp_pair p = bp->pairs[i];
+        const pair_key k = key_of(px, p);
+        int32_t j = i - 1;
+        for (; j >= from; j--) {
+            const pair_key q = key_of(px, bp->pairs[j]);
+            if (key_order(&q, &k) <= 0)
+                break;
+            bp->pairs[j + 1] = bp->pairs[j];
+            budget--;
+        }
+        bp->pairs[j + 1] = p;
+        if (budget < 0)
+            return sort_pairs(bp, px, from, from, to);
+    }
+    return PP_OK;
+}
+
+/* The pairs of the boxes now among the step's candidates, in find_pairs' order: those with an awake body whose
+ * boxes overlap, then the static pairs of the sleepers they rouse (neither moves in a step). */
+static pp_status pairs_from_candidates(pp_broadphase *bp, const bp_proxy *px)
+{
+    if (!ARRAY_RESERVE(bp->pairs, bp->pair_cap, bp->cand_count))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->cand_count);
+    int32_t n = 0;
+    for (int32_t k = 0; k < bp->cand_first; k++)
+        if (aabb_overlap(&px[bp->cand[k].a].box, &px[bp->cand[k].b].box))
+            bp->pairs[n++] = bp->cand[k];
+    const int32_t first = n;
+    for (int32_t k = 0; k < first; k++) {
+        const uint32_t s = sleeper_of(px, bp->pairs[k]);
+        if (s != UINT32_MAX)
+            bp->roused[s] = 1;
+    }
+    for (int32_t k = bp->cand_first; k < bp->cand_count; k++) {
+        const bp_pair p = bp->cand[k];
+        if (bp->roused[px[p.a].movable ? p.a : p.b]) /* the other is static */
+            bp->pairs[n++] = p;
+    }
+    for (int32_t k = 0; k < first; k++) {
+        const uint32_t s = sleeper_of(px, bp->pairs[k]);
+        if (s != UINT32_MAX)
+            bp->roused[s] = 0;
+    }
+    bp->pair_count = n;
+    pp_status st = settle_pairs(bp, px, 0, first);
+    return st ? st : settle_pairs(bp, px, first, n);
+}
+
+pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                     int32_t awake_count, const pp_aabb *grown)
+{
+    bp->cand_valid = false;
+    int32_t grown_cap = bp->grown_cap;
+    if (!ARRAY_RESERVE(bp->grown, grown_cap, slots) ||
+        !ARRAY_RESERVE(bp->cand_awake, bp->cand_awake_cap, awake_count))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for a step's %d awake bodies", (int)awake_count);
+    bp->grown_cap = grown_cap;
+    /* The awake boxes grown for the search, then put back. */
+    for (int32_t k = 0; k < awake_count; k++) {
+        const int32_t s = awake[k];
+        bp->cand_awake[k] = proxies[s].awake ? s : ~s;
+        if (proxies[s].awake) {
+            bp->grown[s] = proxies[s].box;
+            proxies[s].box = grown[s];
+        }
+    }
+    int32_t first = 0;
+    pp_status st = find_pairs(bp, proxies, slots, awake, awake_count, &first);
+    for (int32_t k = 0; k < awake_count; k++) {
+        const int32_t s = awake[k];
+        if (proxies[s].awake) {
+            const pp_aabb box = bp->grown[s];
+            bp->grown[s] = proxies[s].box;
+            proxies[s].box = box;
+        }
+    }
+    if (st || !ARRAY_RESERVE(bp->cand, bp->cand_cap, bp->pair_count))
+        return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for %d pairs", (int)bp->pair_count);
+    if (bp->pair_count > 0)
+        memcpy(bp->cand, bp->pairs, (size_t)bp->pair_count * sizeof *bp->cand);
+    bp->cand_count = bp->pair_count, bp->cand_first = first;
+    bp->cand_awake_count = awake_count;
+    bp->cand_serial = bp->tree_serial;
+    if ((st = pairs_from_candidates(bp, proxies)))
+        return st;
+    bp->cand_valid = true;
+    return PP_OK;
+}
+
+/* Whether the step's candidates hold every pair find_pairs would find now. */
+static bool candidates_hold(const pp_broadphase *bp, const bp_proxy *px, const int32_t *awake, int32_t awake_count)
+{
+    if (!bp->cand_valid || bp->cand_serial != bp->tree_serial || bp->cand_awake_count != awake_count)
+        return false;
+    for (int32_t k = 0; k < awake_count; k++) {
+        const int32_t s = awake[k];
+        if (bp->cand_awake[k] != (px[s].awake ? s : ~s) || (px[s].awake && !contains(bp->grown[s], px[s].box)))
+            return false;
+    }
+    return true;
+}
+
+pp_status broadphase_find_later_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                      int32_t awake_count)
+{
+    if (!candidates_hold(bp, proxies, awake, awake_count))
+        return broadphase_find_pairs(bp, proxies, slots, awake, awake_count);
+    pp_status st = pairs_from_candidates(bp, proxies);
+#ifdef PP_CHECKS
+    /* The same pairs, in the same order, as the tree and the sweep find (a failed allocation fails the step). */
+    const int32_t n = bp->pair_count;
+    bp_pair *got = st ? NULL : pp_malloc((size_t)n * sizeof *got + 1);
+    int32_t first;
+    if (!st && (!got || (st = find_pairs(bp, proxies, slots, awake, awake_count, &first))))
+        st = st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to check %d pairs", (int)n);
+    if (got && !st) {
+        if (n > 0)
+            memcpy(got, bp->pairs, (size_t)n * sizeof *got); /* find_pairs' */
+        PP_ASSERT(bp->pair_count == n);
+        if ((st = pairs_from_candidates(bp, proxies)) == PP_OK)
+            for (int32_t k = 0; k < n; k++)
+                PP_ASSERT(bp->pairs[k].a == got[k].a && bp->pairs[k].b == got[k].b);
+    }
+    pp_free(got);
+#endif
+    return st;
 }
 
 void broadphase_free(pp_broadphase *bp)
@@ -443,5 +590,8 @@ void broadphase_free(pp_broadphase *bp)
     pp_free(bp->stack);
     pp_free(bp->roused);
     pp_free(bp->pairs);
+    pp_free(bp->cand);
+    pp_free(bp->grown);
+    pp_free(bp->cand_awake);
     *bp = (pp_broadphase){0};
 }

@@ -57,6 +57,17 @@ typedef struct pp_broadphase {
     uint8_t *roused;        /* by slot, scratch of find_pairs; all zero between calls */
     bp_pair *pairs;
     int32_t pair_count, pair_cap;
+    /* A step's candidates (broadphase_find_step_pairs): the pairs of the awake bodies' boxes grown over the
+     * step, [0, cand_first) with an awake body and [cand_first, cand_count) a roused sleeper's static ones. */
+    bp_pair *cand;
+    int32_t cand_count, cand_first, cand_cap;
+    pp_aabb *grown;         /* by slot: an awake body's box grown over the step */
+    int32_t grown_cap;
+    int32_t *cand_awake;    /* the awake list they were found for, a slot's awake flag in its sign (~slot: not) */
+    int32_t cand_awake_count, cand_awake_cap;
+    uint64_t tree_serial;   /* counts the tree's changes */
+    uint64_t cand_serial;   /* tree_serial when they were found */
+    bool cand_valid;
 } pp_broadphase;
 
 /* Bring slot's leaf in line with its proxy: a body at rest with solid pixels has one (inserted, kept while its
@@ -73,6 +84,19 @@ void broadphase_remove(pp_broadphase *bp, uint32_t slot);
  * its second. */
 pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                 int32_t awake_count);
+
+/* broadphase_find_pairs for a step's first substep, which also keeps the candidates of the whole step: the pairs
+ * found with each awake body's box grown to grown[slot] (its box over the step, which the caller makes from its
+ * velocity). The pairs themselves are those of the boxes now. */
+pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                     int32_t awake_count, const pp_aabb *grown);
+
+/* A later substep's pairs: exactly what broadphase_find_pairs would give, taken from the step's candidates
+ * (no tree walk, no sweep) while the awake list, every awake flag and the tree are as they were and every awake
+ * box is still inside its grown one; otherwise broadphase_find_pairs, and no candidates for the rest of the
+ * step. */
+pp_status broadphase_find_later_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                                      int32_t awake_count);
 
 /* Call visit(slot, user) for each slot whose fat box overlaps `box` (closed), in no particular order; stops
  * early when visit returns false. Sees the leaves as the last update left them; never allocates. */

@@ -4,6 +4,7 @@
 #include "alloc.h"
 #include "status.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 pp_status awake_reserve(world *wd, int32_t n, const char *fn)
@@ -149,6 +150,44 @@ pp_status awake_refresh(world *wd)
         wd->bodies[wd->awake.slots[k]]->awake_at = k;
     wd->awake.sorted = true;
     return PP_OK;
+}
+
+/* Slack on a step box, px: what the velocity read at the step's start leaves out but rounding. */
+#define STEP_BOX_SLACK 0.5
+
+/* Where a body's box can reach in dt s from its velocity now: its box and the box moved by v·dt, grown by what
+ * a turn at w moves its corners and by `fall`, gravity's ½·g·dt². A push harder than that (a collision) leaves
+ * it, and the later substeps search again. */
+static pp_aabb step_box(const world *wd, const body *bd, double dt, double fall)
+{
+    dvec2 v = dv(0, 0);
+    double w = 0;
+    if (bd->sb.body)
+        solver_body_get_velocity(wd->solver, &bd->sb, &v, &w);
+    const pp_aabb b = bd->aabb;
+    const double half_diagonal = 0.5 * ((b.x1 - b.x0) + (b.y1 - b.y0)); /* at least it */
+    const double m = fabs(w) * dt * half_diagonal + fall + STEP_BOX_SLACK;
+    const double dx = v.x * dt, dy = v.y * dt;
+    return (pp_aabb){b.x0 + dmin(dx, 0) - m, b.y0 + dmin(dy, 0) - m, b.x1 + dmax(dx, 0) + m, b.y1 + dmax(dy, 0) + m};
+}
+
+pp_status awake_find_pairs(world *wd, int32_t k, double dt)
+{
+    awake_set *a = &wd->awake;
+    const int32_t slots = wd->body_ids.capacity;
+    if (k > 0)
+        return broadphase_find_later_pairs(&wd->broad, a->proxies, slots, a->slots, a->count);
+    if (wd->def.substeps == 1) /* no later substep to find pairs for */
+        return broadphase_find_pairs(&wd->broad, a->proxies, slots, a->slots, a->count);
+    if (!ARRAY_RESERVE(a->step_boxes, a->step_box_capacity, slots))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for the broadphase");
+    const double fall = 0.5 * hypot(wd->def.gravity.x, wd->def.gravity.y) * dt * dt;
+    for (int32_t i = 0; i < a->count; i++) {
+        const int32_t s = a->slots[i];
+        if (a->proxies[s].awake)
+            a->step_boxes[s] = step_box(wd, wd->bodies[s], dt, fall);
+    }
+    return broadphase_find_step_pairs(&wd->broad, a->proxies, slots, a->slots, a->count, a->step_boxes);
 }
 
 typedef struct box_visit {
@@ -315,5 +354,6 @@ void awake_free(awake_set *a)
     pp_free(a->changed);
     pp_free(a->by_x);
     pp_free(a->proxies);
+    pp_free(a->step_boxes);
     *a = (awake_set){0};
 }

@@ -42,6 +42,11 @@ void awake_rebuild(world *wd);
  * by slot (the order every pass visits them in) and count the awake movers into wd->awake_movers. */
 pp_status awake_refresh(world *wd);
 
+/* After awake_refresh, with an awake mover: the broadphase's pairs at substep k of a step of dt s. The first
+ * substep searches with each awake mover's box grown over the step (its velocity, turn and gravity's reach)
+ * and keeps those candidates; the later ones take their pairs from them (broadphase_find_later_pairs). */
+pp_status awake_find_pairs(world *wd, int32_t k, double dt);
+
 /* Call visit for each live body whose world box meets `box` (closed), in no set order, until it returns false:
  * the tree's leaves find the bodies it holds up to date, an index of the awake movers by x (built at most once
  * a substep, when asked) and the changed list the rest, so a query costs what is near it. Cannot fail. */

@@ -184,11 +184,10 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         return st ? pp_fail_in(fn, st) : st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
     const awake_set *aw = &wd->awake;
-    if (aw->movers > 0 &&
-        (st = broadphase_find_pairs(&wd->broad, aw->proxies, wd->body_ids.capacity, aw->slots, aw->count)))
+    if (aw->movers > 0 && (st = awake_find_pairs(wd, substep, dt)))
         return pp_fail_in(fn, st);
     if (wd->awake.movers == 0)
-        wd->broad.pair_count = 0;
+        wd->broad.pair_count = 0, wd->broad.cand_valid = false;
     if (st || (st = crowd_plan(wd)) || (!wd->crowd.split && (st = world_reserve_pairs(wd, fn, wd->broad.pair_count))))
         return st;
     const double t1 = now_ms();

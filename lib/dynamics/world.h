@@ -102,6 +102,8 @@ typedef struct awake_set {
     int32_t movers;          /* dynamic or kinematic bodies awake at the last broadphase */
     bp_proxy *proxies;       /* the broadphase's view of every slot, refreshed for the set's bodies */
     int32_t proxy_capacity;
+    pp_aabb *step_boxes;     /* by slot: an awake mover's box grown over the step (awake_find_pairs) */
+    int32_t step_box_capacity;
 } awake_set;
 
 /* The substep's narrowphase batch (step.c; crowd.c orders it). */

@@ -97,3 +97,63 @@ Test(broadphase, the_tree_finds_exactly_the_overlapping_pairs_through_churn)
     cr_assert_gt(checked, 500, "the scene should make many pairs (%d)", checked);
     pp_world_destroy(w);
 }
+
+#ifdef PP_TEST_PRIVATE
+#include "broadphase.h"
+
+/* A step's candidates against a fresh search: awake boxes found with grown boxes, then moved by up to their
+ * reach (most) or past it (some), for three later substeps; broadphase_find_later_pairs must give exactly the
+ * pairs, in the order, that broadphase_find_pairs gives on a second broadphase holding the same bodies. */
+Test(broadphase, a_steps_candidates_give_the_pairs_a_search_finds)
+{
+    enum { N = 300, AWAKE = 120 };
+    int reused = 0, searched = 0;
+    for (int round = 0; round < 20; round++) {
+        bp_proxy px[N];
+        pp_aabb grown[N];
+        int32_t awake[AWAKE];
+        double vx[N], vy[N];
+        for (int i = 0; i < N; i++) {
+            const double x = uniform(0, 400), y = uniform(0, 400), w = uniform(2, 40), h = uniform(2, 40);
+            const bool moving = i < AWAKE, dynamic = moving || i % 3 == 0; /* the rest: sleepers and static */
+            px[i] = (bp_proxy){{x, y, x + w, y + h}, 1u << (next_random() % 2), next_random() % 4 ? 3u : 1u,
+                               dynamic, dynamic, moving, true};
+            vx[i] = uniform(-6, 6), vy[i] = uniform(-6, 6);
+            if (moving)
+                awake[i] = i;
+            /* The box over the step: its motion and 1 px either way. */
+            grown[i] = (pp_aabb){x + fminf(vx[i], 0) - 1, y + fminf(vy[i], 0) - 1, x + w + fmaxf(vx[i], 0) + 1,
+                                 y + h + fmaxf(vy[i], 0) + 1};
+        }
+        pp_broadphase step = {0}, fresh = {0};
+        for (int i = 0; i < N; i++) {
+            PP_OK_OR_FAIL(broadphase_update(&step, &px[i], (uint32_t)i, N));
+            PP_OK_OR_FAIL(broadphase_update(&fresh, &px[i], (uint32_t)i, N));
+        }
+        PP_OK_OR_FAIL(broadphase_find_step_pairs(&step, px, N, awake, AWAKE, grown));
+        for (int k = 0; k < 4; k++) {
+            if (k > 0) { /* a quarter of the step's motion; at the last substep one body in ten shoots past */
+                for (int i = 0; i < AWAKE; i++) {
+                    const double f = k == 3 && i % 10 == 0 ? 3 : 0.25;
+                    px[i].box.x0 += f * vx[i], px[i].box.x1 += f * vx[i];
+                    px[i].box.y0 += f * vy[i], px[i].box.y1 += f * vy[i];
+                }
+                const bool held = !(k == 3);
+                PP_OK_OR_FAIL(broadphase_find_later_pairs(&step, px, N, awake, AWAKE));
+                reused += held && step.cand_valid, searched += !step.cand_valid;
+            }
+            PP_OK_OR_FAIL(broadphase_find_pairs(&fresh, px, N, awake, AWAKE));
+            cr_assert_eq(step.pair_count, fresh.pair_count, "round %d substep %d: %d pairs, a search finds %d", round, k,
+                         (int)step.pair_count, (int)fresh.pair_count);
+            for (int p = 0; p < fresh.pair_count; p++)
+                cr_assert(step.pairs[p].a == fresh.pairs[p].a && step.pairs[p].b == fresh.pairs[p].b,
+                          "round %d substep %d: pair %d is (%u, %u), a search's (%u, %u)", round, k, p,
+                          step.pairs[p].a, step.pairs[p].b, fresh.pairs[p].a, fresh.pairs[p].b);
+        }
+        cr_assert_gt(fresh.pair_count, 50, "round %d: only %d pairs", round, (int)fresh.pair_count);
+        broadphase_free(&step), broadphase_free(&fresh);
+    }
+    cr_assert_eq(reused, 40, "the candidates served %d of 40 substeps within reach", reused);
+    cr_assert_eq(searched, 20, "%d of 20 substeps past reach searched again", searched);
+}
+#endif
