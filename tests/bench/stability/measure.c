@@ -74,9 +74,14 @@ static stab_verdict failed(int rc)
 
 /* Whether a stack came apart while settling: a body moved over a quarter of its size sideways from where it
  * was placed, or turned COLLAPSE_TURN. Its sink is not counted: every contact of a column settles to the
- * engine's resting depth (a 20-box PhysPix tower's top sinks 15 px), and crush is measured on its own. */
+ * engine's resting depth (a 20-box PhysPix tower's top sinks 15 px), and crush is measured on its own. A scene
+ * with max_move: a body moved that far from where it was placed. */
 static bool came_apart(const stab_scene *s, const stab_pose *placed, const stab_pose *now)
 {
+    if (s->max_move > 0) {
+        double worst;
+        return stab_max_displacement(s, placed, now, &worst) > s->max_move;
+    }
     for (int i = 0; i < s->count; i++)
         if (!s->bodies[i].is_static && (fabs(now[i].x - placed[i].x) > FALL_FRACTION * stab_body_size(&s->bodies[i]) ||
                                         fabs(now[i].angle - placed[i].angle) > COLLAPSE_TURN))
@@ -86,19 +91,26 @@ static bool came_apart(const stab_scene *s, const stab_pose *placed, const stab_
 
 /* Settle, take the reference pose, then watch: drift, the fall, the tracked box's crush. A stack that came
  * apart while settling did not stand, whatever its heap does later: its drift is how far it came apart, and
- * it runs 1 s more for ms/step only. */
+ * it runs 1 s more for ms/step only. A scene with max_move is measured from where it was built, settle
+ * included, and watched at most its `seconds`. */
 static void run_stack(run *r, const stab_options *o, stab_result *out)
 {
     const stab_scene *s = r->s;
+    const bool from_built = s->max_move > 0;
+    const double run_s = o->run_s > 0 ? o->run_s : 60.0;
     const int settle = (int)lround((o->settle_s > 0 ? o->settle_s : 1.0) / STAB_DT);
-    const int watch = (int)lround((o->run_s > 0 ? o->run_s : 60.0) / STAB_DT);
+    const int watch = (int)lround((from_built && s->seconds > 0 ? fmin(run_s, s->seconds) : run_s) / STAB_DT);
     stab_pose *ref = malloc((size_t)s->count * sizeof *ref), *placed = malloc((size_t)s->count * sizeof *placed);
     int rc = ref && placed ? 0 : -1, stop = watch;
     for (int i = 0; rc == 0 && i < s->count; i++)
         r->e->pose(r->world, i, &placed[i]);
     out->verdict = STAB_STANDS;
+    out->drift = 0;
     for (int f = 0; f < settle && rc == 0; f++) {
         rc = frame(r, 0);
+        double worst;
+        if (rc == 0 && from_built && out->verdict == STAB_STANDS)
+            out->drift = fmax(out->drift, stab_max_displacement(s, placed, r->pose, &worst));
         if (rc == 0 && out->verdict == STAB_STANDS && came_apart(s, placed, r->pose)) {
             out->verdict = STAB_COLLAPSES;
             out->fall_s = (f + 1) * STAB_DT;
@@ -107,11 +119,12 @@ static void run_stack(run *r, const stab_options *o, stab_result *out)
     }
     if (rc == 0) {
         for (int i = 0; i < s->count; i++)
-            ref[i] = r->pose[i];
+            ref[i] = from_built ? placed[i] : r->pose[i];
         double worst;
-        out->drift = out->verdict == STAB_COLLAPSES ? stab_max_displacement(s, placed, ref, &worst) : 0;
+        if (out->verdict == STAB_COLLAPSES)
+            out->drift = stab_max_displacement(s, placed, r->pose, &worst);
         if (s->tracked >= 0)
-            out->settle_sink = ref[s->tracked].y - s->bodies[s->tracked].y;
+            out->settle_sink = r->pose[s->tracked].y - s->bodies[s->tracked].y;
     }
     for (int f = 0; f < stop && rc == 0; f++) {
         rc = frame(r, 1);
@@ -121,7 +134,8 @@ static void run_stack(run *r, const stab_options *o, stab_result *out)
             continue;
         double worst;
         out->drift = fmax(out->drift, stab_max_displacement(s, ref, r->pose, &worst));
-        if (worst > FALL_FRACTION && out->verdict == STAB_STANDS) {
+        const bool fell = from_built ? out->drift > s->max_move : worst > FALL_FRACTION;
+        if (fell && out->verdict == STAB_STANDS) {
             out->verdict = STAB_FALLS;
             out->fall_s = (f + 1) * STAB_DT;
             stop = f + 1 + (int)lround(AFTER_FALL_S / STAB_DT);

@@ -67,7 +67,9 @@ typedef struct stab_scene {
     double wall_x0;     ///< SHOT: x of the wall's near face, px
     double wall_x1;     ///< SHOT: x of the wall's far face, px
     double ground_top;  ///< y of the ground's top, px
-    double seconds;     ///< run time of a non-stack scene, s (stacks: stab_options)
+    double seconds;     ///< run time of a non-stack scene, s; a stack with max_move: its longest watch
+    double max_move;    ///< stack: > 0, it stands while no body moves this far from where it was built, px
+                        ///< (settle and watch alike); 0: a quarter of its size from the settled pose
 } stab_scene;
 
 /// Number of scenes in the list.
