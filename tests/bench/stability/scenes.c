@@ -370,6 +370,7 @@ static const scene_entry scenes[] = {
     {"cardhouse4w", build_card_house, 4, 1},
     {"arch11", build_arch, 11, 0},
     {"cardhouse_v3", build_card_house_v3, 5, 0},
+    {"cardhouse_v3_3", build_card_house_v3, 3, 0},
     {"arch_v3", build_arch_v3, 0, 0},
     {"roll16", build_roll, 16, 0},
     {"roll32", build_roll, 32, 0},
