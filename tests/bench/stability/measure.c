@@ -226,19 +226,28 @@ static void run_slope(run *r, stab_result *out)
     free(d);
 }
 
-/* The ball falls, touches down (its lowest point), and rises to the apex before it falls again. */
+/* The ball falls, touches down (its lowest point), and rises to the apex before it falls again; so `bounces`
+ * times, and the apex farthest from e²·drop is the value. */
 static void run_bounce(run *r, stab_result *out)
 {
     const stab_scene *s = r->s;
     const stab_body *b = &s->bodies[s->tracked];
-    const int n = (int)lround(s->seconds / STAB_DT);
-    double prev = b->y, lowest = -INFINITY, apex = INFINITY;
-    int rc = 0, rising = 0;
-    for (int f = 0; f < n && rc == 0; f++) {
+    const int n = (int)lround(s->seconds / STAB_DT), want = s->bounces > 1 ? s->bounces : 1;
+    const double bottom_of = s->ground_top - b->radius; /* centre height for a bottom on the ground */
+    const double ref = b->restitution * b->restitution * s->drop;
+    double prev = b->y, lowest = -INFINITY, apex = INFINITY, worst = NAN;
+    int rc = 0, rising = 0, seen = 0, bounced = 1;
+    for (int f = 0; f < n && rc == 0 && seen < want; f++) {
         rc = frame(r, 1);
         const double y = r->pose[s->tracked].y;
-        if (rc != 0 || (rising && y > apex + 0.5))
-            break; /* falling again: the apex is behind */
+        if (rc != 0)
+            break;
+        if (rising && y > apex + 0.5) { /* falling again: the apex is behind */
+            const double h = bottom_of - apex;
+            worst = seen == 0 || fabs(h - ref) > fabs(worst - ref) ? h : worst;
+            bounced &= lowest - apex > 1.0;
+            seen++, rising = 0, lowest = -INFINITY;
+        }
         if (!rising && y < prev && lowest > -INFINITY)
             rising = 1;
         lowest = rising ? lowest : fmax(lowest, y);
@@ -249,10 +258,11 @@ static void run_bounce(run *r, stab_result *out)
         out->verdict = failed(rc);
         return;
     }
-    const double bottom_of = s->ground_top - b->radius; /* centre height for a bottom on the ground */
-    out->value = rising ? bottom_of - apex : 0;
-    out->ref = b->restitution * b->restitution * s->drop;
-    out->verdict = rising && lowest - apex > 1.0 ? STAB_BOUNCES : STAB_NO_BOUNCE;
+    /* Still rising at the end: that apex so far (one bounce), or too few bounces (several). */
+    out->value = seen > 0 ? worst : rising ? bottom_of - apex : 0;
+    out->ref = ref;
+    const bool all = seen > 0 ? bounced && seen == want : want == 1 && rising && lowest - apex > 1.0;
+    out->verdict = all ? STAB_BOUNCES : STAB_NO_BOUNCE;
 }
 
 /* The box flies, hits the wall or not, and comes to rest; its centre says on which side. */

@@ -297,12 +297,14 @@ static int build_roll(stab_scene *s, int r, int unused)
     return rc ? rc : add(s, &d);
 }
 
-/* A ball of radius 16 px and restitution percent/100, its bottom 200 px above the ground (restitution 0). */
-static int build_bounce(stab_scene *s, int percent, int unused)
+/* A ball of radius 16 px and restitution percent/100, its bottom 200 px above the ground (restitution 0),
+ * measured over `bounces` rebounds (0: the first). */
+static int build_bounce(stab_scene *s, int percent, int bounces)
 {
     s->kind = STAB_BOUNCE;
     s->drop = 200;
-    s->seconds = 2.0;
+    s->bounces = bounces;
+    s->seconds = bounces > 1 ? 1.5 * bounces : 2.0; /* a 200 px rebound is 1.28 s */
     int rc = add_ground(s, DEFAULT_FRICTION);
     stab_body ball = disc(0, -s->drop - 16, 16);
     ball.restitution = percent / 100.0;
@@ -376,6 +378,7 @@ static const scene_entry scenes[] = {
     {"roll32", build_roll, 32, 0},
     {"bounce_e0.5", build_bounce, 50, 0},
     {"bounce_e1", build_bounce, 100, 0},
+    {"bounce10_e1", build_bounce, 100, 10},
     {"ramp20", build_ramp, 20, 0},
     {"ramp35", build_ramp, 35, 0},
     {"shot2000", build_shot, 2000, 0},
