@@ -241,6 +241,29 @@ Test(stacking, box2d_v3s_card_house_3_levels_stands, .timeout = 120)
     cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
 }
 
+/* Box2D v3's arch (16 blocks and a keystone, 130-200 px joints, four 400 × 100 px slabs on top): the exact solve
+ * put each joint's load on one end, the keystone's joint opened at its other end and the arch collapsed at
+ * 0.43 s. Its slanted long faces keep it on QuickStep, which spreads the load: it sags and stands. */
+Test(stacking, box2d_v3s_arch_stands, .timeout = 120)
+{
+    const double moved = scene_move_from_built("arch_v3", PP_PRESET_BALANCED, 5.0);
+    cr_log_info("Box2D v3's arch, BALANCED: no block moved over %.2f px in 5 s", moved);
+    cr_assert_lt(moved, 50.0, "a block moved %.2f px from where it was built", moved);
+}
+
+/* Faces along the bodies' axes keep a stack exact whatever their length: 20 crates of 128 px stand exactly, and
+ * QuickStep at the preset's iterations threw the tower apart. */
+Test(stacking, a_tower_of_20_big_crates_stays_exact_and_stands, .timeout = 120)
+{
+    pp_world w = stack_world(pp_world_def_default());
+    pp_body b[20];
+    add_column(w, b, 20, 128, NULL);
+    const double drift = drift_after_settle(w, b, 20, 5.0);
+    cr_log_info("20 crates of 128 px, BALANCED: drift %.3f px over 5 s", drift);
+    cr_assert_lt(drift, 1.0, "the tower of big crates moved %.3f px", drift);
+    pp_world_destroy(w);
+}
+
 Test(stacking, exact_island_rows_out_of_range_is_refused)
 {
     pp_world_def d = pp_world_def_default();
