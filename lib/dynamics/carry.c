@@ -167,11 +167,13 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
         /* Collided at every substep instead: a small island solved exactly, whose corners decide whether it
          * stands (a card house fell carried), and a round body, whose contact stays under its centre as it
-         * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration). */
+         * rolls (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration); and, moving,
+         * a pair on a long slanted face, whose load moves between its ends (carried at 2 px, Box2D v3's arch fell). */
         const bool carriable = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                                body_round_radius(a) == 0 && body_round_radius(b) == 0;
         const bool slow = carriable && slow_pair(wd, a, b, dt, bound);
-        const bool moving = carriable && !slow && slow_pair(wd, a, b, dt, CARRY_MOVING_PX);
+        const bool moving =
+            carriable && !slow && !island_slanted_face(wd, i, end) && slow_pair(wd, a, b, dt, CARRY_MOVING_PX);
         const bool still = !slow && !moving && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !carried_before);
         if (k == 0 && !slow && !moving)
             strike(&wd->carry, a), strike(&wd->carry, b);

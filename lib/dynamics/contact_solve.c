@@ -38,6 +38,12 @@ static double approach_speed(const world *wd, const body *a, const body *b, cons
     return -dv_dot(dv_sub(body_point_velocity(wd, b, p), body_point_velocity(wd, a, p)), n);
 }
 
+/* Whether the pair's point bounces this substep: ODE bounces only what approaches faster than the threshold. */
+static bool bounces(const world *wd, const body *a, const body *b, const pp_contact *c, double e)
+{
+    return e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold;
+}
+
 /* The contact is found a substep late, up to a substep's travel deep, and a bounce of e·v from there
  * would rise e²·depth short. The coefficient handed to ODE instead gives the speed that, against the
  * pair's gravity along the normal, reaches the slop depth at e times the speed the bodies met with:
@@ -77,7 +83,7 @@ static double closing_speed(const world *wd, const body *a, const body *b, const
     if (!(gap > 0) || (kind != ISLAND_QUICK_STACK && kind != ISLAND_EXACT))
         return 0;
     if ((kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 && dmax(ia, ib) > CLOSING_MASS_RATIO * dmin(ia, ib)) ||
-        (e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold))
+        bounces(wd, a, b, c, e))
         return 0;
     return wd->def.contact_erp * gap / h;
 }
@@ -118,6 +124,7 @@ void contact_joints_add(world *wd, double h)
                 dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
                 friction, bounce_for(wd, a, b, c, e),
                 anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), span == SPAN_TWO,
+                bounces(wd, a, b, c, e),
             };
             solver_add_contact(wd->solver, &sc, i);
         }

@@ -38,7 +38,35 @@ enum { HARD_MASS_RATIO = 4 };
  * lone body (unless exact_solver asks for every island), a joint, no dynamic body (a kinematic one alone, or one
  * out of reach), or a bitmap one pixel thin, whose contact points lie within a pixel: the exact LCP's rows are
  * then nearly dependent, and a 1×1 grain dropped 100 px spun at 280 rad/s and rested 2.1 px deep. */
-enum { NOT_EXACT = 1, NOT_EXACT_ALONE = 2 };
+enum { NOT_EXACT = 1, NOT_EXACT_ALONE = 2, NOT_EXACT_SLANT = 4 };
+
+/* A pair whose two points lie more than SLANT_FACE_PX apart on a face off both bodies' bitmap axes (by more
+ * than SLANT_SIN) keeps its stack off the exact solver, unless exact_solver asks for it. Such a face is a
+ * staircase of pixels on both sides: the exact solve put a joint's whole load on one end of it (an arch's
+ * keystone joint, 249,006 against 0), the block turned about that end, the joint's other end opened by under
+ * a pixel and left the raster, and Box2D v3's arch (130-200 px joints) became a mechanism at 0.4 s. QuickStep
+ * spreads the load and stands it. Faces along a body's axes (a tower of crates of any size, whose exact solve
+ * holds 20 high where QuickStep drops it) and short ones (16-32 px boxes, cards) stay exact. */
+#define SLANT_FACE_PX 64.0
+#define SLANT_SIN 0.0348994967025010 /* sin 2° */
+
+/* Whether normal n lies off both of bd's bitmap axes by more than SLANT_SIN. */
+static bool off_axes(const body *bd, dvec2 n)
+{
+    const dvec2 u = dv_unrot(n, bd->cos_a, bd->sin_a);
+    return fabs(u.x) > SLANT_SIN && fabs(u.y) > SLANT_SIN;
+}
+
+bool island_slanted_face(const world *wd, int32_t k, int32_t end)
+{
+    if (end - k != 2)
+        return false;
+    const pp_contact *c = &wd->contacts[k];
+    const dvec2 n = dv(c->normal.x, c->normal.y);
+    const dvec2 d = dv(c[1].point.x - c->point.x, c[1].point.y - c->point.y);
+    return dv_dot(d, d) > SLANT_FACE_PX * SLANT_FACE_PX && off_axes(body_of(wd, c->a), n) &&
+           off_axes(body_of(wd, c->b), n);
+}
 
 static bool within_reach(const world *wd, const body *bd)
 {
@@ -309,6 +337,12 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
         join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
                     ROWS_PER_CONTACT * (end - k));
     }
+    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
+        end = contact_pair_end(wd, k);
+        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+        if (island_slanted_face(wd, k, end))
+            not_exact[world_group_root(parent, (int32_t)(a->sb.body ? a : b)->index)] |= NOT_EXACT_SLANT;
+    }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
@@ -351,7 +385,8 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
         const int32_t i = wd->islands.nodes[n], root = world_group_root(parent, i), r = rows[root];
         const bool alone = wd->islands.kind[i] == ISLAND_QUICK_ALONE;
         if (r < 0 && !(not_exact[root] & NOT_EXACT) &&
-            (wd->def.exact_solver || ((r & INT32_MAX) <= limit && !(alone && (not_exact[root] & NOT_EXACT_ALONE)))))
+            (wd->def.exact_solver || ((r & INT32_MAX) <= limit && !(alone && (not_exact[root] & NOT_EXACT_ALONE)) &&
+                                      (alone || !(not_exact[root] & NOT_EXACT_SLANT)))))
             wd->islands.kind[i] = alone ? ISLAND_EXACT_ALONE : ISLAND_EXACT;
     }
 #ifdef PP_CHECKS

@@ -20,6 +20,11 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
 /* After solver_step: list in the awake set every node ODE woke through a contact. */
 void island_list_woken(world *wd);
 
+/* Whether the pair of contacts [k, end) of wd->contacts is two points more than 64 px apart on a face off both
+ * bodies' bitmap axes (over 2°): its load moves between the ends (an arch's joints), so its stack is not solved
+ * exactly and, moving, it is collided at every substep (carry.c). */
+bool island_slanted_face(const world *wd, int32_t k, int32_t end);
+
 /* Advance the awake dynamic bodies' sleep timers by h s and put to sleep each group of bodies in contact
  * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. True if a body fell asleep. */
 bool island_sleep(world *wd, double h);

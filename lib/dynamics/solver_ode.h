@@ -48,6 +48,7 @@ typedef struct solver_contact {
     double tangent_speed;      /* px/s the friction row drives a's point past b's along (−normal.y, normal.x) */
     double closing_speed;      /* px/s the pair may approach along the normal this substep (≥ 0) */
     bool twice;                /* its island advances 2·h this substep (it sat the one before out) */
+    bool bounce;               /* it bounces this substep: no softness, which would keep part of the speed */
 } solver_contact;
 
 pp_status solver_create(const pp_world_def *def, const char *fn, pp_solver **out);

@@ -203,6 +203,67 @@ Test(stacking, a_3_level_card_house_does_not_creep, .timeout = 120)
     cr_assert_lt(drift, 0.25, "the card house crept %.3f px", drift);
 }
 
+/* The largest move of any body of bench_stability's scene `name` from where it was built over `seconds` at the
+ * preset, sleep off, px (NaN counts as a fall). */
+static double scene_move_from_built(const char *name, pp_preset preset, double seconds)
+{
+    stab_scene s;
+    cr_assert_eq(stab_scene_build(stab_scene_find(name), &s), 0, "no scene %s", name);
+    cr_assert_leq(s.count, 64);
+    pp_world_def d = pp_world_def_preset(preset);
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    pp_body b[64];
+    cr_assert_eq(stab_physpix_add_bodies(w, &s, b), 0);
+    double worst = 0;
+    for (int k = 0; k < (int)(seconds * 60); k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        for (int i = 0; i < s.count; i++) {
+            if (s.bodies[i].is_static)
+                continue;
+            const pp_vec2 p = body_pos(w, b[i]);
+            const double m = hypot(p.x - s.bodies[i].x, p.y - s.bodies[i].y);
+            worst = fmax(worst, isfinite(m) ? m : INFINITY);
+        }
+    }
+    pp_world_destroy(w);
+    stab_scene_free(&s);
+    return worst;
+}
+
+/* The top three levels of Box2D v3's card house (200 × 2 px cards): its flats are built overlapping 25 px end
+ * to end, whose raster normal lay along the cards (depth 25) and pushed them apart at once (it collapsed at
+ * 0.17 s). Chosen across their thickness, the flats part a card's thickness and the house stands. */
+Test(stacking, box2d_v3s_card_house_3_levels_stands, .timeout = 120)
+{
+    const double moved = scene_move_from_built("cardhouse_v3_3", PP_PRESET_BALANCED, 10.0);
+    cr_log_info("Box2D v3's card house, 3 levels, BALANCED: no card moved over %.2f px in 10 s", moved);
+    cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
+}
+
+/* Box2D v3's arch (16 blocks and a keystone, 130-200 px joints, four 400 × 100 px slabs on top): the exact solve
+ * put each joint's load on one end, the keystone's joint opened at its other end and the arch collapsed at
+ * 0.43 s. Its slanted long faces keep it on QuickStep, which spreads the load: it sags and stands. */
+Test(stacking, box2d_v3s_arch_stands, .timeout = 120)
+{
+    const double moved = scene_move_from_built("arch_v3", PP_PRESET_BALANCED, 5.0);
+    cr_log_info("Box2D v3's arch, BALANCED: no block moved over %.2f px in 5 s", moved);
+    cr_assert_lt(moved, 50.0, "a block moved %.2f px from where it was built", moved);
+}
+
+/* Faces along the bodies' axes keep a stack exact whatever their length: 20 crates of 128 px stand exactly, and
+ * QuickStep at the preset's iterations threw the tower apart. */
+Test(stacking, a_tower_of_20_big_crates_stays_exact_and_stands, .timeout = 120)
+{
+    pp_world w = stack_world(pp_world_def_default());
+    pp_body b[20];
+    add_column(w, b, 20, 128, NULL);
+    const double drift = drift_after_settle(w, b, 20, 5.0);
+    cr_log_info("20 crates of 128 px, BALANCED: drift %.3f px over 5 s", drift);
+    cr_assert_lt(drift, 1.0, "the tower of big crates moved %.3f px", drift);
+    pp_world_destroy(w);
+}
+
 Test(stacking, exact_island_rows_out_of_range_is_refused)
 {
     pp_world_def d = pp_world_def_default();

@@ -87,9 +87,12 @@ static void print_header(const options *o, const stab_engine *engines, int n, do
            "stacks settle 1 s, then are watched %.0f s: 'stands' = no body moved over 1/4 of its size (its longest\n"
            "side) from the settled pose; drift = the largest such move, px; fall = when one first did, s (a fallen\n"
            "stack runs 1 s more); crush = the tracked heavy box's sink below its settled pose at the end, px.\n"
+           "cardhouse_v3, arch_v3 (Box2D v3's samples): watched at most 30 s, and from where they were built:\n"
+           "'stands' = no body moved 20 px (card house) or 50 px (arch) from there, settle included.\n"
            "value / ref / err%%: roll, ramp35 = acceleration down the slope (parabola fitted over 0.5-1.5 s), px/s^2,\n"
            "against 2/3 g sin(a) and g(sin a - mu cos a); ref2 / err2%% (roll) = the body's own g sin(a)/(1 + I/(m r^2));\n"
-           "ramp20 = slide over 2 s, px; bounce = first rebound apex (bottom above ground), px, against e^2 * 200;\n"
+           "ramp20 = slide over 2 s, px; bounce = first rebound apex (bottom above ground), px, against e^2 * 200\n"
+           "(bounce10: of the first 10 rebounds' apexes, the one farthest from 200);\n"
            "shot = the box's leading face past the wall's near face after 1 s, px (0: stopped at it; 8: through).\n"
            "ms/step: median over the frames run after the settle.\n",
            STAB_GRAVITY, run_s);

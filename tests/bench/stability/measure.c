@@ -74,9 +74,14 @@ static stab_verdict failed(int rc)
 
 /* Whether a stack came apart while settling: a body moved over a quarter of its size sideways from where it
  * was placed, or turned COLLAPSE_TURN. Its sink is not counted: every contact of a column settles to the
- * engine's resting depth (a 20-box PhysPix tower's top sinks 15 px), and crush is measured on its own. */
+ * engine's resting depth (a 20-box PhysPix tower's top sinks 15 px), and crush is measured on its own. A scene
+ * with max_move: a body moved that far from where it was placed. */
 static bool came_apart(const stab_scene *s, const stab_pose *placed, const stab_pose *now)
 {
+    if (s->max_move > 0) {
+        double worst;
+        return stab_max_displacement(s, placed, now, &worst) > s->max_move;
+    }
     for (int i = 0; i < s->count; i++)
         if (!s->bodies[i].is_static && (fabs(now[i].x - placed[i].x) > FALL_FRACTION * stab_body_size(&s->bodies[i]) ||
                                         fabs(now[i].angle - placed[i].angle) > COLLAPSE_TURN))
@@ -86,19 +91,26 @@ static bool came_apart(const stab_scene *s, const stab_pose *placed, const stab_
 
 /* Settle, take the reference pose, then watch: drift, the fall, the tracked box's crush. A stack that came
  * apart while settling did not stand, whatever its heap does later: its drift is how far it came apart, and
- * it runs 1 s more for ms/step only. */
+ * it runs 1 s more for ms/step only. A scene with max_move is measured from where it was built, settle
+ * included, and watched at most its `seconds`. */
 static void run_stack(run *r, const stab_options *o, stab_result *out)
 {
     const stab_scene *s = r->s;
+    const bool from_built = s->max_move > 0;
+    const double run_s = o->run_s > 0 ? o->run_s : 60.0;
     const int settle = (int)lround((o->settle_s > 0 ? o->settle_s : 1.0) / STAB_DT);
-    const int watch = (int)lround((o->run_s > 0 ? o->run_s : 60.0) / STAB_DT);
+    const int watch = (int)lround((from_built && s->seconds > 0 ? fmin(run_s, s->seconds) : run_s) / STAB_DT);
     stab_pose *ref = malloc((size_t)s->count * sizeof *ref), *placed = malloc((size_t)s->count * sizeof *placed);
     int rc = ref && placed ? 0 : -1, stop = watch;
     for (int i = 0; rc == 0 && i < s->count; i++)
         r->e->pose(r->world, i, &placed[i]);
     out->verdict = STAB_STANDS;
+    out->drift = 0;
     for (int f = 0; f < settle && rc == 0; f++) {
         rc = frame(r, 0);
+        double worst;
+        if (rc == 0 && from_built && out->verdict == STAB_STANDS)
+            out->drift = fmax(out->drift, stab_max_displacement(s, placed, r->pose, &worst));
         if (rc == 0 && out->verdict == STAB_STANDS && came_apart(s, placed, r->pose)) {
             out->verdict = STAB_COLLAPSES;
             out->fall_s = (f + 1) * STAB_DT;
@@ -107,11 +119,12 @@ static void run_stack(run *r, const stab_options *o, stab_result *out)
     }
     if (rc == 0) {
         for (int i = 0; i < s->count; i++)
-            ref[i] = r->pose[i];
+            ref[i] = from_built ? placed[i] : r->pose[i];
         double worst;
-        out->drift = out->verdict == STAB_COLLAPSES ? stab_max_displacement(s, placed, ref, &worst) : 0;
+        if (out->verdict == STAB_COLLAPSES)
+            out->drift = stab_max_displacement(s, placed, r->pose, &worst);
         if (s->tracked >= 0)
-            out->settle_sink = ref[s->tracked].y - s->bodies[s->tracked].y;
+            out->settle_sink = r->pose[s->tracked].y - s->bodies[s->tracked].y;
     }
     for (int f = 0; f < stop && rc == 0; f++) {
         rc = frame(r, 1);
@@ -121,7 +134,8 @@ static void run_stack(run *r, const stab_options *o, stab_result *out)
             continue;
         double worst;
         out->drift = fmax(out->drift, stab_max_displacement(s, ref, r->pose, &worst));
-        if (worst > FALL_FRACTION && out->verdict == STAB_STANDS) {
+        const bool fell = from_built ? out->drift > s->max_move : worst > FALL_FRACTION;
+        if (fell && out->verdict == STAB_STANDS) {
             out->verdict = STAB_FALLS;
             out->fall_s = (f + 1) * STAB_DT;
             stop = f + 1 + (int)lround(AFTER_FALL_S / STAB_DT);
@@ -212,19 +226,28 @@ static void run_slope(run *r, stab_result *out)
     free(d);
 }
 
-/* The ball falls, touches down (its lowest point), and rises to the apex before it falls again. */
+/* The ball falls, touches down (its lowest point), and rises to the apex before it falls again; so `bounces`
+ * times, and the apex farthest from e²·drop is the value. */
 static void run_bounce(run *r, stab_result *out)
 {
     const stab_scene *s = r->s;
     const stab_body *b = &s->bodies[s->tracked];
-    const int n = (int)lround(s->seconds / STAB_DT);
-    double prev = b->y, lowest = -INFINITY, apex = INFINITY;
-    int rc = 0, rising = 0;
-    for (int f = 0; f < n && rc == 0; f++) {
+    const int n = (int)lround(s->seconds / STAB_DT), want = s->bounces > 1 ? s->bounces : 1;
+    const double bottom_of = s->ground_top - b->radius; /* centre height for a bottom on the ground */
+    const double ref = b->restitution * b->restitution * s->drop;
+    double prev = b->y, lowest = -INFINITY, apex = INFINITY, worst = NAN;
+    int rc = 0, rising = 0, seen = 0, bounced = 1;
+    for (int f = 0; f < n && rc == 0 && seen < want; f++) {
         rc = frame(r, 1);
         const double y = r->pose[s->tracked].y;
-        if (rc != 0 || (rising && y > apex + 0.5))
-            break; /* falling again: the apex is behind */
+        if (rc != 0)
+            break;
+        if (rising && y > apex + 0.5) { /* falling again: the apex is behind */
+            const double h = bottom_of - apex;
+            worst = seen == 0 || fabs(h - ref) > fabs(worst - ref) ? h : worst;
+            bounced &= lowest - apex > 1.0;
+            seen++, rising = 0, lowest = -INFINITY;
+        }
         if (!rising && y < prev && lowest > -INFINITY)
             rising = 1;
         lowest = rising ? lowest : fmax(lowest, y);
@@ -235,10 +258,11 @@ static void run_bounce(run *r, stab_result *out)
         out->verdict = failed(rc);
         return;
     }
-    const double bottom_of = s->ground_top - b->radius; /* centre height for a bottom on the ground */
-    out->value = rising ? bottom_of - apex : 0;
-    out->ref = b->restitution * b->restitution * s->drop;
-    out->verdict = rising && lowest - apex > 1.0 ? STAB_BOUNCES : STAB_NO_BOUNCE;
+    /* Still rising at the end: that apex so far (one bounce), or too few bounces (several). */
+    out->value = seen > 0 ? worst : rising ? bottom_of - apex : 0;
+    out->ref = ref;
+    const bool all = seen > 0 ? bounced && seen == want : want == 1 && rising && lowest - apex > 1.0;
+    out->verdict = all ? STAB_BOUNCES : STAB_NO_BOUNCE;
 }
 
 /* The box flies, hits the wall or not, and comes to rest; its centre says on which side. */

@@ -1,5 +1,5 @@
 /* The stability scenes as engine-neutral bodies (px, y down, rad): towers, pyramids, heavy on light, the
- * chain, the card house, the arch, the rolling disc, the bounce, the friction ramp and the wall shots. Every
+ * chain, the card houses, the arches (ours and Box2D v3's), the rolling disc, the bounce, the friction ramp and the wall shots. Every
  * engine builds its bodies from these numbers, so the peers get the same shapes, masses and materials. */
 #include "stability.h"
 
@@ -156,15 +156,12 @@ static int build_card_house(stab_scene *s, int levels, int wide)
     return rc;
 }
 
-/* One voussoir: the trapezoid between angles a0 and a1 (from the +x axis, upward) of the ring from r_in to
- * r_out about (0, 0), as a polygon about its centroid. */
-static stab_body voussoir(double r_in, double r_out, double a0, double a1)
+/* A convex polygon given by its world vertices (px, y down), as a body about its centroid. */
+static stab_body polygon(const double *px, const double *py, int n)
 {
-    const double px[4] = {r_in * cos(a0), r_out * cos(a0), r_out * cos(a1), r_in * cos(a1)};
-    const double py[4] = {-r_in * sin(a0), -r_out * sin(a0), -r_out * sin(a1), -r_in * sin(a1)};
     double area = 0, cx = 0, cy = 0;
-    for (int i = 0; i < 4; i++) {
-        const int j = (i + 1) % 4;
+    for (int i = 0; i < n; i++) {
+        const int j = (i + 1) % n;
         const double cr = px[i] * py[j] - px[j] * py[i];
         area += 0.5 * cr;
         cx += (px[i] + px[j]) * cr;
@@ -173,10 +170,19 @@ static stab_body voussoir(double r_in, double r_out, double a0, double a1)
     cx /= 6 * area, cy /= 6 * area;
     stab_body b = box(cx, cy, 0, 0, 0);
     b.shape = STAB_POLY;
-    b.nverts = 4;
-    for (int i = 0; i < 4; i++)
+    b.nverts = n;
+    for (int i = 0; i < n; i++)
         b.vx[i] = px[i] - cx, b.vy[i] = py[i] - cy;
     return b;
+}
+
+/* One voussoir: the trapezoid between angles a0 and a1 (from the +x axis, upward) of the ring from r_in to
+ * r_out about (0, 0). */
+static stab_body voussoir(double r_in, double r_out, double a0, double a1)
+{
+    const double px[4] = {r_in * cos(a0), r_out * cos(a0), r_out * cos(a1), r_in * cos(a1)};
+    const double py[4] = {-r_in * sin(a0), -r_out * sin(a0), -r_out * sin(a1), -r_in * sin(a1)};
+    return polygon(px, py, 4);
 }
 
 /* A semicircular arch of `blocks` voussoirs, inner radius 80 px, outer 110 px, standing on the ground. */
@@ -188,6 +194,92 @@ static int build_arch(stab_scene *s, int blocks, int unused)
         stab_body b = voussoir(80, 110, PI * k / blocks, PI * (k + 1) / blocks);
         b.friction = mu;
         rc = add(s, &b);
+    }
+    return rc;
+}
+
+/* Box2D v3's Card House (samples/sample_stacking.cpp, from PEEL) with its lengths ×5 at 100 px a metre, so
+ * 500 px for each of its metres, and cards 2 px thick (its 0.002 m would be 1 px): `levels` rows of tents of
+ * two 200 × 2 px cards at ±25°, a 175 px pitch, flats 125 px from each tent's start, friction 0.7. Neighbouring
+ * flats overlap 25 px end to end, as they do in Box2D. Centred on x = 0. It stands while no card moves 20 px. */
+static int build_card_house_v3(stab_scene *s, int levels, int unused)
+{
+    const double scale = 500, mu = 0.7, card_h = 0.2, phi = 25 * PI / 180;
+    const double centre = 0.5 * (levels - 1) * 0.35 + 0.0875; /* m: the middle tent's axis */
+    s->max_move = 20;
+    s->seconds = 30;
+    int rc = add_ground(s, mu);
+    double y = card_h - 0.02, z0 = 0;
+    for (int nb = levels; nb > 0 && rc == 0; nb--) {
+        double z = z0;
+        for (int i = 0; i < nb && rc == 0; i++) {
+            if (i != nb - 1) {
+                /* Box2D's card turned by 90°: the same 200 × 2 px box, unturned */
+                stab_body flat = box((z + 0.25 - centre) * scale, -(y + card_h - 0.015) * scale, 200, 2, 0);
+                flat.friction = mu;
+                rc = add(s, &flat);
+            }
+            /* y up becomes y down, and Box2D's -25° (top toward +x) becomes +25° */
+            stab_body left = box((z - centre) * scale, -y * scale, 2, 200, phi);
+            stab_body right = box((z + 0.175 - centre) * scale, -y * scale, 2, 200, -phi);
+            left.friction = right.friction = mu;
+            if (rc == 0)
+                rc = add(s, &left);
+            if (rc == 0)
+                rc = add(s, &right);
+            z += 0.35;
+        }
+        y += 2 * card_h - 0.03;
+        z0 += 0.175;
+    }
+    return rc;
+}
+
+/* Box2D v3's Arch (samples/sample_stacking.cpp) at 100 px a metre: 8 blocks a side between its two curves of
+ * 9 points (scaled by 0.25), a keystone, and four 400 × 100 px slabs stacked on it; friction 0.6, the ground
+ * included. About 1200 px wide and 1500 px tall. It stands while no block moves 50 px. */
+static int build_arch_v3(stab_scene *s, int unused_a, int unused_b)
+{
+    static const double ps1[9][2] = {{16.0, 0.0},
+                                     {14.93803712795643, 5.133601056842984},
+                                     {13.79871746027416, 10.24928069555078},
+                                     {12.56252963284711, 15.34107019122473},
+                                     {11.20040987372525, 20.39856541571217},
+                                     {9.66521217819836, 25.40369899225096},
+                                     {7.87179930638133, 30.3179337000085},
+                                     {5.635199558196225, 35.03820717801641},
+                                     {2.405937953536585, 39.09554102558315}};
+    static const double ps2[9][2] = {{24.0, 0.0},
+                                     {22.33619528222415, 6.02299846205841},
+                                     {20.54936888969905, 12.00964361211476},
+                                     {18.60854610798073, 17.9470321677465},
+                                     {16.46769273811807, 23.81367936585418},
+                                     {14.05325025774858, 29.57079353071012},
+                                     {11.23551045834022, 35.13775818285372},
+                                     {7.752568160730571, 40.30450679009583},
+                                     {3.016931552701656, 44.28891593799322}};
+    const double k = 0.25 * 100, mu = 0.6; /* px a unit of the sample's points; y turns down */
+    s->max_move = 50;
+    s->seconds = 30;
+    int rc = add_ground(s, mu);
+    for (int side = 1; side >= -1 && rc == 0; side -= 2)
+        for (int i = 0; i < 8 && rc == 0; i++) {
+            const double px[4] = {side * ps1[i][0] * k, side * ps2[i][0] * k, side * ps2[i + 1][0] * k, side * ps1[i + 1][0] * k};
+            const double py[4] = {-ps1[i][1] * k, -ps2[i][1] * k, -ps2[i + 1][1] * k, -ps1[i + 1][1] * k};
+            stab_body b = polygon(px, py, 4);
+            b.friction = mu;
+            rc = add(s, &b);
+        }
+    const double kx[4] = {ps1[8][0] * k, ps2[8][0] * k, -ps2[8][0] * k, -ps1[8][0] * k};
+    const double ky[4] = {-ps1[8][1] * k, -ps2[8][1] * k, -ps2[8][1] * k, -ps1[8][1] * k};
+    stab_body key = polygon(kx, ky, 4);
+    key.friction = mu;
+    if (rc == 0)
+        rc = add(s, &key);
+    for (int i = 0; i < 4 && rc == 0; i++) {
+        stab_body slab = box(0, -(0.5 + 0.25 * ps2[8][1] + i) * 100, 400, 100, 0);
+        slab.friction = mu;
+        rc = add(s, &slab);
     }
     return rc;
 }
@@ -205,12 +297,14 @@ static int build_roll(stab_scene *s, int r, int unused)
     return rc ? rc : add(s, &d);
 }
 
-/* A ball of radius 16 px and restitution percent/100, its bottom 200 px above the ground (restitution 0). */
-static int build_bounce(stab_scene *s, int percent, int unused)
+/* A ball of radius 16 px and restitution percent/100, its bottom 200 px above the ground (restitution 0),
+ * measured over `bounces` rebounds (0: the first). */
+static int build_bounce(stab_scene *s, int percent, int bounces)
 {
     s->kind = STAB_BOUNCE;
     s->drop = 200;
-    s->seconds = 2.0;
+    s->bounces = bounces;
+    s->seconds = bounces > 1 ? 1.5 * bounces : 2.0; /* a 200 px rebound is 1.28 s */
     int rc = add_ground(s, DEFAULT_FRICTION);
     stab_body ball = disc(0, -s->drop - 16, 16);
     ball.restitution = percent / 100.0;
@@ -277,10 +371,14 @@ static const scene_entry scenes[] = {
     {"cardhouse3w", build_card_house, 3, 1},
     {"cardhouse4w", build_card_house, 4, 1},
     {"arch11", build_arch, 11, 0},
+    {"cardhouse_v3", build_card_house_v3, 5, 0},
+    {"cardhouse_v3_3", build_card_house_v3, 3, 0},
+    {"arch_v3", build_arch_v3, 0, 0},
     {"roll16", build_roll, 16, 0},
     {"roll32", build_roll, 32, 0},
     {"bounce_e0.5", build_bounce, 50, 0},
     {"bounce_e1", build_bounce, 100, 0},
+    {"bounce10_e1", build_bounce, 100, 10},
     {"ramp20", build_ramp, 20, 0},
     {"ramp35", build_ramp, 35, 0},
     {"shot2000", build_shot, 2000, 0},

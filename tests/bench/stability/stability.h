@@ -64,10 +64,13 @@ typedef struct stab_scene {
     double slope;       ///< ROLL, RAMP: slope angle, rad (down the slope is (cos, sin))
     double mu;          ///< RAMP: the pair's friction
     double drop;        ///< BOUNCE: drop height of the ball's bottom above the ground, px
+    int bounces;        ///< BOUNCE: rebounds measured (0: the first); value is the apex farthest from e²·drop
     double wall_x0;     ///< SHOT: x of the wall's near face, px
     double wall_x1;     ///< SHOT: x of the wall's far face, px
     double ground_top;  ///< y of the ground's top, px
-    double seconds;     ///< run time of a non-stack scene, s (stacks: stab_options)
+    double seconds;     ///< run time of a non-stack scene, s; a stack with max_move: its longest watch
+    double max_move;    ///< stack: > 0, it stands while no body moves this far from where it was built, px
+                        ///< (settle and watch alike); 0: a quarter of its size from the settled pose
 } stab_scene;
 
 /// Number of scenes in the list.
@@ -142,7 +145,8 @@ typedef struct stab_result {
                          ///< COLLAPSES: time from the start when one first moved so far sideways or turned, s
     double crush;        ///< stack with a tracked box: its sink below the settled pose at the end, px
     double settle_sink;  ///< stack with a tracked box: its sink during the settle, px
-    double value;        ///< roll, ramp 35°: acceleration, px/s²; ramp 20°: slide, px; bounce: apex, px;
+    double value;        ///< roll, ramp 35°: acceleration, px/s²; ramp 20°: slide, px; bounce: apex, px (of
+                         ///< several bounces, the one farthest from ref);
                          ///< shot: the box's leading face past the wall's near face, px
     double ref;          ///< what value should be: 2/3·g·sinθ, g(sinθ − μcosθ), e²·drop, 0
     double err_pct;      ///< 100·(value − ref)/ref
