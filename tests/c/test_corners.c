@@ -53,17 +53,26 @@ Test(corners, a_flat_card_on_two_card_corners_is_held_by_its_face_normal, .timeo
 #define SLOPE_W 200
 #define SLOPE_H 160
 
+/* A SLOPE_W × SLOPE_H terrain bitmap holding a slope of `deg` rising to the right (axis-aligned pixel steps);
+ * the caller frees it. */
+static uint8_t *slope_mask(double deg)
+{
+    const double tn = tan(deg * M_PI / 180);
+    uint8_t *m = calloc(SLOPE_W * SLOPE_H, 1);
+    cr_assert_not_null(m);
+    for (int j = 0; j < SLOPE_H; j++)
+        for (int i = 0; i < SLOPE_W; i++)
+            m[j * SLOPE_W + i] = j + 0.5 > SLOPE_H - 10 - (i + 0.5) * tn;
+    return m;
+}
+
 /* The worst contact normal, deg off the slope's, of a 12 px box dropped upright onto a static terrain whose
  * bitmap holds a slope of `deg` rising to the right (axis-aligned pixel steps), at eight places a pixel and an
  * eighth apart. The box lands on a corner and tumbles or slides down: every contact is the box on the slope. */
 static double box_on_terrain_slope(double deg)
 {
     const double th = deg * M_PI / 180, tn = tan(th);
-    uint8_t *m = calloc(SLOPE_W * SLOPE_H, 1);
-    cr_assert_not_null(m);
-    for (int j = 0; j < SLOPE_H; j++)
-        for (int i = 0; i < SLOPE_W; i++)
-            m[j * SLOPE_W + i] = j + 0.5 > SLOPE_H - 10 - (i + 0.5) * tn;
+    uint8_t *m = slope_mask(deg);
     double worst = 0;
     for (int k = 0; k < 8; k++) {
         pp_world_def d = pp_world_def_default();
@@ -139,11 +148,7 @@ Test(corners, thin_cards_pushed_end_to_end_part_across_their_thickness, .timeout
 static double deep_box_on_terrain_slope(double deg, double deep, double *depth)
 {
     const double th = deg * M_PI / 180, tn = tan(th);
-    uint8_t *m = calloc(SLOPE_W * SLOPE_H, 1);
-    cr_assert_not_null(m);
-    for (int j = 0; j < SLOPE_H; j++)
-        for (int i = 0; i < SLOPE_W; i++)
-            m[j * SLOPE_W + i] = j + 0.5 > SLOPE_H - 10 - (i + 0.5) * tn;
+    uint8_t *m = slope_mask(deg);
     pp_world_def d = pp_world_def_default();
     d.gravity = v2(0, 0);
     d.substeps = 1; /* the contacts read after the first step are those found `deep` px deep */
