@@ -506,11 +506,9 @@ pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32
                                      int32_t awake_count, const pp_aabb *grown)
 {
     bp->cand_valid = false;
-    int32_t grown_cap = bp->grown_cap;
-    if (!ARRAY_RESERVE(bp->grown, grown_cap, slots) ||
+    if (!ARRAY_RESERVE(bp->grown, bp->grown_cap, slots) ||
         !ARRAY_RESERVE(bp->cand_awake, bp->cand_awake_cap, awake_count))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory for a step's %d awake bodies", (int)awake_count);
-    bp->grown_cap = grown_cap;
     /* The awake boxes grown for the search, then put back. */
     for (int32_t k = 0; k < awake_count; k++) {
         const int32_t s = awake[k];

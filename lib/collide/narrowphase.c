@@ -9,18 +9,23 @@
 static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
 
 
+/* A box in reference-local coordinates, px. */
+typedef struct local_box {
+    double lo_x, lo_y, hi_x, hi_y;
+} local_box;
+
 /* The other body's solid bounds in reference-local coordinates, as a box: M, t map reference-local to
  * other-local (q = M·l + t). */
-static void other_box(const pp_raster *rb, double mc, double ms, dvec2 t, double *lo_x, double *lo_y, double *hi_x,
-                      double *hi_y)
+static local_box other_box(const pp_raster *rb, double mc, double ms, dvec2 t)
 {
-    *lo_x = *lo_y = INFINITY, *hi_x = *hi_y = -INFINITY;
+    local_box b = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     const double cx[2] = {rb->x0, rb->x1}, cy[2] = {rb->y0, rb->y1};
     for (int k = 0; k < 4; k++) {
         const dvec2 l = dv_unrot(dv_sub(dv(cx[k & 1], cy[k >> 1]), t), mc, ms);
-        *lo_x = fmin(*lo_x, l.x), *hi_x = fmax(*hi_x, l.x);
-        *lo_y = fmin(*lo_y, l.y), *hi_y = fmax(*hi_y, l.y);
+        b.lo_x = fmin(b.lo_x, l.x), b.hi_x = fmax(b.hi_x, l.x);
+        b.lo_y = fmin(b.lo_y, l.y), b.hi_y = fmax(b.hi_y, l.y);
     }
+    return b;
 }
 
 /* M = R(θA − θB) and t = pivotB + R(−θB)(posA − posB) − M·pivotA, which map A-local to B-local: q = M·l + t. */
@@ -31,13 +36,11 @@ static void relative_map(const np_body *A, const np_body *B, double *mc, double 
     *t = dv_sub(dv_add(B->pivot, d), dv_rot(A->pivot, *mc, *ms));
 }
 
-/* The rectangle of the reference grid where the two bodies can overlap; false when empty.
- * M, t map reference-local to other-local: q = M·l + t. */
-static bool overlap_grid(const pp_raster *ra, const pp_raster *rb, double mc, double ms, dvec2 t, int32_t stride,
-                         np_pair *p)
+/* The rectangle of the reference grid where the two bodies can overlap, the other's box `ob` in reference-local
+ * coordinates; false when empty. */
+static bool overlap_grid(const pp_raster *ra, local_box ob, int32_t stride, np_pair *p)
 {
-    double lo_x, lo_y, hi_x, hi_y;
-    other_box(rb, mc, ms, t, &lo_x, &lo_y, &hi_x, &hi_y);
+    const double lo_x = ob.lo_x, lo_y = ob.lo_y, hi_x = ob.hi_x, hi_y = ob.hi_y;
     /* A margin of one cell plus one pixel so unit shifts of the other body stay inside. */
     const double margin = stride + 1;
     /* Clamped on both sides: a pair far apart (pp_world_collide takes any pair) gives bounds past int64
@@ -88,7 +91,7 @@ static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
  * read. On the other body's axes the test is exact: the samples' fixed-point points are an affine map of the
  * cell indices, so the grid's corners bound their pixels. On the reference's axes, its cell centres against
  * the other's box, with the fixed-point steps' rounding as tolerance. */
-static bool cells_can_meet(const np_pair *p, double mc, double ms, dvec2 t)
+static bool cells_can_meet(const np_pair *p, local_box ob)
 {
     const pp_raster *rb = p->rb;
     int64_t lx = INT64_MAX, ly = INT64_MAX, hx = INT64_MIN, hy = INT64_MIN;
@@ -101,8 +104,7 @@ static bool cells_can_meet(const np_pair *p, double mc, double ms, dvec2 t)
     }
     if (hx < rb->x0 || lx >= rb->x1 || hy < rb->y0 || ly >= rb->y1)
         return false;
-    double lo_x, lo_y, hi_x, hi_y;
-    other_box(rb, mc, ms, t, &lo_x, &lo_y, &hi_x, &hi_y);
+    const double lo_x = ob.lo_x, lo_y = ob.lo_y, hi_x = ob.hi_x, hi_y = ob.hi_y;
     /* Each rounded step (and the origin) is off by at most 2^-17 px a component, and a sample point adds up to
      * nx + ny + 4·RING of them: tol is over √2 times that, the most it moves along any axis. */
     const double tol = (double)(p->nx + p->ny + 2 * NP_RING + 1) / (1 << NP_FIX_BITS) + 1e-9;
@@ -115,7 +117,8 @@ static bool cells_can_meet(const np_pair *p, double mc, double ms, dvec2 t)
                              (int64_t)floor(hi_x + tol - 0.5) + 1, (int64_t)floor(hi_y + tol - 0.5) + 1) != RASTER_EMPTY;
 }
 
-bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
+/* np_pair_grid, and the other body's box in reference-local coordinates in *ob. */
+static bool pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p, local_box *ob)
 {
     if (raster_empty(a->raster) || raster_empty(b->raster))
         return false;
@@ -128,7 +131,8 @@ bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np
     double mc, ms;
     dvec2 t;
     relative_map(A, B, &mc, &ms, &t);
-    if (!overlap_grid(p->ra, p->rb, mc, ms, t, set->stride, p))
+    *ob = other_box(p->rb, mc, ms, t);
+    if (!overlap_grid(p->ra, *ob, set->stride, p))
         return false;
     sampling_steps(p, mc, ms, t);
 
@@ -142,14 +146,16 @@ bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np
     return true;
 }
 
+bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
+{
+    local_box ob;
+    return pair_grid(set, a, b, p, &ob);
+}
+
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
 {
-    if (!np_pair_grid(set, a, b, p))
-        return false;
-    double mc, ms;
-    dvec2 t;
-    relative_map(p->swap ? b : a, p->swap ? a : b, &mc, &ms, &t);
-    return cells_can_meet(p, mc, ms, t);
+    local_box ob;
+    return pair_grid(set, a, b, p, &ob) && cells_can_meet(p, ob);
 }
 
 /* round(2^14·a/√r2) for 0 ≤ a ≤ √r2 < 2^15.5, exactly: the k with (2k−1)²·r2 ≤ 2^30·a² < (2k+1)²·r2.

@@ -54,13 +54,15 @@ static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, doub
     return fabs(w) * dt <= CARRY_TURN_RAD;
 }
 
-/* Bodies falling together move nothing against each other: the bound is on their relative motion. */
-static bool slow_pair(const world *wd, const body *a, const body *b, double dt, double bound)
+/* How far a point of one body may move against the other in a step of dt s, px; INFINITY if either turns more
+ * than CARRY_TURN_RAD. Bodies falling together move nothing against each other: it is their relative motion. */
+static double pair_motion(const world *wd, const body *a, const body *b, double dt)
 {
     dvec2 va, vb;
     double ta, tb;
-    return slow_turn(wd, a, dt, &va, &ta) && slow_turn(wd, b, dt, &vb, &tb) &&
-           (dv_norm(dv_sub(vb, va)) + ta + tb) * dt <= bound;
+    if (!slow_turn(wd, a, dt, &va, &ta) || !slow_turn(wd, b, dt, &vb, &tb))
+        return INFINITY;
+    return (dv_norm(dv_sub(vb, va)) + ta + tb) * dt;
 }
 
 static void strike(carry *c, const body *bd)
@@ -171,9 +173,9 @@ pp_status carry_record(world *wd, double dt, int32_t k)
          * a pair on a long slanted face, whose load moves between its ends (carried at 2 px, Box2D v3's arch fell). */
         const bool carriable = k == 0 && wd->islands.kind[(a->sb.body ? a : b)->index] != ISLAND_EXACT &&
                                body_round_radius(a) == 0 && body_round_radius(b) == 0;
-        const bool slow = carriable && slow_pair(wd, a, b, dt, bound);
-        const bool moving =
-            carriable && !slow && !island_slanted_face(wd, i, end) && slow_pair(wd, a, b, dt, CARRY_MOVING_PX);
+        const double motion = carriable ? pair_motion(wd, a, b, dt) : INFINITY;
+        const bool slow = motion <= bound;
+        const bool moving = !slow && motion <= CARRY_MOVING_PX && !island_slanted_face(wd, i, end);
         const bool still = !slow && !moving && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !carried_before);
         if (k == 0 && !slow && !moving)
             strike(&wd->carry, a), strike(&wd->carry, b);
@@ -319,7 +321,7 @@ static bool still_held(const world *wd, const contact_record *p, const void *ste
         drift = dmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
     }
     drift = sqrt(drift);
-    return drift <= bound && slow_pair(wd, a, b, dt, bound - drift);
+    return drift <= bound && pair_motion(wd, a, b, dt) <= bound - drift;
 }
 
 pp_status carry_begin(world *wd, int32_t k, double dt)
