@@ -123,7 +123,7 @@ void contact_joints_add(world *wd, double h)
                 a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, ia, ib,
                 dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
                 friction, bounce_for(wd, a, b, c, e),
-                anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), span == SPAN_TWO,
+                anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), (uint8_t)span,
                 bounces(wd, a, b, c, e),
             };
             solver_add_contact(wd->solver, &sc, i);

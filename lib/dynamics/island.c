@@ -24,7 +24,7 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * touched this step (carry_struck: the island is not at rest); a contact; a pair the narrowphase found
  * touching this step (carry_was_collided: a lone body with contacts and none collided is at rest). */
 enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8, ROOT_TOUCHING = 16,
-       ROOT_COLLIDED = 32 };
+       ROOT_COLLIDED = 32, ROOT_HIT = 64, ROOT_SHORT = 128 };
 /* The span ROOT_* flags decide; ROOT_STRUCK only chooses the iterations. */
 #define ROOT_SPAN_FLAGS (ROOT_EVERY_SUBSTEP | ROOT_BEHIND | ROOT_CURRENT)
 enum { HARD_MASS_RATIO = 4 };
@@ -190,8 +190,13 @@ static void set_spans(world *wd, substep_pairing pairing)
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const body *bd = wd->bodies[wd->islands.nodes[n]];
         int32_t *f = &flags[world_group_root(parent, wd->islands.nodes[n])];
-        if (awake_mover(bd))
-            *f |= bd->sat_out + 1 == wd->islands.substep_serial ? ROOT_BEHIND : ROOT_CURRENT;
+        if (awake_mover(bd)) {
+            const bool behind = bd->sat_out + 1 == wd->islands.substep_serial;
+            *f |= behind ? ROOT_BEHIND : ROOT_CURRENT;
+            *f |= behind && bd->behind < 3 ? ROOT_SHORT : 0;
+        }
+        if (pairing == PAIR_MID || pairing == PAIR_LAST)
+            *f |= carry_struck(wd, bd->index) ? ROOT_HIT : 0;
         if (bd->type == PP_BODY_KINEMATIC)
             *f |= ROOT_EVERY_SUBSTEP;
         if (at_rest_known && carry_struck(wd, bd->index))
@@ -212,15 +217,25 @@ static void set_spans(world *wd, substep_pairing pairing)
          * the first of a pair out is what the second asks. */
         const int kind = wd->islands.kind[i];
         const bool at_rest = (f & (ROOT_TOUCHING | ROOT_COLLIDED)) == ROOT_TOUCHING;
-        if (kind == ISLAND_QUICK_STACK || (kind == ISLAND_EXACT_ALONE && (at_rest || pairing == PAIR_SECOND))) {
+        const bool second = pairing == PAIR_SECOND || pairing == PAIR_MID || pairing == PAIR_LAST;
+        if (kind == ISLAND_QUICK_STACK || (kind == ISLAND_EXACT_ALONE && (at_rest || second))) {
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
-            else if (pairing == PAIR_SECOND && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND)
-                span = SPAN_TWO; /* list_of reads ROOT_STRUCK from the flags left behind */
+            else if (second && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND) {
+                /* A stack no collided pair touched this step sits the first pair of four out too and solves the
+                 * four at once: list_of reads ROOT_STRUCK and ROOT_HIT from the flags left behind. */
+                if (pairing == PAIR_MID && kind == ISLAND_EXACT_ALONE && at_rest && !(f & ROOT_HIT))
+                    span = SPAN_SKIP;
+                else
+                    span = pairing == PAIR_LAST && !(f & ROOT_SHORT) ? SPAN_FOUR : SPAN_TWO;
+            }
         }
         wd->islands.span[i] = span;
-        if (span == SPAN_SKIP)
-            wd->bodies[i]->sat_out = wd->islands.substep_serial;
+        if (span == SPAN_SKIP) {
+            body *bd = wd->bodies[i];
+            bd->behind = bd->sat_out + 1 == wd->islands.substep_serial && bd->behind < UINT8_MAX ? bd->behind + 1 : 1;
+            bd->sat_out = wd->islands.substep_serial;
+        }
     }
 }
 
@@ -236,11 +251,16 @@ static int list_of(world *wd, int32_t i)
     if (wd->islands.group[wd->islands.group_capacity + root] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
     if (island_exact(wd->islands.kind[i]))
-        return wd->islands.span[i] == SPAN_TWO ? SOLVE_EXACT_TWO : wd->islands.span[i] == SPAN_SKIP ? SOLVE_IDLE
-                                                                                                     : SOLVE_EXACT;
+        switch (wd->islands.span[i]) {
+        case SPAN_FOUR: return SOLVE_EXACT_FOUR;
+        case SPAN_TWO: return SOLVE_EXACT_TWO;
+        case SPAN_ONE: return SOLVE_EXACT;
+        default: return SOLVE_IDLE;
+        }
     if (!awake_mover(bd))
         return -1;
-    const bool struck = (wd->islands.group[2 * wd->islands.group_capacity + root] & ROOT_STRUCK) != 0;
+    const int32_t f = wd->islands.group[2 * wd->islands.group_capacity + root];
+    const bool struck = (f & ROOT_STRUCK) != 0;
     switch (wd->islands.span[i]) {
     case SPAN_TWO: return struck ? SOLVE_QUICK_TWO : SOLVE_QUICK_TWO_REST;
     case SPAN_ONE: return SOLVE_QUICK;

@@ -10,7 +10,17 @@
  * twice its time step, which halves their cost; exact islands, lone bodies, jointed islands and piles with a
  * body over 4 times heavier than one it touches solve every substep. A substep without a pair (FAST's one,
  * an odd count's last) solves everything. */
-typedef enum substep_pairing { PAIR_NONE, PAIR_FIRST, PAIR_SECOND } substep_pairing;
+typedef enum substep_pairing { PAIR_NONE, PAIR_FIRST, PAIR_SECOND, PAIR_MID, PAIR_LAST } substep_pairing;
+/* Substep k's place of `substeps`: the first or second of a pair; in four whole substeps the second pair's
+ * second is PAIR_LAST and the first's PAIR_MID, where a stack at rest keeps sitting out to solve 4·h at the last. */
+static inline substep_pairing island_pairing(int32_t k, int32_t substeps)
+{
+    if (k % 2 == 0)
+        return k + 1 < substeps ? PAIR_FIRST : PAIR_NONE;
+    if (k % 4 == 1)
+        return (k | 3) < substeps ? PAIR_MID : PAIR_SECOND;
+    return PAIR_LAST;
+}
 
 /* Collect the substep's nodes and sort the awake islands into `out` (arrays owned by the world) for
  * solver_step, each body's span (SPAN_*) in wd->island_span. `still`: nothing moved, woke or slept since the

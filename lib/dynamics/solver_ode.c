@@ -756,8 +756,8 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
         const bool rest = i == SOLVE_QUICK_TWO_REST;
         if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->rest_iterations);
-        const double span = i == SOLVE_EXACT_TWO || i == SOLVE_QUICK_TWO || i == SOLVE_QUICK_TWO_REST ? 2 * h : h;
-        ok &= i == SOLVE_EXACT || i == SOLVE_EXACT_TWO ? step_exact(s, span, is->list[i], is->count[i])
+        const double span = SOLVE_SPAN[i] * h;
+        ok &= i <= SOLVE_EXACT_FOUR ? step_exact(s, span, is->list[i], is->count[i])
                                                      : dWorldQuickStep(s->world, span);
         if (rest)
             dWorldSetQuickStepNumIterations(s->world, s->iterations);
@@ -772,22 +772,25 @@ static int step_methods(pp_solver *s, double h, const solver_islands *is)
 /* QuickStep solves the joints in the order they were added, and that order biases it: a stack whose
  * pairs each have two points leans toward the point solved first. The order flips every time an island
  * is solved (by the step count, so snapshots keep it), and the biases cancel: islands solved every substep
- * by its parity, those solved every other substep (`twice`, at every second count) by the next bit. No
- * contact joins two islands, so each kind's contacts go in their own order. */
+ * by its parity, those solved every other substep (at every second count) by the next bit, those solved
+ * every fourth by the bit after. No contact joins two islands, so each span's contacts go in their own order. */
+static int span_order(uint8_t span) { return span == 4 ? 2 : span == 2 ? 1 : 0; }
+
 static void attach_contacts(pp_solver *s, const solver_islands *is)
 {
-    const bool stepped[2] = {
-        is->count[SOLVE_EXACT] + is->count[SOLVE_QUICK] > 0,
-        is->count[SOLVE_EXACT_TWO] + is->count[SOLVE_QUICK_TWO] + is->count[SOLVE_QUICK_TWO_REST] > 0};
-    const bool reversed[2] = {(s->steps & 1) != 0, (s->steps >> 1 & 1) != 0};
-    for (int twice = 0; twice < 2; twice++)
-        for (int32_t n = 0; stepped[twice] && n < s->pending_count; n++) {
-            const pending_contact *p = &s->pending[reversed[twice] ? s->pending_count - 1 - n : n];
-            if (p->c.twice == (twice == 1))
+    bool stepped[3] = {false, false, false}; /* by span: h, 2·h, 4·h */
+    for (int i = 0; i < SOLVE_IDLE; i++)
+        stepped[span_order(SOLVE_SPAN[i])] |= is->count[i] > 0;
+    for (int o = 0; o < 3; o++) {
+        const bool reversed = (s->steps >> o & 1) != 0;
+        for (int32_t n = 0; stepped[o] && n < s->pending_count; n++) {
+            const pending_contact *p = &s->pending[reversed ? s->pending_count - 1 - n : n];
+            if (span_order(p->c.span) == o)
                 attach_contact(s, &p->c, p->k);
         }
+    }
     for (int32_t n = 0; n < s->pending_count; n++) /* not attached: it applied nothing */
-        if (!stepped[s->pending[n].c.twice])
+        if (!stepped[span_order(s->pending[n].c.span)])
             memset(s->feedback[s->pending[n].k].f1, 0, sizeof s->feedback[s->pending[n].k].f1);
     s->pending_count = 0;
 }
@@ -801,9 +804,10 @@ static void empty_contacts(pp_solver *s)
 
 bool solver_step(pp_solver *s, double h, const solver_islands *islands)
 {
-    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity,
-                       islands->count[SOLVE_EXACT] > islands->count[SOLVE_EXACT_TWO] ? islands->count[SOLVE_EXACT]
-                                                                                    : islands->count[SOLVE_EXACT_TWO])) {
+    int32_t exact = 0; /* the largest exact list, saved before its step */
+    for (int i = SOLVE_EXACT; i <= SOLVE_EXACT_FOUR; i++)
+        exact = islands->count[i] > exact ? islands->count[i] : exact;
+    if (!ARRAY_RESERVE(s->exact_from, s->exact_from_capacity, exact)) {
         s->pending_count = 0; /* nothing attached: the caller undoes the step */
         return false;
     }

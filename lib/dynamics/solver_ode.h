@@ -47,7 +47,7 @@ typedef struct solver_contact {
     double friction, restitution;
     double tangent_speed;      /* px/s the friction row drives a's point past b's along (−normal.y, normal.x) */
     double closing_speed;      /* px/s the pair may approach along the normal this substep (≥ 0) */
-    bool twice;                /* its island advances 2·h this substep (it sat the one before out) */
+    uint8_t span;              /* substeps of time its island advances in this one: 1, 2 or 4 (SPAN_*) */
     bool bounce;               /* it bounces this substep: no softness, which would keep part of the speed */
 } solver_contact;
 
@@ -173,11 +173,14 @@ uint64_t solver_get_steps(const pp_solver *s);
 void solver_set_steps(pp_solver *s, uint64_t steps);
 
 /* How a substep's awake islands are solved, in the order solver_step runs them: ODE's exact dWorldStep (every
- * body of its islands, sleepers included) over h, and over 2·h (a lone body at rest that sat the substep before
- * out: island.c), QuickStep over h, over 2·h (the stacks that sat the substep before
+ * body of its islands, sleepers included) over h, over 2·h and over 4·h (a lone body at rest that sat the one or
+ * three substeps before out: island.c), QuickStep over h, over 2·h (the stacks that sat the substep before
  * out), over 2·h at rest (no pair of the stack collided this step: island.c), with fewer iterations, and not at
  * all (islands sitting this substep out). */
-enum { SOLVE_EXACT, SOLVE_EXACT_TWO, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE, SOLVE_LISTS };
+enum { SOLVE_EXACT, SOLVE_EXACT_TWO, SOLVE_EXACT_FOUR, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE,
+       SOLVE_LISTS };
+/* The substeps of time each list (SOLVE_*) advances. */
+static const uint8_t SOLVE_SPAN[SOLVE_LISTS] = {1, 2, 4, 1, 2, 2, 0};
 
 /* The bodies of one substep's awake islands, by how they are solved (SOLVE_*). */
 typedef struct solver_islands {

@@ -292,7 +292,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         if ((st = solver_reserve_contacts(wd->solver, wd->contact_count)))
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
-        const substep_pairing pairing = k % 2 ? PAIR_SECOND : k + 1 < wd->def.substeps ? PAIR_FIRST : PAIR_NONE;
+        const substep_pairing pairing = island_pairing(k, wd->def.substeps);
         if ((st = island_plan(wd, pairing, still, &islands)) ||
             ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))) ||
             (st = continuous_begin(wd)))

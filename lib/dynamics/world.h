@@ -56,6 +56,7 @@ typedef struct body {
     bool forced;             /* listed in wd->forced.slots: a force, torque or gravity scale acts on it */
     int32_t joint_count;     /* joints attached to it (joint.c) */
     uint64_t sat_out;        /* the substep (wd->islands.substep_serial) its QuickStep island last sat out (island.c) */
+    uint8_t behind;          /* substeps in a row it sat out, up to sat_out (island.c) */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -76,8 +77,9 @@ typedef struct joint_table {
 enum { ISLAND_NONE, ISLAND_EXACT, ISLAND_EXACT_ALONE, ISLAND_QUICK_ALONE, ISLAND_QUICK_STACK };
 static inline bool island_exact(int kind) { return kind == ISLAND_EXACT || kind == ISLAND_EXACT_ALONE; }
 /* How many substeps of time a body's island advances this substep (island.c): QuickStep islands sit the
- * first substep of a pair out and solve the second with twice its time step. */
-enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2 };
+ * first substep of a pair out and solve the second with twice its time step; a stack at rest sits three of
+ * four out and solves the fourth with four times it. */
+enum { SPAN_SKIP = 0, SPAN_ONE = 1, SPAN_TWO = 2, SPAN_FOUR = 4 };
 
 /* The parts of a world each file owns: only its owner writes them; the others read, or call its functions. */
 

@@ -290,3 +290,55 @@ Test(carry, a_held_pair_without_its_touching_record_is_refused)
     remove_tree(dir);
     pp_world_destroy(w);
 }
+
+#ifdef PP_TEST_PRIVATE
+#include "world.h" /* wd->islands.span: how much time a body's island advanced at the last substep */
+
+/* The span (SPAN_*) of b's island at w's last substep. */
+static int last_span(pp_world w, pp_body b)
+{
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    return wd->islands.span[handle_slot(b.id)];
+}
+#endif
+
+Test(carry, a_lone_crate_at_rest_is_solved_once_a_step_and_still_rests)
+{
+    /* A 32 px crate on the ground, sleep off: once settled, every pair held, its exact lone solve sits three
+     * substeps out and solves the fourth over 4·h. It rests where 1 px of ground overlap plus the slop put it,
+     * and the last substep's impulse is its weight × h, as the header has it, whatever span it was solved over. */
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    d.gravity = v2(0, 980);
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    const pp_body crate = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 16, 0), 32, 32);
+    step_n(w, DT, 120);
+    const double h = DT / d.substeps;
+    float mass = 0;
+    PP_OK_OR_FAIL(pp_body_get_mass(w, crate, &mass, NULL, NULL));
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        const pp_vec2 p = body_pos(w, crate);
+        cr_assert(p.y > GROUND_TOP - 16 && p.y < GROUND_TOP - 15, "step %d: the crate's centre at y = %g", k, p.y);
+        cr_assert_float_eq(p.x, 400.0f, 0.01f, "step %d: the crate slid to x = %g", k, p.x);
+        pp_contact c[4];
+        int32_t n = 0;
+        PP_OK_OR_FAIL(pp_world_get_contacts(w, c, 4, &n));
+        cr_assert_eq(n, 2, "step %d: %d contacts", k, (int)n);
+        const double weight_h = mass * 980.0 * h, sum = c[0].normal_impulse + c[1].normal_impulse;
+        cr_assert(fabs(sum - weight_h) < 0.01 * weight_h, "step %d: impulses %g, weight × h %g", k, sum, weight_h);
+#ifdef PP_TEST_PRIVATE
+        cr_assert_eq(last_span(w, crate), SPAN_FOUR, "step %d: span %d", k, last_span(w, crate));
+#endif
+    }
+    /* Pushed, it moves: its pair is collided and it is solved at every substep again. */
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, crate, v2(300, 0), 0));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    cr_assert_gt(body_pos(w, crate).x, 402.0f);
+#ifdef PP_TEST_PRIVATE
+    cr_assert_eq(last_span(w, crate), SPAN_ONE);
+#endif
+    pp_world_destroy(w);
+}
