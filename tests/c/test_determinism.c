@@ -152,9 +152,9 @@ static const struct {
     const char *name;
     uint64_t hash;
 } golden[] = {
-    {PP_PRESET_FAST, "FAST", 0x7add5480e4455b48ull},
-    {PP_PRESET_BALANCED, "BALANCED", 0x67345c3ed722dc4dull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0x67345c3ed722dc4dull},
+    {PP_PRESET_FAST, "FAST", 0xe760f57540388101ull},
+    {PP_PRESET_BALANCED, "BALANCED", 0x28374aa5ea53a832ull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0x28374aa5ea53a832ull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {

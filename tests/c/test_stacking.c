@@ -241,6 +241,16 @@ Test(stacking, box2d_v3s_card_house_3_levels_stands, .timeout = 120)
     cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
 }
 
+/* Box2D v3's full card house (5 levels, 40 cards) at ACCURATE: the top tent swayed about 1.5 px, its apex (a
+ * one-pixel corner on a card's face) slipped past 2 px, re-anchored and slid on, and the house fell at 1.1 s.
+ * A friction anchor that holds to 4 px of slip stands it. */
+Test(stacking, box2d_v3s_card_house_stands_at_accurate, .timeout = 120)
+{
+    const double moved = scene_move_from_built("cardhouse_v3", PP_PRESET_ACCURATE, 10.0);
+    cr_log_info("Box2D v3's card house, 5 levels, ACCURATE: no card moved over %.2f px in 10 s", moved);
+    cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
+}
+
 /* Box2D v3's arch (16 blocks and a keystone, 130-200 px joints, four 400 × 100 px slabs on top): the exact solve
  * put each joint's load on one end, the keystone's joint opened at its other end and the arch collapsed at
  * 0.43 s. Its slanted long faces keep it on QuickStep, which spreads the load: it sags and stands. */
