@@ -778,6 +778,8 @@ static int span_order(uint8_t span) { return span == 4 ? 2 : span == 2 ? 1 : 0; 
 
 static void attach_contacts(pp_solver *s, const solver_islands *is)
 {
+    if (s->pending_count == 0)
+        return;
     bool stepped[3] = {false, false, false}; /* by span: h, 2·h, 4·h */
     for (int i = 0; i < SOLVE_IDLE; i++)
         stepped[span_order(SOLVE_SPAN[i])] |= is->count[i] > 0;
