@@ -429,6 +429,14 @@ void island_list_woken(world *wd)
 bool island_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
+    if (!d->allow_sleep) { /* nothing sleeps: no velocity to read, the timers (a woken sleeper's mark too) at 0 */
+        for (int32_t k = 0; k < wd->awake.count; k++) {
+            body *bd = wd->bodies[wd->awake.slots[k]];
+            if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd))
+                bd->slow_time = 0;
+        }
+        return false;
+    }
     bool ready = false; /* an awake body slow for sleep_time: only such a body can fall asleep */
     for (int32_t k = 0; k < wd->awake.count; k++) {
         body *bd = wd->bodies[wd->awake.slots[k]];
@@ -442,10 +450,10 @@ bool island_sleep(world *wd, double h)
         const double vmax = d->sleep_linear_speed; /* squared: no hypot for every body every substep */
         const bool slow = dv_dot(v, v) <= vmax * vmax && fabs(w) <= d->sleep_angular_speed;
         /* Capped at sleep_time while awake: ready, waiting for the rest of its group. */
-        bd->slow_time = slow && d->allow_sleep ? dmin(bd->slow_time + h, d->sleep_time) : 0;
+        bd->slow_time = slow ? dmin(bd->slow_time + h, d->sleep_time) : 0;
         ready |= bd->slow_time >= d->sleep_time;
     }
-    if (!d->allow_sleep || !ready || wd->islands.node_count == 0)
+    if (!ready || wd->islands.node_count == 0)
         return false; /* no node: nothing awake, and maybe no arrays yet */
     /* Sleep groups: dynamic bodies joined by contacts, over the nodes island_plan collected (every body of a
      * group with an awake body is one: awake, or a contact's). */
