@@ -1,4 +1,4 @@
-/* Editing pixels at any moment: erase, paint, write, read, and the world's explosion. Mass sums
+/* Editing pixels at any moment: erase, paint, write, read, and the world's erase. Mass sums
  * and bounds follow from the changed pixels alone; the pose (pivot) does not move, the ODE body
  * moves to the new centre of mass with the velocity its material already had; the GPU mirror
  * rewrites only the dirty rows; bodies nearby wake; a body cut apart splits (fracture.c). */
@@ -258,9 +258,11 @@ PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_cente
     return st ? st : edit_paint_circle(wd, bd, world_center, radius, weight, fn, changed);
 }
 
-/* Erase from every body the blast's box meets: every body's writes and pieces first, in slot order, then every
- * commit, so a failure takes them all back. Pieces made on the way are not on the list. */
-static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed)
+/* Erase from every body the blast's box meets whose category_bits meet mask_bits: every body's writes and pieces
+ * first, in slot order, then every commit, so a failure takes them all back. Pieces made on the way are not on the
+ * list. */
+static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                                  int32_t *changed)
 {
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
@@ -275,7 +277,8 @@ static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius,
     }
     int32_t n = 0, events = 0;
     for (int32_t k = 0; k < n_hit && !st; k++)
-        if ((st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
+        if ((wd->bodies[hit[k]]->category_bits & mask_bits) &&
+            (st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
             n++;
     pp_free(hit);
     if (st) {
@@ -304,7 +307,7 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
 {
     pp_status st = check_circle(fn, world_center, radius);
     if (st || !bd)
-        return st ? st : erase_everywhere(wd, world_center, radius, fn, changed);
+        return st ? st : erase_everywhere(wd, world_center, radius, ~0u, fn, changed);
     edit_job j;
     int32_t events = 0;
     if ((st = erase_circle(wd, bd, world_center, radius, fn, &j, &events)))
@@ -313,6 +316,13 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
         *changed = j.e.changed;
     job_commit(wd, &j, NULL);
     return PP_OK;
+}
+
+pp_status edit_erase_world(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                           int32_t *changed)
+{
+    pp_status st = check_circle(fn, world_center, radius);
+    return st ? st : erase_everywhere(wd, world_center, radius, mask_bits, fn, changed);
 }
 
 pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,

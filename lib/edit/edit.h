@@ -22,6 +22,9 @@ void edit_update_solver_body(world *wd, body *bd);
 /* Erase a circle (world px) from bd, or from every body it touches when bd is NULL; paint one into bd with
  * a weight 1..255. The edit calls' work on a world and body already looked up; failures name `fn`. */
 pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed);
+/* Erase a circle from every body whose category_bits meet mask_bits (an explosion's erase). */
+pp_status edit_erase_world(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                           int32_t *changed);
 pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,
                             int32_t *changed);
 
