@@ -9,6 +9,9 @@
 #include "joint.h"
 #include "status.h"
 
+/* Entries this close in travel (a fraction) touch together: a face landing flat touches along its whole width. */
+#define CAST_TIE 1e-9
+
 /* Squares closer than this count as touching, not overlapping, so that rounding does not stop a body resting
  * exactly on another from sliding along it. px. */
 #define CAST_TOUCH 1e-7
@@ -41,12 +44,13 @@ typedef struct cast_state {
     dvec2 axes[4];
     double ha[4], hb[4];
     int n_axes;
-    /* The earliest entry so far (≤ 1): the body and its frame, both squares' centres at the start, the normal out
-     * of the body. */
+    /* The earliest entry so far (≤ 1): the body, the normal out of it, and where the squares entering then touch:
+     * on the contact line n·p = level, over [lo, hi] along the tangent (−n.y, n.x); at the start, between two
+     * overlapping squares' centres (ca, cb). */
     double t;
     const body *hit;
-    cast_frame fhit;
-    dvec2 ca, cb, normal;
+    dvec2 normal, ca, cb;
+    double level, lo, hi;
 } cast_state;
 
 static void cast_candidate(cast_state *cs, const body *b)
@@ -58,6 +62,22 @@ static void cast_candidate(cast_state *cs, const body *b)
     cs->n_axes = aligned ? 2 : 4;
     for (int k = 0; k < cs->n_axes; k++)
         cs->axes[k] = all[k], cs->ha[k] = half_width(&cs->fa, all[k]), cs->hb[k] = half_width(&cs->fb, all[k]);
+}
+
+/* One side of the touch along the tangent u: the part of the square centred at c (frame f) that lies furthest
+ * along dir, a corner or a side, as the interval [*lo, *hi] of its u coordinates. */
+static void support(const cast_frame *f, dvec2 c, dvec2 dir, dvec2 u, double *lo, double *hi)
+{
+    dvec2 corner[4];
+    double top = -INFINITY;
+    for (int k = 0; k < 4; k++) {
+        corner[k] = dv_add(c, dv_add(dv_scale(f->ex, k & 1 ? 0.5 : -0.5), dv_scale(f->ey, k & 2 ? 0.5 : -0.5)));
+        top = fmax(top, dv_dot(dir, corner[k]));
+    }
+    *lo = INFINITY, *hi = -INFINITY;
+    for (int k = 0; k < 4; k++)
+        if (dv_dot(dir, corner[k]) >= top - 1e-9)
+            *lo = fmin(*lo, dv_dot(u, corner[k])), *hi = fmax(*hi, dv_dot(u, corner[k]));
 }
 
 /* The square of the cast body's pixel centred at ca against the candidate's centred at cb: where their open
@@ -78,13 +98,26 @@ static void cast_pair(cast_state *cs, dvec2 ca, dvec2 cb)
         if (fmin(t0, t1) > enter)
             enter = fmin(t0, t1), normal = v > 0 ? dv_scale(n, -1) : n;
         leave = fmin(leave, fmax(t0, t1));
-        if (enter >= leave || enter >= cs->t)
+        if (enter >= leave || enter > cs->t + CAST_TIE)
             return;
     }
     if (!(leave > 0))
         return;
-    cs->t = fmax(enter, 0.0), cs->hit = cs->b, cs->fhit = cs->fb, cs->ca = ca, cs->cb = cb;
-    cs->normal = enter > 0 ? normal : dv(0, 0);
+    if (enter <= 0) { /* overlapping at the start: nothing comes earlier */
+        cs->t = 0, cs->hit = cs->b, cs->normal = dv(0, 0), cs->ca = ca, cs->cb = cb;
+        return;
+    }
+    const dvec2 u = dv(-normal.y, normal.x);
+    double a0, a1, b0, b1;
+    support(&cs->fa, dv_add(ca, dv_scale(cs->T, enter)), dv_scale(normal, -1), u, &a0, &a1);
+    support(&cs->fb, cb, normal, u, &b0, &b1);
+    const double lo = fmax(a0, b0), hi = fmin(a1, b1);
+    if (enter < cs->t - CAST_TIE) {
+        cs->t = enter, cs->hit = cs->b, cs->normal = normal, cs->lo = lo, cs->hi = hi;
+        cs->level = dv_dot(normal, cb) + half_width(&cs->fb, normal);
+    } else if (cs->hit == cs->b && dv_dot(normal, cs->normal) > 1 - 1e-12) {
+        cs->lo = fmin(cs->lo, lo), cs->hi = fmax(cs->hi, hi);
+    }
 }
 
 /* Can this pixel touch first: has it an empty neighbour (corners count)? */
@@ -170,34 +203,6 @@ static bool cast_meets(const world *wd, const body *b, const body *o, uint32_t m
            (b->category_bits & o->mask_bits) && (o->category_bits & b->mask_bits) && !joint_keeps_apart(wd, b, o);
 }
 
-/* One side of the touch along the tangent u: the part of the square centred at c (frame f) that lies furthest
- * along dir, a corner or a side, as the interval [*lo, *hi] of its u coordinates. */
-static void support(const cast_frame *f, dvec2 c, dvec2 dir, dvec2 u, double *lo, double *hi)
-{
-    dvec2 corner[4];
-    double top = -INFINITY;
-    for (int k = 0; k < 4; k++) {
-        corner[k] = dv_add(c, dv_add(dv_scale(f->ex, k & 1 ? 0.5 : -0.5), dv_scale(f->ey, k & 2 ? 0.5 : -0.5)));
-        top = fmax(top, dv_dot(dir, corner[k]));
-    }
-    *lo = INFINITY, *hi = -INFINITY;
-    for (int k = 0; k < 4; k++)
-        if (dv_dot(dir, corner[k]) >= top - 1e-9)
-            *lo = fmin(*lo, dv_dot(u, corner[k])), *hi = fmax(*hi, dv_dot(u, corner[k]));
-}
-
-/* Where the two squares of the hit touch: on the hit body's side, the middle of what both supports share. */
-static dvec2 touch_point(const cast_state *cs)
-{
-    const cast_frame *fb = &cs->fhit;
-    const dvec2 n = cs->normal, u = dv(-n.y, n.x), ca = dv_add(cs->ca, dv_scale(cs->T, cs->t));
-    double a0, a1, b0, b1;
-    support(&cs->fa, ca, dv_scale(n, -1), u, &a0, &a1);
-    support(fb, cs->cb, n, u, &b0, &b1);
-    const double along = 0.5 * (fmax(a0, b0) + fmin(a1, b1)), level = dv_dot(n, cs->cb) + half_width(fb, n);
-    return dv_add(dv_scale(n, level), dv_scale(u, along));
-}
-
 PP_API pp_status pp_world_cast_body(pp_world w, pp_body b, pp_vec2 translation, uint32_t mask_bits,
                                     pp_raycast_hit *out, int32_t *hit)
 {
@@ -236,8 +241,8 @@ PP_API pp_status pp_world_cast_body(pp_world w, pp_body b, pp_vec2 translation, 
     if (!cs.hit)
         return PP_OK;
     dvec2 p, nrm = cs.normal;
-    if (cs.t > 0 || dv_norm(nrm) > 0) {
-        p = touch_point(&cs);
+    if (cs.t > 0) {
+        p = dv_add(dv_scale(nrm, cs.level), dv_scale(dv(-nrm.y, nrm.x), 0.5 * (cs.lo + cs.hi)));
     } else { /* overlapping at the start: between the two squares, the normal against the travel */
         p = dv_scale(dv_add(cs.ca, cs.cb), 0.5);
         const double len = dv_norm(cs.T);
