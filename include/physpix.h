@@ -855,6 +855,10 @@ PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_cente
 /// Erase every body's pixels within radius (px, finite, ≥ 0) of a world point (px, finite);
 /// changed receives the pixels erased (may be NULL).
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
+/// pp_explosion_def_default's impulse_per_length, mass·px/s per px: a full-strength blast sends a 20 px square crate
+/// of density 1 off at 250 px/s (a square's speed is impulse_per_length / its side).
+#define PP_EXPLOSION_IMPULSE_PER_LENGTH 5000.0f
+
 /// An explosion (pp_world_explode): an erase, then one impulse on each dynamic body near it, Box2D v3's rule on
 /// pixels.
 typedef struct pp_explosion_def {
@@ -868,7 +872,8 @@ typedef struct pp_explosion_def {
     uint32_t erase_mask_bits;  ///< bodies whose category_bits meet it are erased (default all)
 } pp_explosion_def;
 
-/// Defaults: at the origin, radius, falloff, impulse and erase 0, every category pushed and erased.
+/// Defaults: at the origin, radius, falloff and erase 0, PP_EXPLOSION_IMPULSE_PER_LENGTH, every category pushed and
+/// erased.
 PP_API pp_explosion_def pp_explosion_def_default(void);
 /// Erase (pieces split off included), then give every dynamic body whose category meets mask_bits with a solid
 /// pixel within radius + falloff of position one impulse (mass·px/s) at its pixel nearest to position, from

@@ -11,6 +11,7 @@ PP_API pp_explosion_def pp_explosion_def_default(void)
 {
     pp_explosion_def d = {0};
     d.struct_size = sizeof d;
+    d.impulse_per_length = PP_EXPLOSION_IMPULSE_PER_LENGTH;
     d.mask_bits = d.erase_mask_bits = ~0u;
     return d;
 }

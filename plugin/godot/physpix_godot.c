@@ -580,20 +580,80 @@ static uint32_t mask_arg(const call *c, int i)
     return c->argc > i ? (uint32_t)c->a[i].i : 0xffffffffu;
 }
 
-/* {body, point, normal, fraction} of the nearest solid pixel on the segment, or nil (a miss or an error). */
+/* A hit as {body, point, normal, fraction}. */
+static godot_variant hit_dict(const pp_raycast_hit *h)
+{
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "body", body_int(h->body));
+    gdn_dict_put(&d, "point", gdn_vector2(h->point.x, h->point.y));
+    gdn_dict_put(&d, "normal", gdn_vector2(h->normal.x, h->normal.y));
+    gdn_dict_put(&d, "fraction", gdn_real(h->fraction));
+    return gdn_dict_variant(&d);
+}
+
+/* The nearest solid pixel on the segment as a hit, or nil (a miss or an error). */
 static godot_variant raycast(call *c)
 {
     pp_raycast_hit h;
     int32_t hit = 0;
     if (!ok(c, pp_world_raycast(c->self->world, c->a[0].v, c->a[1].v, mask_arg(c, 2), &h, &hit)) || !hit)
         return gdn_nil();
-    godot_dictionary d;
-    gdn->godot_dictionary_new(&d);
-    gdn_dict_put(&d, "body", body_int(h.body));
-    gdn_dict_put(&d, "point", gdn_vector2(h.point.x, h.point.y));
-    gdn_dict_put(&d, "normal", gdn_vector2(h.normal.x, h.normal.y));
-    gdn_dict_put(&d, "fraction", gdn_real(h.fraction));
-    return gdn_dict_variant(&d);
+    return hit_dict(&h);
+}
+
+/* Every body the segment enters, as an Array of hits nearest first, or nil on failure. */
+static godot_variant raycast_all(call *c)
+{
+    const uint32_t mask = mask_arg(c, 2);
+    int32_t total = 0;
+    if (!ok(c, pp_world_raycast_all(c->self->world, c->a[0].v, c->a[1].v, mask, NULL, 0, &total)))
+        return gdn_nil();
+    pp_raycast_hit *hits = total > 0 ? malloc(sizeof *hits * (size_t)total) : NULL;
+    if (total > 0 && !hits) {
+        fail(c, "out of memory for %d hits", (int)total);
+        return gdn_nil();
+    }
+    const int32_t capacity = total;
+    if (total > 0 && !ok(c, pp_world_raycast_all(c->self->world, c->a[0].v, c->a[1].v, mask, hits, capacity, &total))) {
+        free(hits);
+        return gdn_nil();
+    }
+    godot_array out;
+    gdn->godot_array_new(&out);
+    for (int32_t i = 0; i < total && i < capacity; i++)
+        gdn_array_put(&out, hit_dict(&hits[i]));
+    free(hits);
+    return gdn_array_variant(&out);
+}
+
+/* Where a body swept along a translation first touches another, as a hit, or nil (free all the way, or an error). */
+static godot_variant cast_body(call *c)
+{
+    pp_raycast_hit h;
+    int32_t hit = 0;
+    if (!ok(c, pp_world_cast_body(c->self->world, c->a[0].body, c->a[1].v, mask_arg(c, 2), &h, &hit)) || !hit)
+        return gdn_nil();
+    return hit_dict(&h);
+}
+
+/* The blast's erase and pushes; the pixels erased, or nil on failure. Arguments left out keep
+ * pp_explosion_def_default's values. */
+static godot_variant explode(call *c)
+{
+    pp_explosion_def d = pp_explosion_def_default();
+    d.position = c->a[0].v;
+    d.radius = c->a[1].f;
+    if (c->argc > 2)
+        d.falloff = c->a[2].f;
+    if (c->argc > 3)
+        d.impulse_per_length = c->a[3].f;
+    if (c->argc > 4)
+        d.erase_radius = c->a[4].f;
+    d.mask_bits = mask_arg(c, 5);
+    d.erase_mask_bits = mask_arg(c, 6);
+    int32_t erased = 0;
+    return ok(c, pp_world_explode(c->self->world, &d, &erased)) ? gdn_int(erased) : gdn_nil();
 }
 
 /* A query's region once its arguments are bound; the three adapt the pp calls to it. */
