@@ -781,6 +781,45 @@ static void op_props(reader *r)
         FUZZ_CHECK(st != PP_OK, "a non-finite setting (%d) accepted", k % 12);
 }
 
+/* Issue 44's calls on a query's inputs: every body a ray enters, a body cast along q, a blast at p. */
+static void op_casts(reader *r, tracked_world *t, pp_world w, uint8_t k, uint32_t mask, pp_vec2 p, pp_vec2 q,
+                     int32_t cap)
+{
+    static pp_raycast_hit hits[8];
+    pp_raycast_hit h;
+    int32_t n = -1, hit = -1, stale = 0;
+    pp_status st;
+    if (k % 4 == 0) {
+        st = ST(pp_world_raycast_all(w, p, q, mask, k & 16 ? NULL : hits, cap, k & 32 ? NULL : &n));
+    } else if (k % 4 == 1) {
+        const pp_body b = pick_body(r, t, &stale);
+        st = ST(pp_world_cast_body(w, b, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit));
+    } else {
+        pp_explosion_def d = pp_explosion_def_default();
+        d.position = p, d.radius = q.x, d.falloff = q.y, d.erase_radius = f32(r, 24);
+        d.impulse_per_length = f32(r, 1e5f), d.mask_bits = mask, d.erase_mask_bits = u32(r);
+        d.struct_size += k & 64 ? 4 : 0;
+        st = ST(pp_world_explode(w, k & 16 ? NULL : &d, k & 32 ? NULL : &n));
+    }
+    if (!t) {
+        FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE || st == PP_ERR_INVALID_ARGUMENT, "a cast in a dead world: %d", (int)st);
+        return;
+    }
+    if (st != PP_OK)
+        return;
+    FUZZ_CHECK(k % 4 != 1 || !stale, "a cast of a stale body accepted");
+    pp_vec2 pos;
+    for (int32_t i = 0; k % 4 == 0 && i < n && i < cap; i++) {
+        FUZZ_CHECK(hits[i].fraction >= 0 && hits[i].fraction <= 1 && (i == 0 || hits[i].fraction >= hits[i - 1].fraction),
+                   "hit %d at %g, out of order", (int)i, hits[i].fraction);
+        FUZZ_CHECK(pp_body_get_position(w, hits[i].body, &pos) == PP_OK, "raycast_all hit no live body");
+    }
+    if (k % 4 == 1 && hit == 1) {
+        FUZZ_CHECK(h.fraction >= 0 && h.fraction <= 1, "cast fraction %g", h.fraction);
+        FUZZ_CHECK(pp_body_get_position(w, h.body, &pos) == PP_OK, "a cast hit no live body");
+    }
+}
+
 static void op_query(reader *r)
 {
     tracked_world *t;
@@ -793,6 +832,10 @@ static void op_query(reader *r)
     int32_t cap = (int32_t)(int8_t)u8(r) % 8, n = -1, hit = -1;
     pp_raycast_hit h;
     pp_status st;
+    if (k & 128) {
+        op_casts(r, t, w, k, mask, p, q, cap);
+        return;
+    }
     switch (k % 4) {
     case 0: st = ST(pp_world_raycast(w, p, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit)); break;
     case 1: st = ST(pp_world_query_point(w, p, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
