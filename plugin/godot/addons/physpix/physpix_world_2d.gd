@@ -185,12 +185,17 @@ func erase_circle(center, radius):
 	var at = to_local(center)
 	var touched = get_world().query_circle(at, radius)
 	var erased = world.world_erase_circle(at, radius)
+	_show_erased(touched, at, radius)
+	return erased
+
+
+# After an erase of the circle (world px) from the bodies touched: their nodes draw the crater.
+func _show_erased(touched, at, radius):
 	_drain_events()  # first: a body erased whole has no pixels left to draw
 	for b in touched:
 		var node = _nodes.get(b)
 		if node != null:
 			node._redraw_circle(at, radius)
-	return erased
 
 
 # A blast at a global point: erases the pixels within erase_radius of it (px) from the bodies whose category meets
@@ -202,11 +207,7 @@ func explode(center, radius, falloff = 0.0, impulse_per_length = EXPLOSION_IMPUL
 	var at = to_local(center)
 	var touched = get_world().query_circle(at, erase_radius, erase_mask) if erase_radius > 0.0 else []
 	var erased = world.explode(at, radius, falloff, impulse_per_length, erase_radius, mask, erase_mask)
-	_drain_events()  # first: a body erased whole has no pixels left to draw
-	for b in touched:
-		var node = _nodes.get(b)
-		if node != null:
-			node._redraw_circle(at, erase_radius)
+	_show_erased(touched, at, erase_radius)
 	return erased
 
 
