@@ -88,8 +88,9 @@ static bool may_split(const body *bd)
     return bd->type == PP_BODY_DYNAMIC || (bd->type == PP_BODY_STATIC && bd->detach_islands);
 }
 
-/* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes
- * may remove pixels of a body that can split, the pixels to put back should the split fail. */
+/* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes may remove
+ * pixels, the pixels to put back should the edit fail after them: the body's split, or in an erase of every body,
+ * a later body's job (a static terrain's crater is taken back as a crate's failed split is). */
 static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool removes,
                            const char *fn, edit_job *j, int32_t *events)
 {
@@ -97,7 +98,7 @@ static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t 
     *j = (edit_job){.bd = bd, .sums = bd->sums, .fn = fn};
     *events += 1 + (removes ? bd->joint_count : 0); /* destroyed, and each joint an anchor's pixels may break */
     pp_status st = world_reserve_events(wd, *events, fn);
-    if (st || !removes || !may_split(bd))
+    if (st || !removes)
         return st;
     j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
     j->x1 = (int32_t)(x1 < r->width ? x1 : r->width), j->y1 = (int32_t)(y1 < r->height ? y1 : r->height);
@@ -262,7 +263,7 @@ PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_cente
  * first, in slot order, then every commit, so a failure takes them all back. Pieces made on the way are not on the
  * list. */
 static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
-                                  int32_t *changed)
+                                  int32_t *changed, edit_before_commit before_commit, void *user)
 {
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
@@ -281,6 +282,8 @@ static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius,
             (st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
             n++;
     pp_free(hit);
+    if (!st && before_commit)
+        st = before_commit(wd, user);
     if (st) {
         while (n > 0)
             job_cancel(wd, &jobs[--n]);
@@ -307,7 +310,7 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
 {
     pp_status st = check_circle(fn, world_center, radius);
     if (st || !bd)
-        return st ? st : erase_everywhere(wd, world_center, radius, ~0u, fn, changed);
+        return st ? st : erase_everywhere(wd, world_center, radius, ~0u, fn, changed, NULL, NULL);
     edit_job j;
     int32_t events = 0;
     if ((st = erase_circle(wd, bd, world_center, radius, fn, &j, &events)))
@@ -319,10 +322,10 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
 }
 
 pp_status edit_erase_world(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
-                           int32_t *changed)
+                           int32_t *changed, edit_before_commit before_commit, void *user)
 {
     pp_status st = check_circle(fn, world_center, radius);
-    return st ? st : erase_everywhere(wd, world_center, radius, mask_bits, fn, changed);
+    return st ? st : erase_everywhere(wd, world_center, radius, mask_bits, fn, changed, before_commit, user);
 }
 
 pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,

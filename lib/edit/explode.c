@@ -143,6 +143,22 @@ static void push_body(world *wd, body *bd, const pp_explosion_def *def)
     push_capped(wd, bd, dv_scale(dir, (double)def->impulse_per_length * across * s), p);
 }
 
+/* Room for the list of the bodies a blast pushes, made before its erase is committed, so that running out of
+ * memory leaves nothing erased: a slot for every body there is then, pieces included. */
+typedef struct blast_room {
+    int32_t *slots;
+    const char *fn;
+} blast_room;
+
+static pp_status blast_reserve(world *wd, void *user)
+{
+    blast_room *room = user;
+    const int32_t n = wd->body_ids.capacity;
+    if (n > 0 && !(room->slots = pp_malloc((size_t)n * sizeof *room->slots)))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a list of %d bodies", room->fn, (int)n);
+    return PP_OK;
+}
+
 PP_API pp_status pp_world_explode(pp_world w, const pp_explosion_def *def, int32_t *changed)
 {
     static const char *fn = "pp_world_explode";
@@ -152,9 +168,12 @@ PP_API pp_status pp_world_explode(pp_world w, const pp_explosion_def *def, int32
     pp_status st = check_explosion(fn, def);
     if (st)
         return st;
+    blast_room room = {NULL, fn};
     int32_t erased = 0;
-    if (def->erase_radius > 0 &&
-        (st = edit_erase_world(wd, def->position, def->erase_radius, def->erase_mask_bits, fn, &erased)))
+    st = def->erase_radius > 0 ? edit_erase_world(wd, def->position, def->erase_radius, def->erase_mask_bits, fn,
+                                                  &erased, blast_reserve, &room)
+                               : blast_reserve(wd, &room);
+    if (st)
         return st;
     if (changed)
         *changed = erased;
@@ -162,11 +181,9 @@ PP_API pp_status pp_world_explode(pp_world w, const pp_explosion_def *def, int32
     const double reach = (double)def->radius + def->falloff;
     const pp_aabb box = {def->position.x - reach - 1, def->position.y - reach - 1, def->position.x + reach + 1,
                          def->position.y + reach + 1};
-    int32_t *near = NULL, n = 0;
-    if ((st = awake_bodies_in_box(wd, fn, box, &near, &n)))
-        return st;
+    const int32_t n = room.slots ? awake_slots_in_box(wd, box, room.slots) : 0;
     for (int32_t k = 0; k < n; k++)
-        push_body(wd, wd->bodies[near[k]], def);
-    pp_free(near);
+        push_body(wd, wd->bodies[room.slots[k]], def);
+    pp_free(room.slots);
     return PP_OK;
 }
