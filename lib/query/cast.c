@@ -149,7 +149,7 @@ static bool local_rect(const body *bd, dvec2 lo, dvec2 hi, double grow, int32_t 
     return true;
 }
 
-/* The pixels [*a, *b) of [lo, hi) whose squares the coordinates (lo, hi) meet. */
+/* The pixels [*ia, *ib), within [lo, hi), whose squares meet the coordinates from a to b. */
 static void span(double a, double b, int32_t lo, int32_t hi, int32_t *ia, int32_t *ib)
 {
     *ia = (int32_t)fmin(fmax(floor(a), lo), hi), *ib = (int32_t)fmax(fmin(ceil(b), hi), lo);
