@@ -855,6 +855,7 @@ PP_API pp_status pp_body_erase_circle(pp_world w, pp_body b, pp_vec2 world_cente
 /// Erase every body's pixels within radius (px, finite, ≥ 0) of a world point (px, finite);
 /// changed receives the pixels erased (may be NULL).
 PP_API pp_status pp_world_erase_circle(pp_world w, pp_vec2 world_center, float radius, int32_t *changed);
+
 /// pp_explosion_def_default's impulse_per_length, mass·px/s per px: a full-strength blast sends a 20 px square crate
 /// of density 1 off at 250 px/s (a square's speed is impulse_per_length / its side).
 #define PP_EXPLOSION_IMPULSE_PER_LENGTH 5000.0f
@@ -882,6 +883,7 @@ PP_API pp_explosion_def pp_explosion_def_default(void);
 /// push that would pass PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED is scaled down to it. changed receives the pixels
 /// erased (may be NULL).
 PP_API pp_status pp_world_explode(pp_world w, const pp_explosion_def *def, int32_t *changed);
+
 /// Make solid, with weight 1..255, the pixels whose centres lie within radius (px, finite, ≥ 0) of a world point
 /// (px, finite); changed receives how many changed.
 PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_center, float radius, uint8_t weight,
