@@ -781,10 +781,15 @@ static void op_props(reader *r)
         FUZZ_CHECK(st != PP_OK, "a non-finite setting (%d) accepted", k % 12);
 }
 
-/* Issue 44's calls on a query's inputs: every body a ray enters, a body cast along q, a blast at p. */
-static void op_casts(reader *r, tracked_world *t, pp_world w, uint8_t k, uint32_t mask, pp_vec2 p, pp_vec2 q,
-                     int32_t cap)
+/* Issue 44's calls, on a query's kind of inputs: every body a ray enters, a body cast along q, a blast at p. */
+static void op_casts(reader *r)
 {
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    const uint8_t k = u8(r);
+    const uint32_t mask = k & 8 ? u32(r) : 0xffffffffu;
+    const pp_vec2 p = {f32(r, 400), f32(r, 400)}, q = {f32(r, 400), f32(r, 400)};
+    const int32_t cap = (int32_t)(int8_t)u8(r) % 8;
     static pp_raycast_hit hits[8];
     pp_raycast_hit h;
     int32_t n = -1, hit = -1, stale = 0;
@@ -832,10 +837,6 @@ static void op_query(reader *r)
     int32_t cap = (int32_t)(int8_t)u8(r) % 8, n = -1, hit = -1;
     pp_raycast_hit h;
     pp_status st;
-    if (k & 128) {
-        op_casts(r, t, w, k, mask, p, q, cap);
-        return;
-    }
     switch (k % 4) {
     case 0: st = ST(pp_world_raycast(w, p, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit)); break;
     case 1: st = ST(pp_world_query_point(w, p, mask, k & 16 ? NULL : bodies, cap, k & 32 ? NULL : &n)); break;
@@ -908,8 +909,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 20: op_collide(r, 1); break;
         case 21: op_snapshot(r); break;
         case 22: op_query(r); break;
-        default: /* bytes 215 and 239, once fail-soon, drive the later ops: older seeds keep their meaning */
-            if (op == 215 || op == 239) {
+        default: /* bytes 215, 239 and 191, once fail-soon, drive the later ops: older seeds keep their meaning */
+            if (op == 191) {
+                op_casts(r);
+            } else if (op == 215 || op == 239) {
                 const uint8_t sub = u8(r) % 3;
                 if (sub == 0)
                     op_joint_create(r);
