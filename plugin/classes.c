@@ -413,7 +413,7 @@ static void world_collide(plugin_object *self, const pp_variant *a, pp_variant *
     ret_int(ret, n);
 }
 
-/* ---- raycasts and queries ---- */
+/* ---- raycasts, casts, queries and explosions ---- */
 
 /* A collision filter argument: the 32 bits pp_world_raycast and the queries take. */
 static int mask_bits(const pp_variant *a, const char *m, uint32_t *out, pp_variant *ret)
@@ -460,6 +460,57 @@ static void world_get_ray_normal(plugin_object *self, const pp_variant *a, pp_va
 static void world_get_ray_fraction(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
     ret_float(ret, self->cache->ray.fraction);
+}
+
+static void world_explode(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.explode";
+    pp_explosion_def d = pp_explosion_def_default();
+    d.position = a[0].as.vec2;
+    d.radius = (float)a[1].as.real, d.falloff = (float)a[2].as.real;
+    d.impulse_per_length = (float)a[3].as.real, d.erase_radius = (float)a[4].as.real;
+    int32_t erased = 0;
+    if (mask_bits(&a[5], m, &d.mask_bits, ret) && mask_bits(&a[6], m, &d.erase_mask_bits, ret) &&
+        ret_ok(ret, pp_world_explode(self->world, &d, &erased), m))
+        ret_int(ret, erased);
+}
+
+/* Every hit of the segment into the cache, nearest first; get_ray_* read the one select_ray_hit picks. */
+static void world_raycast_all(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.raycast_all";
+    world_cache *c = self->cache;
+    uint32_t mask;
+    int32_t n = 0;
+    c->ray_hit_count = 0;
+    c->ray = (pp_raycast_hit){0};
+    if (mask_bits(&a[2], m, &mask, ret) &&
+        ret_ok(ret, pp_world_raycast_all(self->world, a[0].as.vec2, a[1].as.vec2, mask, NULL, 0, &n), m) &&
+        reserve((void **)&c->ray_hits, &c->ray_hit_capacity, n, sizeof *c->ray_hits, ret) &&
+        ret_ok(ret, pp_world_raycast_all(self->world, a[0].as.vec2, a[1].as.vec2, mask, c->ray_hits, n, &n), m)) {
+        c->ray_hit_count = n;
+        ret_int(ret, n);
+    }
+}
+
+static void world_select_ray_hit(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    world_cache *c = self->cache;
+    if (index_in(&a[0], c->ray_hit_count, "PhysPixWorld.select_ray_hit", "hits raycast_all found", ret))
+        c->ray = c->ray_hits[a[0].as.integer];
+}
+
+static void world_cast_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.cast_body";
+    world_cache *c = self->cache;
+    uint32_t mask;
+    int32_t hit = 0;
+    c->ray = (pp_raycast_hit){0};
+    if (mask_bits(&a[2], m, &mask, ret) &&
+        ret_ok(ret, pp_world_cast_body(self->world, object_get(a[0].as.object)->body, a[1].as.vec2, mask, &c->ray,
+                                       &hit), m))
+        ret_bool(ret, hit);
 }
 
 /* The three queries share one shape once their region is bound; these adapt it. */

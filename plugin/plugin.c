@@ -143,6 +143,7 @@ static void world_cache_free(world_cache *c)
     free(c->edits);
     free(c->debug_normals);
     free(c->found);
+    free(c->ray_hits);
     free(c);
 }
 

@@ -26,7 +26,9 @@ typedef struct world_cache {
     pp_collision_view debug_view; /* of the last debug_collision */
     pp_vec2 *debug_normals;       /* its local normals, one per cell */
     int64_t debug_capacity;
-    pp_raycast_hit ray; /* of the last raycast; all zero when it met nothing */
+    pp_raycast_hit ray; /* of the last raycast or cast_body, or the hit select_ray_hit chose; zero for a miss */
+    pp_raycast_hit *ray_hits; /* of the last raycast_all, nearest first */
+    int32_t ray_hit_count, ray_hit_capacity;
     pp_body *found;     /* bodies of the last query_* */
     int32_t found_count, found_capacity;
     uint32_t is_sensor, one_way; /* set_body_options: what add_body* give the bodies they make */

@@ -287,9 +287,10 @@ static pp_status sort_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from,
     const int32_t n = to - from;
     if (to - mid == 0 || n < 2)
         return PP_OK;
-    pair_key *keys = pp_malloc((size_t)n * sizeof *keys), *sorted = keys + (mid - from);
+    pair_key *keys = pp_malloc((size_t)n * sizeof *keys);
     if (!keys)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to sort %d pairs", (int)n);
+    pair_key *sorted = keys + (mid - from); /* after the check: an offset on NULL is undefined (found by fuzz_api) */
     for (int32_t k = mid; k < to; k++)
         sorted[k - mid] = key_of(px, bp->pairs[k]);
     qsort(sorted, (size_t)(to - mid), sizeof *keys, key_order);

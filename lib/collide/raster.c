@@ -190,3 +190,29 @@ raster_state raster_rect_state(const pp_raster *r, int64_t x0, int64_t y0, int64
         }
     return !solid ? RASTER_EMPTY : hole ? RASTER_MIXED : RASTER_FULL;
 }
+
+int32_t raster_row_next(const pp_raster *r, int32_t y, int32_t x)
+{
+    if (x < 0)
+        x = 0;
+    const uint64_t *row = r->bits + (int64_t)y * r->words_per_row;
+    for (int32_t w = x >> 6; w < r->words_per_row; w++) {
+        const uint64_t m = row[w] & (w == x >> 6 ? ~(uint64_t)0 << (x & 63) : ~(uint64_t)0);
+        if (m)
+            return 64 * w + __builtin_ctzll(m); /* bits past the width are never set */
+    }
+    return r->width;
+}
+
+int32_t raster_row_prev(const pp_raster *r, int32_t y, int32_t x)
+{
+    if (x >= r->width)
+        x = r->width - 1;
+    const uint64_t *row = r->bits + (int64_t)y * r->words_per_row;
+    for (int32_t w = x >> 6; x >= 0 && w >= 0; w--) {
+        const uint64_t m = row[w] & (w == x >> 6 ? ~(uint64_t)0 >> (63 - (x & 63)) : ~(uint64_t)0);
+        if (m)
+            return 64 * w + 63 - __builtin_clzll(m);
+    }
+    return -1;
+}

@@ -60,6 +60,11 @@ void raster_write(pp_raster *r, int32_t x, int32_t y, bool solid, uint32_t weigh
 /* After a batch of writes touching rows [y0, y1): shrink the bounds, mark the rows dirty. */
 void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1);
 
+/* The first solid pixel of row y at or after column x (x may lie outside the bitmap), or width if none. */
+int32_t raster_row_next(const pp_raster *r, int32_t y, int32_t x);
+/* The last solid pixel of row y at or before column x (x may lie outside the bitmap), or -1 if none. */
+int32_t raster_row_prev(const pp_raster *r, int32_t y, int32_t x);
+
 static inline bool raster_solid(const pp_raster *r, int32_t x, int32_t y)
 {
     return (r->bits[(int64_t)y * r->words_per_row + (x >> 6)] >> (x & 63)) & 1u;

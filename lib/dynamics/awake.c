@@ -284,31 +284,47 @@ static bool list_slot(world *wd, body *bd, void *user)
     return true;
 }
 
-pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n)
+/* The bodies whose box meets `box` appended to l, then sorted into slot order. */
+static void collect_in_box(world *wd, pp_aabb box, slot_list *l)
 {
-    slot_list l = {NULL, 0, 0, false};
-    awake_each_in_box(wd, box, list_slot, &l);
-    if (l.failed) {
-        pp_free(l.slots);
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the bodies near (%g, %g)", fn,
-                       0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1));
-    }
-    if (l.count > 1)
-        qsort(l.slots, (size_t)l.count, sizeof *l.slots, slot_order);
+    awake_each_in_box(wd, box, list_slot, l);
+    if (l->failed)
+        return;
+    if (l->count > 1)
+        qsort(l->slots, (size_t)l->count, sizeof *l->slots, slot_order);
 #ifdef PP_CHECKS
     /* The same bodies as a walk of every live body finds. */
     int32_t expected = 0;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         const body *bd = wd->bodies[i];
         if (bd && aabb_overlap(&bd->aabb, &box)) {
-            PP_ASSERT(expected < l.count && l.slots[expected] == i);
+            PP_ASSERT(expected < l->count && l->slots[expected] == i);
             expected++;
         }
     }
-    PP_ASSERT(expected == l.count);
+    PP_ASSERT(expected == l->count);
 #endif
+}
+
+pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n)
+{
+    slot_list l = {NULL, 0, 0, false};
+    collect_in_box(wd, box, &l);
+    if (l.failed) {
+        pp_free(l.slots);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for the bodies near (%g, %g)", fn,
+                       0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1));
+    }
     *slots = l.slots, *n = l.count;
     return PP_OK;
+}
+
+int32_t awake_slots_in_box(world *wd, pp_aabb box, int32_t *slots)
+{
+    slot_list l = {slots, 0, wd->body_ids.capacity, false}; /* room for every slot: it never grows */
+    collect_in_box(wd, box, &l);
+    PP_ASSERT(!l.failed && l.slots == slots);
+    return l.count;
 }
 
 static bool wake_movable(world *wd, body *bd, void *user)

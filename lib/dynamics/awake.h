@@ -55,6 +55,8 @@ void awake_each_in_box(world *wd, pp_aabb box, bool (*visit)(world *wd, body *bd
 /* The live bodies whose world box meets `box` (closed), in slot order, as a list the caller frees with pp_free:
  * awake_each_in_box's. PP_ERR_OUT_OF_MEMORY names `fn`. */
 pp_status awake_bodies_in_box(world *wd, const char *fn, pp_aabb box, int32_t **slots, int32_t *n);
+/* The same list into `slots`, which holds room for wd->body_ids.capacity of them; returns how many. Cannot fail. */
+int32_t awake_slots_in_box(world *wd, pp_aabb box, int32_t *slots);
 
 /* Whether a listed body is an awake movable body (the set may still hold one that fell asleep this substep). */
 void awake_free(awake_set *a);

@@ -12,6 +12,12 @@ static inline dvec2 body_world_to_local(const body *bd, dvec2 p)
     return dv_add(bd->pivot, dv_unrot(dv_sub(p, bd->pos), bd->cos_a, bd->sin_a));
 }
 
+/* A bitmap point of the body in the world, px. */
+static inline dvec2 body_local_to_world(const body *bd, dvec2 p)
+{
+    return dv_add(bd->pos, dv_rot(dv_sub(p, bd->pivot), bd->cos_a, bd->sin_a));
+}
+
 /* The columns [*xa, *xb] of row y whose pixel centres lie within r of the bitmap point c (the circle
  * rule of the edits); false when the row misses the circle. The bounds are unclamped doubles. */
 static inline bool circle_row_span(dvec2 c, double r, int32_t y, double *xa, double *xb)

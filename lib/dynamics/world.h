@@ -286,6 +286,10 @@ void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotat
  * generation and the creation serial come back as they were. Newest first when undoing several. */
 void body_unmake(world *wd, body *bd);
 
+/* The velocity (px/s) and angular velocity (rad/s) a dynamic body would have after an impulse (mass·px/s) at a
+ * world point (px); nothing changes. */
+void body_velocity_after_impulse(const world *wd, const body *bd, dvec2 impulse, dvec2 world_point, dvec2 *v,
+                                 double *w);
 /* Velocity of a body's material point at a world point, px/s; static bodies do not move. */
 dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
 
@@ -310,6 +314,8 @@ static inline pp_status world_slot_array(world *wd, void **items, int32_t *capac
     return wd->body_ids.capacity <= *capacity ? PP_OK : world_slot_array_grow(wd, items, capacity, per_slot, what);
 }
 
+/* Whether a velocity (px/s) and angular velocity (rad/s) are within PP_MAX_SPEED and PP_MAX_ANGULAR_SPEED. */
+bool body_speed_ok(dvec2 v, double w);
 /* PP_ERR_INVALID_ARGUMENT, naming the field, for a velocity past PP_MAX_SPEED or PP_MAX_ANGULAR_SPEED. */
 /* PP_ERR_INVALID_ARGUMENT naming the first of a body's surface and damping values out of its range. */
 pp_status body_check_surface(const char *fn, double friction, double restitution, double linear_damping,

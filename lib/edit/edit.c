@@ -1,4 +1,4 @@
-/* Editing pixels at any moment: erase, paint, write, read, and the world's explosion. Mass sums
+/* Editing pixels at any moment: erase, paint, write, read, and the world's erase. Mass sums
  * and bounds follow from the changed pixels alone; the pose (pivot) does not move, the ODE body
  * moves to the new centre of mass with the velocity its material already had; the GPU mirror
  * rewrites only the dirty rows; bodies nearby wake; a body cut apart splits (fracture.c). */
@@ -88,8 +88,9 @@ static bool may_split(const body *bd)
     return bd->type == PP_BODY_DYNAMIC || (bd->type == PP_BODY_STATIC && bd->detach_islands);
 }
 
-/* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes
- * may remove pixels of a body that can split, the pixels to put back should the split fail. */
+/* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes may remove
+ * pixels, the pixels to put back should the edit fail after them: the body's split, or in an erase of every body,
+ * a later body's job (a static terrain's crater is taken back as a crate's failed split is). */
 static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool removes,
                            const char *fn, edit_job *j, int32_t *events)
 {
@@ -97,7 +98,7 @@ static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t 
     *j = (edit_job){.bd = bd, .sums = bd->sums, .fn = fn};
     *events += 1 + (removes ? bd->joint_count : 0); /* destroyed, and each joint an anchor's pixels may break */
     pp_status st = world_reserve_events(wd, *events, fn);
-    if (st || !removes || !may_split(bd))
+    if (st || !removes)
         return st;
     j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
     j->x1 = (int32_t)(x1 < r->width ? x1 : r->width), j->y1 = (int32_t)(y1 < r->height ? y1 : r->height);
@@ -258,9 +259,11 @@ PP_API pp_status pp_body_paint_circle(pp_world w, pp_body b, pp_vec2 world_cente
     return st ? st : edit_paint_circle(wd, bd, world_center, radius, weight, fn, changed);
 }
 
-/* Erase from every body the blast's box meets: every body's writes and pieces first, in slot order, then every
- * commit, so a failure takes them all back. Pieces made on the way are not on the list. */
-static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed)
+/* Erase from every body the blast's box meets whose category_bits meet mask_bits: every body's writes and pieces
+ * first, in slot order, then every commit, so a failure takes them all back. Pieces made on the way are not on the
+ * list. */
+static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                                  int32_t *changed, edit_before_commit before_commit, void *user)
 {
     const pp_aabb blast = {world_center.x - radius, world_center.y - radius, world_center.x + radius,
                            world_center.y + radius};
@@ -275,9 +278,12 @@ static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius,
     }
     int32_t n = 0, events = 0;
     for (int32_t k = 0; k < n_hit && !st; k++)
-        if ((st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
+        if ((wd->bodies[hit[k]]->category_bits & mask_bits) &&
+            (st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
             n++;
     pp_free(hit);
+    if (!st && before_commit)
+        st = before_commit(wd, user);
     if (st) {
         while (n > 0)
             job_cancel(wd, &jobs[--n]);
@@ -304,7 +310,7 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
 {
     pp_status st = check_circle(fn, world_center, radius);
     if (st || !bd)
-        return st ? st : erase_everywhere(wd, world_center, radius, fn, changed);
+        return st ? st : erase_everywhere(wd, world_center, radius, ~0u, fn, changed, NULL, NULL);
     edit_job j;
     int32_t events = 0;
     if ((st = erase_circle(wd, bd, world_center, radius, fn, &j, &events)))
@@ -313,6 +319,13 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
         *changed = j.e.changed;
     job_commit(wd, &j, NULL);
     return PP_OK;
+}
+
+pp_status edit_erase_world(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                           int32_t *changed, edit_before_commit before_commit, void *user)
+{
+    pp_status st = check_circle(fn, world_center, radius);
+    return st ? st : erase_everywhere(wd, world_center, radius, mask_bits, fn, changed, before_commit, user);
 }
 
 pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,

@@ -22,6 +22,13 @@ void edit_update_solver_body(world *wd, body *bd);
 /* Erase a circle (world px) from bd, or from every body it touches when bd is NULL; paint one into bd with
  * a weight 1..255. The edit calls' work on a world and body already looked up; failures name `fn`. */
 pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float radius, const char *fn, int32_t *changed);
+/* Called once every body's erase is written and its pieces made, before any is committed: a failure there takes
+ * the whole erase back. */
+typedef pp_status (*edit_before_commit)(world *wd, void *user);
+/* Erase a circle from every body whose category_bits meet mask_bits (an explosion's erase); before_commit may be
+ * NULL. */
+pp_status edit_erase_world(world *wd, pp_vec2 world_center, float radius, uint32_t mask_bits, const char *fn,
+                           int32_t *changed, edit_before_commit before_commit, void *user);
 pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float radius, uint8_t weight, const char *fn,
                             int32_t *changed);
 

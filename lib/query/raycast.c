@@ -293,18 +293,32 @@ typedef struct ray_best {
     dvec2 a, dir; /* the segment in the best body's bitmap frame */
 } ray_best;
 
+/* The first solid pixel of bd on the world segment from + t·d, with the segment in bd's bitmap frame (a + t·ad;
+ * t stays the world segment's). */
+static bool body_segment_hit(const body *bd, dvec2 from, dvec2 d, dvec2 *a, dvec2 *ad, pixel_hit *h)
+{
+    *a = body_world_to_local(bd, from), *ad = dv_unrot(d, bd->cos_a, bd->sin_a);
+    return body_ray(bd, *a, *ad, h);
+}
+
 static bool ray_try(world *wd, body *bd, void *user)
 {
     ray_best *rb = user;
     if (!queried(bd, rb->mask_bits))
         return true;
-    /* The segment in the bitmap frame; t stays the world segment's. */
-    const dvec2 a = body_world_to_local(bd, rb->from), ad = dv_unrot(rb->d, bd->cos_a, bd->sin_a);
+    dvec2 a, ad;
     pixel_hit h;
-    if (body_ray(bd, a, ad, &h) &&
+    if (body_segment_hit(bd, rb->from, rb->d, &a, &ad, &h) &&
         (!rb->best || h.t < rb->hit.t || (h.t == rb->hit.t && bd->index < rb->best->index)))
         rb->best = bd, rb->hit = h, rb->a = a, rb->dir = ad;
     return true;
+}
+
+/* The world box a segment's candidates are looked for in. */
+static pp_aabb segment_box(dvec2 f, dvec2 e)
+{
+    return (pp_aabb){fmin(f.x, e.x) - QUERY_SLACK, fmin(f.y, e.y) - QUERY_SLACK, fmax(f.x, e.x) + QUERY_SLACK,
+                     fmax(f.y, e.y) + QUERY_SLACK};
 }
 
 PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
@@ -322,8 +336,7 @@ PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t
     const dvec2 f = dv(from.x, from.y), e = dv(to.x, to.y), d = dv_sub(e, f);
     /* Bodies in the order the ray meets their boxes, so that the search stops at the first box past the
      * nearest hit. Many boxes on one ray go to the heap; without memory, every body near the ray is tried. */
-    const pp_aabb box = {fmin(f.x, e.x) - QUERY_SLACK, fmin(f.y, e.y) - QUERY_SLACK, fmax(f.x, e.x) + QUERY_SLACK,
-                         fmax(f.y, e.y) + QUERY_SLACK};
+    const pp_aabb box = segment_box(f, e);
     int32_t *near = NULL, n_near = 0;
     ray_candidate local[128], *c = NULL;
     if (awake_bodies_in_box(wd, fn, box, &near, &n_near) == PP_OK)
@@ -345,6 +358,55 @@ PP_API pp_status pp_world_raycast(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t
         ray_result(rb.best, f, e, rb.a, rb.dir, &rb.hit, out);
     else
         *out = (pp_raycast_hit){0};
+    return PP_OK;
+}
+
+/* One body's first entry of a segment, for pp_world_raycast_all. */
+typedef struct ray_entry {
+    pixel_hit hit;
+    int32_t slot;
+    dvec2 a, dir; /* the segment in the body's bitmap frame */
+} ray_entry;
+
+static int entry_order(const void *pa, const void *pb)
+{
+    const ray_entry *a = pa, *b = pb;
+    return a->hit.t < b->hit.t ? -1 : a->hit.t > b->hit.t ? 1 : (a->slot > b->slot) - (a->slot < b->slot);
+}
+
+PP_API pp_status pp_world_raycast_all(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
+                                      int32_t capacity, int32_t *count)
+{
+    static const char *fn = "pp_world_raycast_all";
+    pp_status st;
+    world *wd = world_lookup_list(w, fn, out, capacity, count, &st);
+    if (!wd)
+        return st;
+    if (!finite2(from.x, from.y) || !finite2(to.x, to.y))
+        return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: from and to must be finite, got (%g, %g) and (%g, %g)", fn,
+                       from.x, from.y, to.x, to.y);
+    const dvec2 f = dv(from.x, from.y), e = dv(to.x, to.y), d = dv_sub(e, f);
+    int32_t *near = NULL, n_near = 0, n = 0;
+    if ((st = awake_bodies_in_box(wd, fn, segment_box(f, e), &near, &n_near)))
+        return st;
+    ray_entry *hits = n_near > 0 ? pp_malloc((size_t)n_near * sizeof *hits) : NULL;
+    if (n_near > 0 && !hits) {
+        pp_free(near);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)n_near);
+    }
+    for (int32_t k = 0; k < n_near; k++) {
+        const body *bd = wd->bodies[near[k]];
+        ray_entry *h = &hits[n];
+        if (queried(bd, mask_bits) && body_segment_hit(bd, f, d, &h->a, &h->dir, &h->hit))
+            h->slot = near[k], n++;
+    }
+    pp_free(near);
+    if (n > 1)
+        qsort(hits, (size_t)n, sizeof *hits, entry_order);
+    for (int32_t k = 0; k < n && k < capacity; k++)
+        ray_result(wd->bodies[hits[k].slot], f, e, hits[k].a, hits[k].dir, &hits[k].hit, &out[k]);
+    pp_free(hits);
+    *count = n;
     return PP_OK;
 }
 

@@ -376,31 +376,32 @@ static godot_variant paint_circle(call *c)
 
 /* ---- lists: bodies, contacts, events --------------------------------------------------- */
 
-/* The three pp list readers share one shape; these adapt their typed out-pointer to void *. */
-typedef pp_status (*list_fn)(pp_world w, void *out, int32_t capacity, int32_t *count);
-static pp_status list_bodies(pp_world w, void *out, int32_t cap, int32_t *n)
+/* The pp list readers share one shape once the call's arguments are bound; these adapt their typed out-pointer to
+ * void *. */
+typedef pp_status (*list_fn)(const call *c, void *out, int32_t capacity, int32_t *count);
+static pp_status list_bodies(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_get_bodies(w, out, cap, n);
+    return pp_world_get_bodies(c->self->world, out, cap, n);
 }
 
-static pp_status list_contacts(pp_world w, void *out, int32_t cap, int32_t *n)
+static pp_status list_contacts(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_get_contacts(w, out, cap, n);
+    return pp_world_get_contacts(c->self->world, out, cap, n);
 }
 
-static pp_status list_events(pp_world w, void *out, int32_t cap, int32_t *n)
+static pp_status list_events(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_get_events(w, out, cap, n);
+    return pp_world_get_events(c->self->world, out, cap, n);
 }
 
-static pp_status list_states(pp_world w, void *out, int32_t cap, int32_t *n)
+static pp_status list_states(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_get_body_states(w, out, cap, n);
+    return pp_world_get_body_states(c->self->world, out, cap, n);
 }
 
-static pp_status list_joints(pp_world w, void *out, int32_t cap, int32_t *n)
+static pp_status list_joints(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_get_joints(w, out, cap, n);
+    return pp_world_get_joints(c->self->world, out, cap, n);
 }
 
 /* The whole list in a malloc'd array (a count first, then the items); *n is -1 on failure. */
@@ -408,7 +409,7 @@ static void *read_list(call *c, list_fn fn, size_t item_size, int32_t *n)
 {
     int32_t total = 0;
     *n = -1;
-    if (!ok(c, fn(c->self->world, NULL, 0, &total)))
+    if (!ok(c, fn(c, NULL, 0, &total)))
         return NULL;
     void *items = total > 0 ? malloc(item_size * (size_t)total) : NULL;
     if (total > 0 && !items) {
@@ -416,7 +417,7 @@ static void *read_list(call *c, list_fn fn, size_t item_size, int32_t *n)
         return NULL;
     }
     const int32_t capacity = total;
-    if (total > 0 && !ok(c, fn(c->self->world, items, capacity, &total))) {
+    if (total > 0 && !ok(c, fn(c, items, capacity, &total))) {
         free(items);
         return NULL;
     }
@@ -572,7 +573,7 @@ static godot_variant get_body_states(call *c)
     return list_array(c, list_states, sizeof(pp_body_state), state_item, awake_only ? state_awake : NULL);
 }
 
-/* ---- raycasts and queries ------------------------------------------------------------- */
+/* ---- raycasts, casts, queries and explosions ------------------------------------------ */
 
 /* The optional mask argument at index i: all bits when it is left out. */
 static uint32_t mask_arg(const call *c, int i)
@@ -580,76 +581,99 @@ static uint32_t mask_arg(const call *c, int i)
     return c->argc > i ? (uint32_t)c->a[i].i : 0xffffffffu;
 }
 
-/* {body, point, normal, fraction} of the nearest solid pixel on the segment, or nil (a miss or an error). */
+/* A hit as {body, point, normal, fraction}. */
+static godot_variant hit_item(const void *item)
+{
+    const pp_raycast_hit *h = item;
+    godot_dictionary d;
+    gdn->godot_dictionary_new(&d);
+    gdn_dict_put(&d, "body", body_int(h->body));
+    gdn_dict_put(&d, "point", gdn_vector2(h->point.x, h->point.y));
+    gdn_dict_put(&d, "normal", gdn_vector2(h->normal.x, h->normal.y));
+    gdn_dict_put(&d, "fraction", gdn_real(h->fraction));
+    return gdn_dict_variant(&d);
+}
+
+/* The nearest solid pixel on the segment as a hit, or nil (a miss or an error). */
 static godot_variant raycast(call *c)
 {
     pp_raycast_hit h;
     int32_t hit = 0;
     if (!ok(c, pp_world_raycast(c->self->world, c->a[0].v, c->a[1].v, mask_arg(c, 2), &h, &hit)) || !hit)
         return gdn_nil();
-    godot_dictionary d;
-    gdn->godot_dictionary_new(&d);
-    gdn_dict_put(&d, "body", body_int(h.body));
-    gdn_dict_put(&d, "point", gdn_vector2(h.point.x, h.point.y));
-    gdn_dict_put(&d, "normal", gdn_vector2(h.normal.x, h.normal.y));
-    gdn_dict_put(&d, "fraction", gdn_real(h.fraction));
-    return gdn_dict_variant(&d);
+    return hit_item(&h);
 }
 
-/* A query's region once its arguments are bound; the three adapt the pp calls to it. */
-typedef pp_status (*query_fn)(const call *c, uint32_t mask, pp_body *out, int32_t capacity, int32_t *count);
-static pp_status query_point_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+/* Where a body swept along a translation first touches another, as a hit, or nil (free all the way, or an error). */
+static godot_variant cast_body(call *c)
 {
-    return pp_world_query_point(c->self->world, c->a[0].v, mask, out, cap, n);
+    pp_raycast_hit h;
+    int32_t hit = 0;
+    if (!ok(c, pp_world_cast_body(c->self->world, c->a[0].body, c->a[1].v, mask_arg(c, 2), &h, &hit)) || !hit)
+        return gdn_nil();
+    return hit_item(&h);
 }
 
-static pp_status query_aabb_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+/* The list calls of the segment and the regions, their arguments bound. */
+static pp_status list_ray_hits(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_query_aabb(c->self->world, c->a[0].v, c->a[1].v, mask, out, cap, n);
+    return pp_world_raycast_all(c->self->world, c->a[0].v, c->a[1].v, mask_arg(c, 2), out, cap, n);
 }
 
-static pp_status query_circle_fn(const call *c, uint32_t mask, pp_body *out, int32_t cap, int32_t *n)
+static pp_status list_at_point(const call *c, void *out, int32_t cap, int32_t *n)
 {
-    return pp_world_query_circle(c->self->world, c->a[0].v, c->a[1].f, mask, out, cap, n);
+    return pp_world_query_point(c->self->world, c->a[0].v, mask_arg(c, 1), out, cap, n);
+}
+
+static pp_status list_in_box(const call *c, void *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_aabb(c->self->world, c->a[0].v, c->a[1].v, mask_arg(c, 2), out, cap, n);
+}
+
+static pp_status list_in_circle(const call *c, void *out, int32_t cap, int32_t *n)
+{
+    return pp_world_query_circle(c->self->world, c->a[0].v, c->a[1].f, mask_arg(c, 2), out, cap, n);
+}
+
+/* Every body the segment enters, as an Array of hits nearest first, or nil on failure. */
+static godot_variant raycast_all(call *c)
+{
+    return list_array(c, list_ray_hits, sizeof(pp_raycast_hit), hit_item, NULL);
 }
 
 /* The bodies a query finds as an Array of body ints (in slot order), or nil on failure. */
-static godot_variant run_query(call *c, query_fn fn, uint32_t mask)
-{
-    int32_t total = 0;
-    if (!ok(c, fn(c, mask, NULL, 0, &total)))
-        return gdn_nil();
-    pp_body *found = total > 0 ? malloc(sizeof *found * (size_t)total) : NULL;
-    if (total > 0 && !found) {
-        fail(c, "out of memory for %d bodies", (int)total);
-        return gdn_nil();
-    }
-    const int32_t capacity = total;
-    if (total > 0 && !ok(c, fn(c, mask, found, capacity, &total))) {
-        free(found);
-        return gdn_nil();
-    }
-    godot_array out;
-    gdn->godot_array_new(&out);
-    for (int32_t i = 0; i < total && i < capacity; i++)
-        gdn_array_put(&out, body_int(found[i]));
-    free(found);
-    return gdn_array_variant(&out);
-}
-
 static godot_variant query_point(call *c)
 {
-    return run_query(c, query_point_fn, mask_arg(c, 1));
+    return list_array(c, list_at_point, sizeof(pp_body), body_item, NULL);
 }
 
 static godot_variant query_aabb(call *c)
 {
-    return run_query(c, query_aabb_fn, mask_arg(c, 2));
+    return list_array(c, list_in_box, sizeof(pp_body), body_item, NULL);
 }
 
 static godot_variant query_circle(call *c)
 {
-    return run_query(c, query_circle_fn, mask_arg(c, 2));
+    return list_array(c, list_in_circle, sizeof(pp_body), body_item, NULL);
+}
+
+/* The blast's erase and pushes; the pixels erased, or nil on failure. Arguments left out keep
+ * pp_explosion_def_default's values. */
+static godot_variant explode(call *c)
+{
+    pp_explosion_def d = pp_explosion_def_default();
+    d.position = c->a[0].v;
+    d.radius = c->a[1].f;
+    if (c->argc > 2)
+        d.falloff = c->a[2].f;
+    if (c->argc > 3)
+        d.impulse_per_length = c->a[3].f;
+    if (c->argc > 4)
+        d.erase_radius = c->a[4].f;
+    d.mask_bits = mask_arg(c, 5);
+    d.erase_mask_bits = mask_arg(c, 6);
+    int32_t erased = 0;
+    return ok(c, pp_world_explode(c->self->world, &d, &erased)) ? gdn_int(erased) : gdn_nil();
 }
 
 /* ---- scenes, snapshots, clock and camera ---------------------------------------------- */

@@ -284,6 +284,23 @@ static pp_status op_step(script *s) { return pp_world_step(s->w, 1.0f / 60); }
 static pp_status op_step_loaded(script *s) { return pp_world_step(s->loaded, 1.0f / 60); }
 static pp_status op_erase(script *s) { return pp_body_erase_circle(s->w, s->terrain, v2(150, 40), 5, NULL); }
 static pp_status op_erase_world(script *s) { return pp_world_erase_circle(s->w, v2(70, 40), 4, NULL); }
+/* A blast that cuts the terrain beside a crate and pushes the crates near it. */
+static pp_status op_explode(script *s)
+{
+    pp_explosion_def d = pp_explosion_def_default();
+    d.position = v2(110, 40), d.radius = 20, d.falloff = 20, d.impulse_per_length = 2000, d.erase_radius = 5;
+    return pp_world_explode(s->w, &d, NULL);
+}
+
+/* A crate cast down and a ray across the scene: a failure writes nothing, a success changes nothing. */
+static pp_status op_casts(script *s)
+{
+    pp_raycast_hit h[8];
+    int32_t hit = 0, n = 0;
+    const pp_status st = pp_world_cast_body(s->w, s->crates[0], v2(0, 60), 0xffffffffu, h, &hit);
+    return st ? st : pp_world_raycast_all(s->w, v2(0, 30), v2(300, 30), 0xffffffffu, h, 8, &n);
+}
+
 static pp_status op_paint(script *s) { return pp_body_paint_circle(s->w, s->crates[0], v2(60, 20), 4, 128, NULL); }
 
 static pp_status op_collide(script *s)
@@ -382,7 +399,7 @@ static const op scene_ops[] = {
     OP(op_create_world), OP(op_terrain), OP(op_crate0), OP(op_crate1), OP(op_crate2), OP(op_crate3),
     OP(op_disc), OP(op_shelf), OP(op_bar), OP(op_schedule), OP(op_step), OP(op_step), OP(op_step), OP(op_step),
     OP(op_step), OP(op_cut_bar),
-    OP(op_erase), OP(op_erase_world), OP(op_paint), OP(op_cut_shelf), OP(op_collide), OP(op_debug_collision),
+    OP(op_erase), OP(op_erase_world), OP(op_explode), OP(op_casts), OP(op_paint), OP(op_cut_shelf), OP(op_collide), OP(op_debug_collision),
     OP(op_debug_draw),
     OP(op_destroy_crate), OP(op_extra), OP(op_step), OP(op_step), OP(op_save_png), OP(op_load_png),
     OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step_loaded), OP(op_step), OP(op_step),

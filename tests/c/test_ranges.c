@@ -143,6 +143,22 @@ static pp_status range_try_timed_edit(range_fixture *f, const pp_timed_edit *e)
     return pp_world_schedule_edit(f->w, e);
 }
 
+/* A blast beside b: its left face is 12 px from the centre, within the radius. */
+static pp_explosion_def range_explosion_def(range_fixture *f)
+{
+    (void)f;
+    pp_explosion_def d = pp_explosion_def_default();
+    d.position = v2(80, 100);
+    d.radius = 16;
+    d.falloff = 8;
+    return d;
+}
+
+static pp_status range_try_explosion_def(range_fixture *f, const pp_explosion_def *d)
+{
+    return pp_world_explode(f->w, d, NULL);
+}
+
 #include "ranges_gen.h"
 
 /* The C name of a case's argument: "pp_body_def.pivot.x" -> "pivot". */

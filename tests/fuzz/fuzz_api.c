@@ -781,6 +781,50 @@ static void op_props(reader *r)
         FUZZ_CHECK(st != PP_OK, "a non-finite setting (%d) accepted", k % 12);
 }
 
+/* Issue 44's calls, on a query's kind of inputs: every body a ray enters, a body cast along q, a blast at p. */
+static void op_casts(reader *r)
+{
+    tracked_world *t;
+    const pp_world w = pick_world(r, &t);
+    const uint8_t k = u8(r);
+    const uint32_t mask = k & 8 ? u32(r) : 0xffffffffu;
+    const pp_vec2 p = {f32(r, 400), f32(r, 400)}, q = {f32(r, 400), f32(r, 400)};
+    const int32_t cap = (int32_t)(int8_t)u8(r) % 8;
+    static pp_raycast_hit hits[8];
+    pp_raycast_hit h;
+    int32_t n = -1, hit = -1, stale = 0;
+    pp_status st;
+    if (k % 4 == 0) {
+        st = ST(pp_world_raycast_all(w, p, q, mask, k & 16 ? NULL : hits, cap, k & 32 ? NULL : &n));
+    } else if (k % 4 == 1) {
+        const pp_body b = pick_body(r, t, &stale);
+        st = ST(pp_world_cast_body(w, b, q, mask, k & 16 ? NULL : &h, k & 32 ? NULL : &hit));
+    } else {
+        pp_explosion_def d = pp_explosion_def_default();
+        d.position = p, d.radius = q.x, d.falloff = q.y, d.erase_radius = f32(r, 24);
+        d.impulse_per_length = f32(r, 1e5f), d.mask_bits = mask, d.erase_mask_bits = u32(r);
+        d.struct_size += k & 64 ? 4 : 0;
+        st = ST(pp_world_explode(w, k & 16 ? NULL : &d, k & 32 ? NULL : &n));
+    }
+    if (!t) {
+        FUZZ_CHECK(st == PP_ERR_INVALID_HANDLE || st == PP_ERR_INVALID_ARGUMENT, "a cast in a dead world: %d", (int)st);
+        return;
+    }
+    if (st != PP_OK)
+        return;
+    FUZZ_CHECK(k % 4 != 1 || !stale, "a cast of a stale body accepted");
+    pp_vec2 pos;
+    for (int32_t i = 0; k % 4 == 0 && i < n && i < cap; i++) {
+        FUZZ_CHECK(hits[i].fraction >= 0 && hits[i].fraction <= 1 && (i == 0 || hits[i].fraction >= hits[i - 1].fraction),
+                   "hit %d at %g, out of order", (int)i, hits[i].fraction);
+        FUZZ_CHECK(pp_body_get_position(w, hits[i].body, &pos) == PP_OK, "raycast_all hit no live body");
+    }
+    if (k % 4 == 1 && hit == 1) {
+        FUZZ_CHECK(h.fraction >= 0 && h.fraction <= 1, "cast fraction %g", h.fraction);
+        FUZZ_CHECK(pp_body_get_position(w, h.body, &pos) == PP_OK, "a cast hit no live body");
+    }
+}
+
 static void op_query(reader *r)
 {
     tracked_world *t;
@@ -865,8 +909,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 20: op_collide(r, 1); break;
         case 21: op_snapshot(r); break;
         case 22: op_query(r); break;
-        default: /* bytes 215 and 239, once fail-soon, drive the later ops: older seeds keep their meaning */
-            if (op == 215 || op == 239) {
+        default: /* bytes 215, 239 and 191, once fail-soon, drive the later ops: older seeds keep their meaning */
+            if (op == 191) {
+                op_casts(r);
+            } else if (op == 215 || op == 239) {
                 const uint8_t sub = u8(r) % 3;
                 if (sub == 0)
                     op_joint_create(r);

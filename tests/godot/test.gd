@@ -104,6 +104,29 @@ func test_rays_and_queries():
 	check(q.query_point(Vector2(45.5, 55.5)) == [], "erased pixels are not found")
 
 
+# Issue 44: a blast pushes a box by its extent across it (16 px × 10 mass·px/s per px), a cast drops a box onto the
+# ground, and a ray through both names them nearest first.
+func test_explode_and_casts():
+	var q = PhysPixWorld.new()
+	q.create({"gravity": Vector2(0, 0), "backend": "cpu"})
+	var ground = q.add_body_mask(solid_mask(200, 40), 200, 40, Vector2(100, 120), "static")  # top y = 100
+	var box = q.add_body_mask(solid_mask(16, 16), 16, 16, Vector2(100, 50))  # 92..108 × 42..58
+	var hit = q.cast_body(box, Vector2(0, 100))
+	check(typeof(hit) == TYPE_DICTIONARY and hit["body"] == ground and near(hit["fraction"] * 100, 42, 1.0 / 16)
+		and hit["normal"].distance_to(Vector2(0, -1)) < 1e-6, "cast_body stops the box 42 px down on the ground: %s %s"
+		% [hit, q.get_last_error()])
+	check(q.cast_body(box, Vector2(0, -100)) == null and q.get_last_error() == "", "cast up: nothing")
+	var hits = q.raycast_all(Vector2(100, 0), Vector2(100, 200))
+	check(hits.size() == 2 and hits[0]["body"] == box and hits[1]["body"] == ground, "raycast_all: box, then ground: %s"
+		% [hits])
+	check(q.explode(Vector2(80, 50), 30.0, 0.0, 10.0) == 0, "explode without an erase erases nothing")
+	var momentum = q.get_linear_velocity(box).x * q.get_mass(box)
+	check(near(momentum, 160, 0.05), "the box took 16 px × 10: %s" % momentum)
+	check(q.explode(Vector2(100, 100), 10.0, 0.0, 10.0, 5.0) > 0, "explode with an erase carves the ground")
+	check(q.explode(Vector2(), -1.0) == null and q.get_last_error().find("radius") >= 0, "a negative radius refused: %s"
+		% q.get_last_error())
+
+
 func test_sensor():
 	var s = PhysPixWorld.new()
 	var sensor = s.add_body_mask(solid_mask(200, 20), 200, 20, Vector2(100, 100), "static", {"is_sensor": true})
@@ -791,6 +814,7 @@ func _init():
 	check(remove_tree(tmp), "removed %s" % tmp)
 
 	test_rays_and_queries()
+	test_explode_and_casts()
 	test_sensor()
 	test_landing_and_impulses()
 	test_contact_events_switch()

@@ -238,7 +238,7 @@ static uint64_t make_scene(uint64_t *box, uint64_t *ground)
 /* Right arguments for each method, by name; every declared method must have an entry. */
 typedef struct recipe {
     const char *method;
-    pp_variant args[6];
+    pp_variant args[7];
 } recipe;
 
 static int find_recipe(const recipe *r, int n, const char *method)
@@ -346,6 +346,10 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_ray_point", {{0}}},
         {"get_ray_normal", {{0}}},
         {"get_ray_fraction", {{0}}},
+        {"raycast_all", {V_VEC2(100, 0), V_VEC2(100, 200), V_INT(0xffffffff)}},
+        {"select_ray_hit", {V_INT(0)}},
+        {"cast_body", {V_OBJ(box), V_VEC2(0, 30), V_INT(0xffffffff)}},
+        {"explode", {V_VEC2(1000, 1000), V_FLOAT(3), V_FLOAT(1), V_FLOAT(10), V_FLOAT(2), V_INT(0xffffffff), V_INT(0xffffffff)}},
         {"query_point", {V_VEC2(50, 91), V_INT(0xffffffff)}},
         {"query_aabb", {V_VEC2(0, 0), V_VEC2(200, 200), V_INT(1)}},
         {"query_circle", {V_VEC2(50, 91), V_FLOAT(5), V_INT(1)}},
@@ -447,7 +451,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
             for (int32_t i = 0; i < m->arg_count; i++) {
-                pp_variant args[6];
+                pp_variant args[7];
                 memcpy(args, right, sizeof args);
                 args[i] = wrong_for(m->args[i].type, targets[t].other);
                 char says[256];
@@ -458,8 +462,8 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
                 calls++;
             }
             /* One argument too many. */
-            pp_variant extra[7];
-            memcpy(extra, right, sizeof(pp_variant) * 6);
+            pp_variant extra[8];
+            memcpy(extra, right, sizeof(pp_variant) * 7);
             extra[m->arg_count] = V_INT(1);
             pp_variant ret = call(object, m->name, extra, m->arg_count + 1);
             expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "takes");
@@ -1349,4 +1353,46 @@ Test(methods, every_body_method_refuses_a_body_an_edit_destroyed)
         refused++;
     }
     cr_assert_eq(refused, c->method_count - 1);
+}
+
+/* ---- issue 44: explosions and casts ---- */
+
+Test(methods, explode_pushes_a_box_away_and_casts_find_the_ground_and_every_body_on_a_ray)
+{
+    const uint64_t world = new_world();
+    const uint64_t ground = add_rect(world, 200, 40, (pp_vec2){100, 120}, "static"); /* top y = 100 */
+    const uint64_t box = add_rect(world, 20, 20, (pp_vec2){100, 50}, "dynamic");    /* 90..110, 40..60 */
+    /* Dropped 100 px, the box stops after 40 on the ground, its normal up. */
+    pp_variant hit = call(world, "cast_body", (pp_variant[]){V_OBJ(box), V_VEC2(0, 100), V_INT(0xffffffff)}, 3);
+    cr_assert(hit.type == PP_VARIANT_BOOL && hit.as.boolean == 1);
+    cr_assert(fabs(call(world, "get_ray_fraction", NULL, 0).as.real * 100 - 40) <= 1.0 / 16);
+    const pp_vec2 n = call(world, "get_ray_normal", NULL, 0).as.vec2;
+    cr_assert(fabs(n.x) < 1e-6 && fabs(n.y + 1) < 1e-6, "normal (%g, %g)", n.x, n.y);
+    cr_assert_eq(call(world, "get_ray_body", NULL, 0).as.object, ground);
+    /* A ray down through both: the box first. */
+    cr_assert_eq(call(world, "raycast_all", (pp_variant[]){V_VEC2(100, 0), V_VEC2(100, 200), V_INT(0xffffffff)}, 3)
+                     .as.integer, 2);
+    call(world, "select_ray_hit", (pp_variant[]){V_INT(1)}, 1);
+    cr_assert_eq(call(world, "get_ray_body", NULL, 0).as.object, ground);
+    pp_variant ret = call(world, "select_ray_hit", (pp_variant[]){V_INT(2)}, 1);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "index 2 is outside the 2 hits raycast_all found");
+    /* A blast 10 px left of the box, with a crater in the ground: the box leaves to the right, the ground stays. */
+    ret = call(world, "explode",
+               (pp_variant[]){V_VEC2(80, 50), V_FLOAT(30), V_FLOAT(0), V_FLOAT(100), V_FLOAT(0), V_INT(0xffffffff),
+                              V_INT(0xffffffff)},
+               7);
+    cr_assert_eq(ret.type, PP_VARIANT_INT, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    step_n(world, 1);
+    cr_assert_gt(call(box, "get_velocity", NULL, 0).as.vec2.x, 0);
+    ret = call(world, "explode",
+               (pp_variant[]){V_VEC2(80, 100), V_FLOAT(10), V_FLOAT(0), V_FLOAT(100), V_FLOAT(6), V_INT(0xffffffff),
+                              V_INT(0xffffffff)},
+               7);
+    cr_assert_gt(ret.as.integer, 0, "the crater's pixels");
+    ret = call(world, "explode",
+               (pp_variant[]){V_VEC2(80, 100), V_FLOAT(-1), V_FLOAT(0), V_FLOAT(100), V_FLOAT(0), V_INT(0xffffffff),
+                              V_INT(0xffffffff)},
+               7);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.explode");
+    plugin.api.object_destroy(world, &ret);
 }

@@ -84,6 +84,12 @@ int main(void)
     F(pp_timed_edit, center); F(pp_timed_edit, radius); F(pp_timed_edit, reserved);
     end();
 
+    S(pp_explosion_def);
+    F(pp_explosion_def, struct_size); F(pp_explosion_def, position); F(pp_explosion_def, radius);
+    F(pp_explosion_def, falloff); F(pp_explosion_def, impulse_per_length); F(pp_explosion_def, erase_radius);
+    F(pp_explosion_def, mask_bits); F(pp_explosion_def, erase_mask_bits);
+    end();
+
     S(pp_body_state);
     F(pp_body_state, body); F(pp_body_state, position); F(pp_body_state, angle); F(pp_body_state, linear_velocity);
     F(pp_body_state, angular_velocity); F(pp_body_state, awake); F(pp_body_state, user_data);

@@ -240,3 +240,27 @@ def test_one_way_refuses_a_zero_direction(space):
         rect(space, 10, 10, type="static", one_way=True, one_way_direction=(0, 0))
     default = physpix._native.lib.pp_body_def_default()
     assert (default.one_way_direction.x, default.one_way_direction.y) == (0.0, -1.0)
+
+
+# ---- explosions and casts (issue 44) ----
+
+def test_explode_pushes_by_the_extent_across_the_blast_and_casts_stop_where_bodies_touch(space):
+    # Extents 16 and 48 px across a blast from (200, 200), both faces 20 px away: impulses 16 and 48 × 10.
+    a = rect(space, 16, 16, position=(228, 200))
+    b = rect(space, 16, 48, position=(172, 200))
+    assert space.explode((200, 200), 50, falloff=40, impulse_per_length=10) == 0
+    assert a.mass * a.velocity[0] == pytest.approx(160, rel=1e-4)
+    assert b.mass * b.velocity[0] == pytest.approx(-480, rel=1e-4)
+    with pytest.raises(InvalidArgumentError):
+        space.explode((200, 200), -1)
+    # A box 70 px over a static slab stops on it, the slab's normal up; nothing lies above it.
+    ground = rect(space, 100, 40, type="static", position=(500, 300))
+    box = rect(space, 20, 20, position=(500, 200))
+    hit = space.cast_body(box, (0, 100))
+    assert hit.body == ground and hit.fraction * 100 == pytest.approx(70, abs=1 / 16)
+    assert hit.normal == pytest.approx((0, -1), abs=1e-6)
+    assert space.cast_body(box, (0, -100)) is None
+    # A ray through the three boxes, nearest first.
+    hits = space.raycast_all((0, 200), (600, 200))
+    assert [h.body for h in hits] == [b, a, box]
+    assert [h.fraction for h in hits] == sorted(h.fraction for h in hits)

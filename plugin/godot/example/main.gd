@@ -1,15 +1,16 @@
 extends Node2D
-# The example's game: a blast erases every body's pixels in a circle and throws the dynamic bodies near it
-# outward. Blasts come from the timer (the BLASTS points in turn, so the scene runs unattended) and where
-# the left mouse button clicks.
+# The example's game: a blast (PhysPixWorld2D.explode) erases every body's pixels in a circle and throws the
+# dynamic bodies near it outward. Blasts come from the timer (the BLASTS points in turn, so the scene runs
+# unattended) and where the left mouse button clicks.
 
 signal exploded(at)
 
 const BLASTS = [Vector2(200, 345), Vector2(480, 334), Vector2(760, 345), Vector2(300, 352), Vector2(640, 352),
 	Vector2(110, 352), Vector2(860, 352), Vector2(480, 470)]
 
-export var blast_radius = 36.0  # px
-export var blast_speed = 420.0  # px/s given to a body at the blast's centre, falling to 0 at 3 radii
+export var blast_radius = 36.0  # px: the crater, and the push at full strength
+export var blast_falloff = 72.0  # px past blast_radius over which the push falls to 0
+export var blast_impulse_per_length = 6000.0  # mass·px/s per px of a body's extent across the blast
 
 var blasts = 0
 var _flashes = []  # [centre, radius, age s]
@@ -36,14 +37,7 @@ func _on_timer():
 
 func explode(at, radius):
 	blasts += 1
-	world.erase_circle(at, radius)
-	var reach = radius * 3.0
-	for b in world.get_world().query_circle(world.to_local(at), reach):
-		var node = world.node_of(b)
-		if node != null and node.body_type == "dynamic":
-			var away = node.global_position - at
-			var speed = blast_speed * (1.0 - min(away.length() / reach, 1.0))
-			node.apply_impulse(away.normalized() * speed * node.get_mass())
+	world.explode(at, radius, blast_falloff, blast_impulse_per_length, radius)
 	_flashes.append([at, radius, 0.0])
 	emit_signal("exploded", at)
 

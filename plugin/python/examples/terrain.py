@@ -1,7 +1,7 @@
 """Destructible terrain: blasts carve craters out of a static landscape and throw the crates on it.
 
-Every half second a blast (World.erase_circle plus outward impulses, the viewer's right click) lands beside a
-crate; the terrain's mass and outline follow at once, and the crates fall into the craters.
+Every half second a blast (World.explode, the viewer's right click) lands beside a crate; the terrain's mass and
+outline follow at once, and the crates fall into the craters.
 Run: python terrain.py (right click to blast more), or python terrain.py --frames 120 --screenshot terrain.png
 """
 from typing import List, Optional, Tuple
@@ -39,7 +39,7 @@ class Terrain(Viewer):
 
     def step(self) -> None:
         while self.pending and self.pending[0][0] <= self.frame_index:
-            self.erased += self.blast(self.pending.pop(0)[1], radius=28, impulse=300)
+            self.erased += self.blast(self.pending.pop(0)[1], radius=28)
         super().step()
 
 

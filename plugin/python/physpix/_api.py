@@ -137,6 +137,19 @@ class pp_raycast_hit(ctypes.Structure):
     ]
 
 
+class pp_explosion_def(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", c_uint32),
+        ("position", pp_vec2),
+        ("radius", c_float),
+        ("falloff", c_float),
+        ("impulse_per_length", c_float),
+        ("erase_radius", c_float),
+        ("mask_bits", c_uint32),
+        ("erase_mask_bits", c_uint32),
+    ]
+
+
 class pp_step_stats(ctypes.Structure):
     _fields_ = [
         ("broadphase_ms", c_float),
@@ -266,6 +279,7 @@ STRUCTS = {
     "pp_contact": pp_contact,
     "pp_event": pp_event,
     "pp_raycast_hit": pp_raycast_hit,
+    "pp_explosion_def": pp_explosion_def,
     "pp_step_stats": pp_step_stats,
     "pp_allocator": pp_allocator,
     "pp_camera": pp_camera,
@@ -295,7 +309,11 @@ SIGNATURES = {
     "pp_world_get_stats": (STATUS, [pp_world, P(pp_step_stats)]),
     "pp_world_get_events": (STATUS, [pp_world, P(pp_event), c_int32, P(c_int32)]),
     "pp_world_erase_circle": (STATUS, [pp_world, pp_vec2, c_float, P(c_int32)]),
+    "pp_explosion_def_default": (pp_explosion_def, []),
+    "pp_world_explode": (STATUS, [pp_world, P(pp_explosion_def), P(c_int32)]),
     "pp_world_raycast": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_raycast_hit), P(c_int32)]),
+    "pp_world_raycast_all": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_raycast_hit), c_int32, P(c_int32)]),
+    "pp_world_cast_body": (STATUS, [pp_world, pp_body, pp_vec2, c_uint32, P(pp_raycast_hit), P(c_int32)]),
     "pp_world_query_point": (STATUS, [pp_world, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
     "pp_world_query_aabb": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
     "pp_world_query_circle": (STATUS, [pp_world, pp_vec2, c_float, c_uint32, P(pp_body), c_int32, P(c_int32)]),
@@ -371,4 +389,4 @@ SIGNATURES = {
     "pp_world_load_snapshot": (STATUS, [c_char_p, P(pp_world)]),
 }
 
-__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_debug_segment", "pp_body_state", "pp_joint_def"]
+__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_explosion_def", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_debug_segment", "pp_body_state", "pp_joint_def"]

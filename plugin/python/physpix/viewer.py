@@ -152,18 +152,12 @@ class Viewer:
         self.edited(target)
         return changed
 
-    def blast(self, at: Sequence[float], radius: float = 24.0, impulse: float = 400.0) -> int:
-        """Erase a circle out of every body and push the moving bodies near it outward (impulse per unit mass at
-        the blast's edge, falling off with distance)."""
-        changed = self.world.erase_circle(at, radius)
-        for body in self.world.query_circle(at, radius * 3):
-            if body.type != BodyType.DYNAMIC:
-                continue
-            (cx, cy) = self.local_to_world(body, body.center_of_mass)
-            dx, dy = cx - at[0], cy - at[1]
-            d = max(math.hypot(dx, dy), 1.0)
-            scale = impulse * body.mass * min(1.0, radius / d) / d
-            body.apply_impulse((dx * scale, dy * scale), (cx, cy))
+    def blast(self, at: Sequence[float], radius: float = 24.0, impulse_per_length: float = 6000.0) -> int:
+        """World.explode: erase a circle out of every body and push the moving bodies near it outward, at full
+        strength within radius and to nothing at three radii (a 24 px crate of density 1 leaves at up to 250 px/s);
+        returns the pixels erased."""
+        changed = self.world.explode(at, radius, falloff=2 * radius, impulse_per_length=impulse_per_length,
+                                     erase_radius=radius)
         self.edited()
         return changed
 
@@ -193,13 +187,13 @@ class Viewer:
 
     def apply(self, action: Dict[str, Any]) -> None:
         """One scripted action: {"tool": paint|solid|erase|blast|save|grab|drag|release, "at": [x, y] world px,
-        "radius", "weight", for save "dir" and "name"}."""
+        "radius", "weight", for blast "impulse_per_length", for save "dir" and "name"}."""
         tool = action["tool"]
         at = action.get("at", (0.0, 0.0))
         if tool in ("paint", "solid", "erase"):
             self.brush(tool, at, float(action.get("radius", self.radius)), int(action.get("weight", self.weight)))
         elif tool == "blast":
-            self.blast(at, float(action.get("radius", 24.0)), float(action.get("impulse", 400.0)))
+            self.blast(at, float(action.get("radius", 24.0)), float(action.get("impulse_per_length", 6000.0)))
         elif tool == "save":
             body = self.body_at(at) if "at" in action else None
             self.save(body, action.get("name", "painted"), action.get("dir"))

@@ -20,6 +20,7 @@ signal joint_broken(a, b)  # a joint between a and b (null: the static world) br
 const NATIVE_PATH = "res://addons/physpix/physpix_world.gdns"
 const BODY_PATH = "res://addons/physpix/physpix_body_2d.gd"
 const JOINTS_PENDING = "physpix_pending_joints"  # PhysPixJoint2D nodes waiting for their bodies (its PENDING)
+const EXPLOSION_IMPULSE_PER_LENGTH = 5000.0  # explode's default, mass·px/s per px: PP_EXPLOSION_IMPULSE_PER_LENGTH
 
 export var gravity = Vector2(0, 980) setget set_gravity  # px/s²
 export(String, "fast", "balanced", "accurate") var preset = "balanced"
@@ -184,11 +185,29 @@ func erase_circle(center, radius):
 	var at = to_local(center)
 	var touched = get_world().query_circle(at, radius)
 	var erased = world.world_erase_circle(at, radius)
+	_show_erased(touched, at, radius)
+	return erased
+
+
+# After an erase of the circle (world px) from the bodies touched: their nodes draw the crater.
+func _show_erased(touched, at, radius):
 	_drain_events()  # first: a body erased whole has no pixels left to draw
 	for b in touched:
 		var node = _nodes.get(b)
 		if node != null:
 			node._redraw_circle(at, radius)
+
+
+# A blast at a global point: erases the pixels within erase_radius of it (px) from the bodies whose category meets
+# erase_mask, then pushes each dynamic body whose category meets mask with a pixel within radius + falloff (px) by
+# impulse_per_length (mass·px/s per px) × its solid extent across the blast, full within radius, falling linearly to
+# 0 at radius + falloff. Returns the pixels erased.
+func explode(center, radius, falloff = 0.0, impulse_per_length = EXPLOSION_IMPULSE_PER_LENGTH, erase_radius = 0.0,
+		mask = 0xffffffff, erase_mask = 0xffffffff):
+	var at = to_local(center)
+	var touched = get_world().query_circle(at, erase_radius, erase_mask) if erase_radius > 0.0 else []
+	var erased = world.explode(at, radius, falloff, impulse_per_length, erase_radius, mask, erase_mask)
+	_show_erased(touched, at, erase_radius)
 	return erased
 
 
