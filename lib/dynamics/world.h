@@ -56,6 +56,8 @@ typedef struct body {
     bool forced;             /* listed in wd->forced.slots: a force, torque or gravity scale acts on it */
     int32_t joint_count;     /* joints attached to it (joint.c) */
     uint64_t sat_out;        /* the substep (wd->islands.substep_serial) its QuickStep island last sat out (island.c) */
+    uint64_t pixel_stamp;    /* names its pixels' content in the world (state.c): equal stamps, equal pixels */
+    uint64_t stamp_version;  /* the raster version the stamp was given at; a newer one needs a new stamp */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -183,6 +185,7 @@ typedef struct world {
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
     forced_list forced;      /* the bodies a force, torque or gravity scale acts on (forces.c) */
     joint_table joints;
+    uint64_t pixel_clock;    /* the last pixel stamp handed out (state.c); never goes back, not even by a restore */
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */
