@@ -456,7 +456,6 @@ void contact_table_set_state(world *wd, const contact_table_counts *n, const con
     t->count = n->count, t->awake = n->awake, t->gone = n->gone, t->carry_count = n->carry_count;
     t->substep = n->substep, t->found_count = n->found_count, t->resting_stale = n->resting_stale;
     index_rebuild(t); /* room reserved: the keys are the records' */
-    contact_table_validate(wd);
 }
 
 void contact_table_get_counts(const world *wd, contact_table_counts *n)

@@ -147,7 +147,7 @@ typedef struct contact_table_counts {
 } contact_table_counts;
 void contact_table_get_counts(const struct world *wd, contact_table_counts *n);
 /* A saved state's table (state.c): room first, which is all that can fail, then the copy, the index made
- * again from the records. */
+ * again from the records (validated by the caller once the awake set is listed again). */
 pp_status contact_table_reserve_state(struct world *wd, int32_t count, int32_t carry_count, const char *fn);
 void contact_table_set_state(struct world *wd, const contact_table_counts *n, const contact_record *records,
                              const int32_t *carry_order);

@@ -354,6 +354,13 @@ static void retag_contact(pp_contact *c, uint32_t tag)
     c->a.id = retag(c->a.id, tag), c->b.id = retag(c->b.id, tag);
 }
 
+/* memcpy of n bytes, none from a NULL array when there are none. */
+static void copy(void *to, const void *from, size_t n)
+{
+    if (n > 0)
+        memcpy(to, from, n);
+}
+
 /* Room for the world's arrays the state fills; nothing changes on failure. */
 static pp_status reserve_arrays(world *wd, const state_world *w, const char *fn)
 {
@@ -370,10 +377,10 @@ static pp_status reserve_arrays(world *wd, const state_world *w, const char *fn)
 static void set_arrays(world *wd, const state_view *v, uint32_t tag)
 {
     const state_world *w = &v->w;
-    memcpy(wd->contacts, v->contacts, (size_t)w->contact_count * sizeof(pp_contact));
+    copy(wd->contacts, v->contacts, (size_t)w->contact_count * sizeof(pp_contact));
     wd->contact_count = w->contact_count;
     contact_record *records = wd->table.records; /* copied in place and retagged, then taken as they are */
-    memcpy(records, v->records, (size_t)w->table.count * sizeof *records);
+    copy(records, v->records, (size_t)w->table.count * sizeof *records);
     for (int32_t i = 0; i < w->contact_count; i++)
         retag_contact(&wd->contacts[i], tag);
     for (int32_t i = 0; i < w->table.count; i++) {
@@ -383,17 +390,17 @@ static void set_arrays(world *wd, const state_view *v, uint32_t tag)
             retag_contact(&r->points[k], tag), retag_contact(&r->carry_points[k], tag);
     }
     contact_table_set_state(wd, &w->table, records, (const int32_t *)v->carry);
-    memcpy(wd->events.items, v->events, (size_t)w->event_count * sizeof(pp_event));
+    copy(wd->events.items, v->events, (size_t)w->event_count * sizeof(pp_event));
     wd->events.count = w->event_count;
     for (int32_t i = 0; i < w->event_count; i++) {
         pp_event *e = &wd->events.items[i];
         e->body.id = retag(e->body.id, tag), e->other.id = retag(e->other.id, tag), e->joint.id = retag(e->joint.id, tag);
     }
-    memcpy(wd->edits.heap, v->edits, (size_t)w->edit_count * sizeof(timed_edit));
+    copy(wd->edits.heap, v->edits, (size_t)w->edit_count * sizeof(timed_edit));
     wd->edits.count = w->edit_count, wd->edits.serial = w->edit_serial, wd->edits.in_order = w->edits_in_order != 0;
     for (int32_t i = 0; i < w->edit_count; i++)
         wd->edits.heap[i].edit.body.id = retag(wd->edits.heap[i].edit.body.id, tag);
-    memcpy(wd->forced.slots, v->forced, (size_t)w->forced_count * 4);
+    copy(wd->forced.slots, v->forced, (size_t)w->forced_count * 4);
     wd->forced.count = w->forced_count;
     if (wd->def.gravity.x != w->def.gravity.x || wd->def.gravity.y != w->def.gravity.y)
         solver_set_gravity(wd->solver, dv(w->def.gravity.x, w->def.gravity.y));
@@ -407,6 +414,7 @@ static void set_arrays(world *wd, const state_view *v, uint32_t tag)
     wd->pixel_clock = wd->pixel_clock > w->pixel_clock ? wd->pixel_clock : w->pixel_clock;
     wd->carry.active = false;
     awake_rebuild(wd); /* poses and sleep came back behind the awake set's back */
+    contact_table_validate(wd);
 }
 
 /* A pool's generations and free stack as saved, over one at least as large (its arrays keep their room). */
@@ -586,8 +594,8 @@ static pp_status build(world *wd, const state_view *v, const char *fn)
     return st;
 }
 
-/* A new world holding the state, its ids carrying `tag` (0: its own). */
-static pp_status build_world(const state_view *v, uint32_t tag, const char *fn, world **out)
+/* A new world holding the state, its ids carrying `tag` (-1: its own; 0 is a tag too). */
+static pp_status build_world(const state_view *v, int64_t tag, const char *fn, world **out)
 {
     pp_world_def d = v->w.def;
     world *wd = NULL;
@@ -595,8 +603,8 @@ static pp_status build_world(const state_view *v, uint32_t tag, const char *fn, 
     if (st)
         return st;
     const uint32_t own = wd->tag;
-    if (tag)
-        wd->tag = tag;
+    if (tag >= 0)
+        wd->tag = (uint32_t)tag;
     if ((st = build(wd, v, fn))) {
         wd->tag = own;
         world_free(wd);
@@ -643,7 +651,7 @@ PP_API pp_status pp_world_load_state(const void *buffer, int64_t size, pp_world 
     state_view v;
     pp_status st = read_view(fn, buffer, size, NULL, &v);
     world *wd = NULL;
-    if (!st && !(st = build_world(&v, 0, fn, &wd)))
+    if (!st && !(st = build_world(&v, -1, fn, &wd)))
         *out = wd->handle;
     return st;
 }

@@ -86,7 +86,7 @@ static uint64_t world_hash(const world *wd)
     uint64_t h = HASH_START;
     const uint64_t steps = solver_get_steps(wd->solver);
     pp_world_def def = wd->def;
-    def.backend = PP_BACKEND_AUTO; /* the same future on either */
+    def.backend = PP_BACKEND_AUTO, def.worker_threads = 0; /* the same future on either, on any threads */
     MIX(h, def), MIX(h, wd->time), MIX(h, steps), MIX(h, wd->next_serial), MIX(h, wd->islands.substep_serial);
     MIX(h, wd->joints.next_attach), MIX(h, wd->table.substep);
     h = mix_pool(h, &wd->body_ids);
