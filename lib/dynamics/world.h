@@ -155,6 +155,17 @@ typedef struct forced_list {
     int32_t count, capacity;
 } forced_list;
 
+/* A big body's planes as the world kept them at its first saved state (lib/io/state.c): its states hold only the
+ * bands of rows changed since. Kept until the world goes, so that a state restores the body after it is destroyed. */
+typedef struct state_base {
+    uint64_t serial;         /* the body's */
+    uint64_t *bits;
+    uint8_t *weights;        /* NULL: every weight 255 */
+    int32_t *rows;           /* solid pixels per row */
+    uint8_t *tiles;          /* per tile */
+    uint8_t *sprite;         /* NULL without one; it never changes, so states leave it out */
+} state_base;
+
 typedef struct world {
     uint32_t slot;
     uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
@@ -186,6 +197,8 @@ typedef struct world {
     forced_list forced;      /* the bodies a force, torque or gravity scale acts on (forces.c) */
     joint_table joints;
     uint64_t pixel_clock;    /* the last pixel stamp handed out (state.c); never goes back, not even by a restore */
+    state_base *bases;       /* big bodies' planes kept for saved states (state.c) */
+    int32_t base_count, base_capacity;
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */
@@ -202,6 +215,8 @@ void world_free(world *wd);
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* The live world of this id, or NULL, recording nothing. */
+world *world_find(uint64_t id);
 /* Each contact pp_world_get_contacts lists, in its order: the last substep's, then the manifolds the sleeping
  * pairs keep. */
 void world_each_contact(const world *wd, void (*visit)(const pp_contact *c, void *user), void *user);

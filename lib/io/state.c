@@ -40,12 +40,17 @@ typedef struct state_world {
 } state_world;
 
 /* A body: its record with the pointers zeroed, its ODE state, then its planes (bits, weights, row, column and tile
- * counts, sprite). */
+ * counts, sprite); a big body's (has_base) as its changed-band flags, each changed band's rows of the planes, and
+ * its column counts, the rest being the world's state_base. */
 typedef struct state_body {
     body b;
     solver_exact_state ode;
-    uint32_t has_weights, has_sprite;
+    uint32_t has_weights, has_sprite, has_base, reserved;
 } state_body;
+
+/* Bodies of this many pixels or more are kept once by the world (state_base) and saved by their changed bands: a
+ * terrain's untouched pixels are not copied into every state. */
+#define STATE_BASE_PIXELS (1 << 16)
 
 typedef struct state_joint {
     joint j;                 /* sj zeroed */
@@ -65,6 +70,78 @@ static uint32_t layout_code(void)
 static int64_t bits_bytes(const pp_raster *r) { return (int64_t)r->height * r->words_per_row * 8; }
 static int64_t plane_bytes(const pp_raster *r) { return (int64_t)r->width * r->height; }
 static int64_t tile_bytes(const pp_raster *r) { return (int64_t)r->tiles_x * r->tiles_y; }
+/* Rows of band b (the last may be cut by the bitmap). */
+static int32_t band_rows(const pp_raster *r, int32_t b)
+{
+    const int32_t y = b << RASTER_TILE_SHIFT;
+    return r->height - y < RASTER_TILE ? r->height - y : RASTER_TILE;
+}
+
+static const state_base *base_of(const world *wd, uint64_t serial)
+{
+    for (int32_t i = 0; wd && i < wd->base_count; i++)
+        if (wd->bases[i].serial == serial)
+            return &wd->bases[i];
+    return NULL;
+}
+
+static void base_free(state_base *b)
+{
+    pp_free(b->bits), pp_free(b->weights), pp_free(b->rows), pp_free(b->tiles), pp_free(b->sprite);
+    *b = (state_base){0};
+}
+
+/* A copy of n bytes, or NULL (n 0 gives NULL too). */
+static void *dup_bytes(const void *p, int64_t n)
+{
+    void *q = p && n > 0 ? pp_malloc((size_t)n) : NULL;
+    if (q)
+        memcpy(q, p, (size_t)n);
+    return q;
+}
+
+/* The world keeps r's planes (and sprite) as the base of the body `serial`; changed bands are counted from now
+ * when `bands` is NULL, else they are these. */
+static pp_status keep_base(world *wd, uint64_t serial, const pp_raster *r, const uint8_t *sprite, const char *fn,
+                           uint8_t **bands)
+{
+    state_base b = {serial, dup_bytes(r->bits, bits_bytes(r)), dup_bytes(r->weights, r->weights ? plane_bytes(r) : 0),
+                    dup_bytes(r->row_count, (int64_t)r->height * 4), dup_bytes(r->tile_count, tile_bytes(r)),
+                    dup_bytes(sprite, sprite ? 4 * plane_bytes(r) : 0)};
+    *bands = pp_calloc((size_t)r->tiles_y, 1);
+    if (!b.bits || (r->weights && !b.weights) || !b.rows || !b.tiles || (sprite && !b.sprite) || !*bands ||
+        !ARRAY_RESERVE(wd->bases, wd->base_capacity, wd->base_count + 1)) {
+        base_free(&b);
+        pp_free(*bands);
+        *bands = NULL;
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to keep a %d × %d body's pixels", fn, (int)r->width,
+                       (int)r->height);
+    }
+    wd->bases[wd->base_count++] = b;
+    return PP_OK;
+}
+
+/* Before a save: every big body without a base gets one, its bands unchanged. Nothing seen changes on failure. */
+static pp_status keep_bases(world *wd, const char *fn)
+{
+    for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
+        body *bd = wd->bodies[i];
+        if (!bd || bd->raster.changed_bands || (int64_t)bd->raster.width * bd->raster.height < STATE_BASE_PIXELS)
+            continue;
+        uint8_t *bands = NULL;
+        if (base_of(wd, bd->serial)) { /* kept already: a body built again by a restore */
+            if (!(bands = pp_calloc((size_t)bd->raster.tiles_y, 1)))
+                return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+            memset(bands, 1, (size_t)bd->raster.tiles_y); /* unknown: every band saved */
+        } else {
+            pp_status st = keep_base(wd, bd->serial, &bd->raster, bd->sprite, fn, &bands);
+            if (st)
+                return st;
+        }
+        bd->raster.changed_bands = bands;
+    }
+    return PP_OK;
+}
 
 /* ---- writing ------------------------------------------------------------------------------------------- */
 
@@ -98,15 +175,31 @@ static void write_body(sink *s, world *wd, body *bd)
     const pp_raster *r = &bd->raster;
     if (s->p) {
         body_stamp(wd, bd);
-        state_body h = {.b = *bd, .has_weights = r->weights != NULL, .has_sprite = bd->sprite != NULL};
+        state_body h = {.b = *bd, .has_weights = r->weights != NULL, .has_sprite = bd->sprite != NULL,
+                        .has_base = r->changed_bands != NULL};
         h.b.raster.bits = NULL, h.b.raster.weights = NULL, h.b.raster.row_count = h.b.raster.col_count = NULL;
-        h.b.raster.tile_count = NULL, h.b.raster.outline = NULL, h.b.sprite = NULL;
+        h.b.raster.tile_count = NULL, h.b.raster.outline = NULL, h.b.raster.changed_bands = NULL, h.b.sprite = NULL;
         h.b.sb.body = h.b.sb.plane = NULL;
         if (bd->sb.body)
             solver_body_save(&bd->sb, &h.ode);
         put(s, &h, sizeof h);
     } else {
         s->at += pad8(sizeof(state_body));
+    }
+    if (r->changed_bands) {
+        put(s, r->changed_bands, r->tiles_y);
+        for (int32_t b = 0; b < r->tiles_y; b++) {
+            if (!r->changed_bands[b])
+                continue;
+            const int64_t y = (int64_t)b << RASTER_TILE_SHIFT, n = band_rows(r, b);
+            put(s, r->bits + y * r->words_per_row, n * r->words_per_row * 8);
+            if (r->weights)
+                put(s, r->weights + y * r->width, n * r->width);
+            put(s, r->row_count + y, n * 4);
+            put(s, r->tile_count + (int64_t)b * r->tiles_x, r->tiles_x);
+        }
+        put(s, r->col_count, (int64_t)r->width * 4);
+        return;
     }
     put(s, r->bits, bits_bytes(r));
     if (r->weights)
@@ -180,6 +273,9 @@ PP_API pp_status pp_world_save_state(pp_world w, void *buffer, int64_t capacity,
     if (capacity < 0 || (capacity > 0 && !buffer))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: buffer is NULL with capacity %lld, or capacity is negative", fn,
                        (long long)capacity);
+    pp_status st = keep_bases(wd, fn);
+    if (st)
+        return st;
     sink count = {NULL, 0};
     write_state(&count, wd);
     *size = count.at;
@@ -199,13 +295,13 @@ PP_API pp_status pp_world_save_state(pp_world w, void *buffer, int64_t capacity,
 
 /* ---- reading ------------------------------------------------------------------------------------------- */
 
-typedef struct source {
+typedef struct reader {
     const uint8_t *p;
     int64_t at, size;
-} source;
+} reader;
 
 /* The next n bytes, or NULL past the end. */
-static const uint8_t *take(source *s, int64_t n)
+static const uint8_t *take(reader *s, int64_t n)
 {
     if (n < 0 || pad8(n) > s->size - s->at)
         return NULL;
@@ -229,9 +325,10 @@ typedef struct state_view {
 typedef struct body_view {
     state_body h;
     const uint8_t *bits, *weights, *rows, *cols, *tiles, *sprite;
+    const uint8_t *bands, *band_data; /* has_base: the changed-band flags, and the first changed band's planes */
 } body_view;
 
-static bool read_body(source *s, body_view *v)
+static bool read_body(reader *s, body_view *v)
 {
     const uint8_t *p = take(s, sizeof v->h);
     if (!p)
@@ -242,6 +339,19 @@ static bool read_body(source *s, body_view *v)
         r->words_per_row != (r->width + 63) / 64 || r->tiles_x != (r->width + RASTER_TILE - 1) / RASTER_TILE ||
         r->tiles_y != (r->height + RASTER_TILE - 1) / RASTER_TILE)
         return false;
+    if (v->h.has_base) {
+        v->bits = v->weights = v->rows = v->tiles = v->sprite = NULL;
+        if (!(v->bands = take(s, r->tiles_y)))
+            return false;
+        v->band_data = s->p + s->at;
+        for (int32_t b = 0; b < r->tiles_y; b++) {
+            const int64_t n = band_rows(r, b);
+            if (v->bands[b] && (!take(s, n * r->words_per_row * 8) || (v->h.has_weights && !take(s, n * r->width)) ||
+                                !take(s, n * 4) || !take(s, r->tiles_x)))
+                return false;
+        }
+        return (v->cols = take(s, (int64_t)r->width * 4)) != NULL;
+    }
     v->bits = take(s, bits_bytes(r));
     v->weights = v->h.has_weights ? take(s, plane_bytes(r)) : NULL;
     v->rows = take(s, (int64_t)r->height * 4);
@@ -263,7 +373,8 @@ static bool body_same(const world *wd, const body_view *v)
     return bd && bd->handle.id == sv->handle.id && bd->type == sv->type && bd->fixed_rotation == sv->fixed_rotation &&
            bd->raster.width == sv->raster.width && bd->raster.height == sv->raster.height &&
            (bd->raster.weights != NULL) == (v->h.has_weights != 0) && (bd->sprite != NULL) == (v->h.has_sprite != 0) &&
-           bd->serial == sv->serial;
+           bd->serial == sv->serial && (bd->raster.changed_bands != NULL) == (v->h.has_base != 0) &&
+           (!v->h.has_base || base_of(wd, bd->serial));
 }
 
 /* A live joint that is the one saved and attached as then: only its feedback differs. */
@@ -296,7 +407,7 @@ static pp_status read_view(const char *fn, const void *buffer, int64_t size, con
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: the state was saved from world %#llx, not %#llx", fn,
                        (unsigned long long)h.world, (unsigned long long)live->handle.id);
     *v = (state_view){.world = h.world, .base = buffer};
-    source s = {buffer, pad8(sizeof h), size};
+    reader s = {buffer, pad8(sizeof h), size};
     const uint8_t *p = take(&s, sizeof v->w);
     bool ok = p != NULL;
     if (ok)
@@ -428,6 +539,50 @@ static void set_pool(id_pool *p, const uint8_t *gens, int32_t capacity, const ui
     p->capacity = capacity, p->free_count = free_count, p->live = live;
 }
 
+/* Band b's planes from the bytes at p (has_weights: with weights) into r; the bytes after them. */
+static const uint8_t *band_in(pp_raster *r, int32_t b, const uint8_t *p, bool has_weights)
+{
+    const int64_t y = (int64_t)b << RASTER_TILE_SHIFT, n = band_rows(r, b);
+    memcpy(r->bits + y * r->words_per_row, p, (size_t)(n * r->words_per_row * 8));
+    p += pad8(n * r->words_per_row * 8);
+    if (has_weights) {
+        memcpy(r->weights + y * r->width, p, (size_t)(n * r->width));
+        p += pad8(n * r->width);
+    }
+    memcpy(r->row_count + y, p, (size_t)n * 4);
+    p += pad8(n * 4);
+    memcpy(r->tile_count + (int64_t)b * r->tiles_x, p, (size_t)r->tiles_x);
+    return p + pad8(r->tiles_x);
+}
+
+/* Band b's planes from the base (no weight plane there: every weight 255). */
+static void band_from_base(pp_raster *r, const state_base *base, int32_t b)
+{
+    const int64_t y = (int64_t)b << RASTER_TILE_SHIFT, n = band_rows(r, b);
+    memcpy(r->bits + y * r->words_per_row, base->bits + y * r->words_per_row, (size_t)(n * r->words_per_row * 8));
+    if (r->weights && base->weights)
+        memcpy(r->weights + y * r->width, base->weights + y * r->width, (size_t)(n * r->width));
+    else if (r->weights)
+        memset(r->weights + y * r->width, 255, (size_t)(n * r->width));
+    memcpy(r->row_count + y, base->rows + y, (size_t)n * 4);
+    memcpy(r->tile_count + (int64_t)b * r->tiles_x, base->tiles + (int64_t)b * r->tiles_x, (size_t)r->tiles_x);
+}
+
+/* A big body's planes as saved: its bands changed in the state from the bytes, those changed only since from the
+ * base, the rest as they are; then its column counts and band flags as saved. */
+static void set_bands(pp_raster *r, const state_base *base, const body_view *v)
+{
+    const uint8_t *p = v->band_data;
+    for (int32_t b = 0; b < r->tiles_y; b++)
+        if (v->bands[b])
+            p = band_in(r, b, p, v->h.has_weights);
+        else if (r->changed_bands[b])
+            band_from_base(r, base, b);
+    memcpy(r->col_count, v->cols, (size_t)r->width * 4);
+    raster_mark_dirty(r, 0, r->height); /* the GPU mirror; the band flags are set after it */
+    memcpy(r->changed_bands, v->bands, (size_t)r->tiles_y);
+}
+
 /* The saved body's values over the live record bd, which keeps what the world holds by address; its planes are
  * copied when its pixels are not the saved ones. */
 static void set_body(world *wd, body *bd, const body_view *v, uint32_t tag)
@@ -445,16 +600,20 @@ static void set_body(world *wd, body *bd, const body_view *v, uint32_t tag)
     bd->sb.body = live.sb.body, bd->sb.plane = live.sb.plane;
     bd->awake_at = live.awake_at, bd->changed_at = live.changed_at;
     bd->stamp_version = live.stamp_version;
-    if (!same_pixels) {
+    r->changed_bands = live.raster.changed_bands;
+    if (!same_pixels && v->h.has_base) {
+        set_bands(r, base_of(wd, bd->serial), v);
+    } else if (!same_pixels) {
         memcpy(r->bits, v->bits, (size_t)bits_bytes(r));
         if (r->weights)
             memcpy(r->weights, v->weights, (size_t)plane_bytes(r));
         memcpy(r->row_count, v->rows, (size_t)r->height * 4);
         memcpy(r->col_count, v->cols, (size_t)r->width * 4);
         memcpy(r->tile_count, v->tiles, (size_t)tile_bytes(r));
-        bd->stamp_version = ++r->version; /* what is derived from the bits (the outline) is made again */
         raster_mark_dirty(r, 0, r->height);
     }
+    if (!same_pixels)
+        bd->stamp_version = ++r->version; /* what is derived from the bits (the outline) is made again */
     if (!bd->sb.body)
         return;
     if (live.mass.mass != bd->mass.mass || live.mass.inertia != bd->mass.inertia)
@@ -470,7 +629,7 @@ static pp_status restore_in_place(world *wd, const state_view *v, const char *fn
         return st;
     set_pool(&wd->body_ids, v->body_gens, v->w.body_capacity, v->body_free, v->w.body_free, v->w.body_count);
     set_pool(&wd->joints.ids, v->joint_gens, v->w.joint_capacity, v->joint_free, v->w.joint_free, v->w.joint_count);
-    source s = {v->base, v->bodies_at, v->joints_at};
+    reader s = {v->base, v->bodies_at, v->joints_at};
     for (int32_t i = 0; i < v->w.body_count; i++) {
         body_view b;
         read_body(&s, &b);
@@ -498,31 +657,86 @@ static int by_key(const void *x, const void *y)
     return (a > b) - (a < b);
 }
 
-/* A body made from its record into its slot, then given the saved values. */
-static pp_status build_body(world *wd, const body_view *v, const char *fn)
+/* A body's whole planes as saved: its record's, or a big body's base with the saved bands over it; NULL bits
+ * without memory. The caller frees both. */
+static void whole_planes(const body_view *v, const state_base *base, uint64_t **bits, uint8_t **weights)
+{
+    const pp_raster *r = &v->h.b.raster;
+    *bits = pp_malloc((size_t)bits_bytes(r));
+    *weights = v->h.has_weights ? pp_malloc((size_t)plane_bytes(r)) : NULL;
+    if (!*bits || (v->h.has_weights && !*weights))
+        return;
+    if (!v->h.has_base) {
+        memcpy(*bits, v->bits, (size_t)bits_bytes(r));
+        if (*weights)
+            memcpy(*weights, v->weights, (size_t)plane_bytes(r));
+        return;
+    }
+    memcpy(*bits, base->bits, (size_t)bits_bytes(r));
+    if (*weights && base->weights)
+        memcpy(*weights, base->weights, (size_t)plane_bytes(r));
+    else if (*weights)
+        memset(*weights, 255, (size_t)plane_bytes(r));
+    const uint8_t *p = v->band_data;
+    for (int32_t b = 0; b < r->tiles_y; b++) {
+        if (!v->bands[b])
+            continue;
+        const int64_t y = (int64_t)b << RASTER_TILE_SHIFT, n = band_rows(r, b);
+        memcpy(*bits + y * r->words_per_row, p, (size_t)(n * r->words_per_row * 8));
+        p += pad8(n * r->words_per_row * 8);
+        if (*weights) {
+            memcpy(*weights + y * r->width, p, (size_t)(n * r->width));
+            p += pad8(n * r->width);
+        }
+        p += pad8(n * 4) + pad8(r->tiles_x);
+    }
+}
+
+/* A body made from its record into its slot, then given the saved values. A big body's base is the world
+ * `source`'s (the one that saved the bytes), and wd keeps a copy of it when `copy_bases`. */
+static pp_status build_body(world *wd, const body_view *v, const world *source, bool copy_bases, const char *fn)
 {
     const body *sv = &v->h.b;
     const pp_raster *r = &sv->raster;
-    uint8_t *mask = pp_malloc((size_t)plane_bytes(r));
-    if (!mask)
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d body", fn, (int)r->width, (int)r->height);
-    for (int32_t y = 0; y < r->height; y++)
-        for (int32_t x = 0; x < r->width; x++) {
-            uint64_t word;
-            memcpy(&word, v->bits + 8 * ((int64_t)y * r->words_per_row + (x >> 6)), 8);
-            mask[(int64_t)y * r->width + x] = (word >> (x & 63)) & 1u ? 255 : 0;
-        }
+    const state_base *base = v->h.has_base ? base_of(source, sv->serial) : NULL;
+    if (v->h.has_base && !base)
+        return pp_fail(PP_ERR_INVALID_ARGUMENT,
+                       "%s: the state holds only the changed pixels of its %d × %d body, and the world that saved it, "
+                       "which keeps the rest, is gone", fn, (int)r->width, (int)r->height);
+    uint64_t *bits = NULL;
+    uint8_t *weights = NULL, *mask = pp_malloc((size_t)plane_bytes(r));
+    if (mask)
+        whole_planes(v, base, &bits, &weights);
+    pp_status st = PP_OK;
+    if (!mask || !bits || (v->h.has_weights && !weights))
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for a %d × %d body", fn, (int)r->width, (int)r->height);
+    for (int32_t y = 0; !st && y < r->height; y++)
+        for (int32_t x = 0; x < r->width; x++)
+            mask[(int64_t)y * r->width + x] = (bits[(int64_t)y * r->words_per_row + (x >> 6)] >> (x & 63)) & 1u ? 255 : 0;
     pp_body_def d = pp_body_def_default();
-    d.type = sv->type, d.width = r->width, d.height = r->height, d.mask = mask, d.weights = v->weights;
-    d.rgba = v->sprite, d.density = (float)sv->density, d.fixed_rotation = sv->fixed_rotation;
+    d.type = sv->type, d.width = r->width, d.height = r->height, d.mask = mask, d.weights = weights;
+    d.rgba = base ? base->sprite : v->sprite, d.density = (float)sv->density, d.fixed_rotation = sv->fixed_rotation;
     const uint32_t slot = handle_slot(sv->handle.id);
     body *bd = NULL;
-    pp_status st = !id_pool_current(&wd->body_ids, slot, handle_gen(sv->handle.id)) || wd->bodies[slot]
-                       ? pp_fail(PP_ERR_FORMAT, "%s: body slot %u is taken twice", fn, (unsigned)slot)
-                       : body_make(wd, &d, slot, fn, &bd);
-    pp_free(mask);
+    if (!st && (!id_pool_current(&wd->body_ids, slot, handle_gen(sv->handle.id)) || wd->bodies[slot]))
+        st = pp_fail(PP_ERR_FORMAT, "%s: body slot %u is taken twice", fn, (unsigned)slot);
+    if (!st)
+        st = body_make(wd, &d, slot, fn, &bd);
+    pp_free(mask), pp_free(bits), pp_free(weights);
+    uint8_t *bands = NULL;
+    if (!st && base && copy_bases && !base_of(wd, sv->serial)) { /* a loaded world keeps its own copy */
+        const pp_raster kept = {.width = r->width, .height = r->height, .words_per_row = r->words_per_row,
+                                .bits = base->bits, .weights = base->weights, .row_count = base->rows,
+                                .tiles_x = r->tiles_x, .tiles_y = r->tiles_y, .tile_count = base->tiles};
+        st = keep_base(wd, sv->serial, &kept, base->sprite, fn, &bands);
+    } else if (!st && base && !(bands = pp_malloc((size_t)r->tiles_y))) {
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory", fn);
+    }
     if (st)
-        return st;
+        return st; /* a body made is freed with the world being built */
+    if (bands)
+        memcpy(bands, v->bands, (size_t)r->tiles_y);
+    bd->raster.changed_bands = bands;
     bd->pixel_stamp = sv->pixel_stamp; /* the pixels made are the saved ones */
     bd->stamp_version = bd->raster.version;
     set_body(wd, bd, v, wd->tag);
@@ -531,7 +745,7 @@ static pp_status build_body(world *wd, const body_view *v, const char *fn)
 }
 
 /* The saved world into wd, a world just made from the saved settings, its ids carrying wd->tag. */
-static pp_status build(world *wd, const state_view *v, const char *fn)
+static pp_status build(world *wd, const state_view *v, const world *source, bool copy_bases, const char *fn)
 {
     const state_world *w = &v->w;
     const uint8_t *base = v->base;
@@ -543,7 +757,7 @@ static pp_status build(world *wd, const state_view *v, const char *fn)
     order_entry *order = pp_malloc(((size_t)w->body_count + (size_t)w->joint_count + 1) * sizeof *order);
     if (!order)
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)w->body_count);
-    source s = {base, v->bodies_at, v->joints_at};
+    reader s = {base, v->bodies_at, v->joints_at};
     for (int32_t i = 0; i < w->body_count; i++) {
         body_view b;
         const int64_t at = s.at;
@@ -555,7 +769,7 @@ static pp_status build(world *wd, const state_view *v, const char *fn)
         body_view b;
         s.at = order[i].at;
         read_body(&s, &b);
-        st = build_body(wd, &b, fn);
+        st = build_body(wd, &b, source, copy_bases, fn);
     }
     if (!st && w->joint_capacity > 0)
         st = joint_table_restore(wd, (const uint32_t *)v->joint_gens, w->joint_capacity,
@@ -594,8 +808,9 @@ static pp_status build(world *wd, const state_view *v, const char *fn)
     return st;
 }
 
-/* A new world holding the state, its ids carrying `tag` (-1: its own; 0 is a tag too). */
-static pp_status build_world(const state_view *v, int64_t tag, const char *fn, world **out)
+/* A new world holding the state, its ids carrying `tag` (-1: its own; 0 is a tag too); big bodies' bases from
+ * `source`, copied unless the world is to be swapped into source (tag not -1). */
+static pp_status build_world(const state_view *v, int64_t tag, const world *source, const char *fn, world **out)
 {
     pp_world_def d = v->w.def;
     world *wd = NULL;
@@ -605,7 +820,7 @@ static pp_status build_world(const state_view *v, int64_t tag, const char *fn, w
     const uint32_t own = wd->tag;
     if (tag >= 0)
         wd->tag = (uint32_t)tag;
-    if ((st = build(wd, v, fn))) {
+    if ((st = build(wd, v, source, tag < 0, fn))) {
         wd->tag = own;
         world_free(wd);
         return st;
@@ -628,17 +843,21 @@ PP_API pp_status pp_world_restore_state(pp_world w, const void *buffer, int64_t 
         return restore_in_place(wd, &v, fn);
     /* Bodies or joints were made, destroyed or changed since: the saved world is built apart and swapped in. */
     world *built = NULL;
-    if ((st = build_world(&v, wd->tag, fn, &built)))
+    if ((st = build_world(&v, wd->tag, wd, fn, &built)))
         return st;
     world old = *wd;
+    state_base *own = built->bases; /* none: it used wd's */
+    const int32_t own_count = built->base_count, own_capacity = built->base_capacity;
     const uint32_t slot = built->slot;
     const uint32_t tag = world_tag(built->slot, world_id_gen(built->handle.id));
     const pp_world handle = built->handle;
     *wd = *built;
     wd->slot = old.slot, wd->tag = old.tag, wd->handle = old.handle;
     wd->pixel_clock = old.pixel_clock > wd->pixel_clock ? old.pixel_clock : wd->pixel_clock;
+    wd->bases = old.bases, wd->base_count = old.base_count, wd->base_capacity = old.base_capacity; /* kept on */
     *built = old;
     built->slot = slot, built->tag = tag, built->handle = handle;
+    built->bases = own, built->base_count = own_count, built->base_capacity = own_capacity;
     world_free(built);
     return PP_OK;
 }
@@ -651,7 +870,9 @@ PP_API pp_status pp_world_load_state(const void *buffer, int64_t size, pp_world 
     state_view v;
     pp_status st = read_view(fn, buffer, size, NULL, &v);
     world *wd = NULL;
-    if (!st && !(st = build_world(&v, -1, fn, &wd)))
+    /* Big bodies' untouched pixels are kept by the world that saved the bytes, if it still exists. */
+    const world *source = st ? NULL : world_find(v.world);
+    if (!st && !(st = build_world(&v, -1, source, fn, &wd)))
         *out = wd->handle;
     return st;
 }

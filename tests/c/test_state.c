@@ -228,6 +228,52 @@ Test(state, a_loaded_world_is_equal_and_has_the_same_future, .timeout = 120)
     pp_world_destroy(s.w);
 }
 
+/* A big body's untouched pixels stay in the world that saved the state: its bytes load while that world exists.
+ * A world of small bodies only is whole in its bytes. */
+Test(state, a_big_terrains_state_loads_while_its_world_exists, .timeout = 60)
+{
+    busy s = busy_scene(PP_BACKEND_CPU);
+    step_n(s.w, DT, 10);
+    int64_t size = 0;
+    uint8_t *st = save(s.w, &size);
+    /* A small crater adds its band of 8 rows to the state, not the terrain's 45 kB of mask. */
+    pp_world probe = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &probe));
+    int64_t grown = 0;
+    PP_OK_OR_FAIL(pp_world_erase_circle(probe, v2(420, 502), 2, NULL));
+    cr_assert_eq(pp_world_save_state(probe, NULL, 0, &grown), PP_ERR_LIMIT);
+    cr_assert(grown > size && grown - size < 4096, "a 2 px crater took the state from %lld to %lld bytes",
+              (long long)size, (long long)grown);
+    pp_world_destroy(probe);
+    pp_world copy = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &copy));
+    pp_world_destroy(s.w);
+    pp_world again = {0};
+    EXPECT_ERR(pp_world_load_state(st, size, &again), PP_ERR_INVALID_ARGUMENT, "pp_world_load_state");
+    /* The copy keeps the pixels itself: its own bytes load after it is gone. */
+    int64_t size2 = 0;
+    uint8_t *st2 = save(copy, &size2);
+    const uint64_t h = hash_of(copy);
+    pp_world third = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st2, size2, &third));
+    cr_assert_eq(hash_of(third), h);
+    pp_world_destroy(third);
+    free(st), free(st2);
+
+    pp_world small = make_world(0, 980);
+    add_rect(small, body_def(PP_BODY_STATIC, 200, 300, 0), 400, 40);
+    add_rect(small, body_def(PP_BODY_DYNAMIC, 200, 200, 0), 16, 16);
+    step_n(small, DT, 10);
+    uint8_t *st3 = save(small, &size);
+    const uint64_t hs = hash_of(small);
+    pp_world_destroy(small);
+    PP_OK_OR_FAIL(pp_world_load_state(st3, size, &small));
+    cr_assert_eq(hash_of(small), hs);
+    pp_world_destroy(small);
+    pp_world_destroy(copy);
+    free(st3);
+}
+
 Test(state, the_hash_sees_any_impulse, .timeout = 30)
 {
     busy s = busy_scene(PP_BACKEND_CPU);
