@@ -985,7 +985,10 @@ PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out);
  * that were changed, cut short or come from another build are PP_ERR_FORMAT, bytes of another world
  * PP_ERR_INVALID_ARGUMENT, and either way the world is unchanged. A restore copies the saved records back over the
  * live ones (a body's pixels only when they changed since), and builds the saved world apart and swaps it in only
- * when bodies or joints were made, destroyed or retyped since the save. The camera is not part of the state. */
+ * when bodies or joints were made, destroyed or retyped since the save. A body of 65536 pixels or more (a terrain) is
+ * kept once by the world at its first save, and its states hold only the bands of 8 rows changed since: such bytes
+ * load into a new world (pp_world_load_state) only while the world that saved them exists, and not while another
+ * thread changes it (else PP_ERR_INVALID_ARGUMENT). The camera is not part of the state. */
 
 /// Save the world into buffer (capacity bytes); *size receives the bytes needed, PP_ERR_LIMIT when they do not fit.
 PP_API pp_status pp_world_save_state(pp_world w, void *buffer, int64_t capacity, int64_t *size);
