@@ -16,12 +16,13 @@ typedef struct busy {
 } busy;
 
 /* A 1200×300 terrain with three craters, 60 crates of 10-24 px raining on it, two of them joined by a revolute
- * joint. */
+ * joint, contact events on and a crater scheduled at 2 s (after the busy test's save at 1.67 s). */
 static busy busy_scene(pp_backend backend)
 {
     busy s;
     pp_world_def wd = pp_world_def_default();
     wd.backend = backend;
+    wd.contact_events = 1;
     s.w = make_world_def(&wd);
     s.terrain = add_rect(s.w, body_def(PP_BODY_STATIC, 600, 650, 0), 1200, 300);
     for (int i = 0; i < 3; i++)
@@ -35,6 +36,8 @@ static busy busy_scene(pp_backend backend)
     j.body_a = s.crates[0], j.body_b = s.crates[1];
     j.anchor_a = v2(125, 200);
     s.joint = make_joint(s.w, &j);
+    const pp_timed_edit e = {.time = 2.0, .type = PP_EDIT_ERASE_CIRCLE, .center = {700, 520}, .radius = 30};
+    PP_OK_OR_FAIL(pp_world_schedule_edit(s.w, &e));
     return s;
 }
 
@@ -80,6 +83,10 @@ Test(state, a_restored_busy_scene_steps_again_bit_for_bit, .timeout = 120)
     int64_t size = 0;
     uint8_t *st = save(s.w, &size);
     const uint64_t at_save = hash_of(s.w);
+    int32_t events = 0, edits = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(s.w, NULL, 0, &events));
+    PP_OK_OR_FAIL(pp_world_get_scheduled_edits(s.w, NULL, 0, &edits));
+    cr_assert(events > 0 && edits == 1, "%d unread events and %d edits at the save: the state holds none", events, edits);
     float *first = malloc(sizeof(float) * 60 * CRATES * 5), *second = malloc(sizeof(float) * 60 * CRATES * 5);
     run(&s, 60, first);
     const uint64_t after_first = hash_of(s.w);
@@ -87,6 +94,10 @@ Test(state, a_restored_busy_scene_steps_again_bit_for_bit, .timeout = 120)
     PP_OK_OR_FAIL(pp_world_restore_state(s.w, st, size));
     cr_assert_eq(hash_of(s.w), at_save, "the restored world hashes to %#llx, the saved one to %#llx",
                  (unsigned long long)hash_of(s.w), (unsigned long long)at_save);
+    int32_t events_back = 0, edits_back = 0;
+    PP_OK_OR_FAIL(pp_world_get_events(s.w, NULL, 0, &events_back));
+    PP_OK_OR_FAIL(pp_world_get_scheduled_edits(s.w, NULL, 0, &edits_back));
+    cr_assert(events_back == events && edits_back == 1, "%d events and %d edits back", events_back, edits_back);
     run(&s, 60, second);
     cr_assert_eq(hash_of(s.w), after_first);
     cr_assert(memcmp(first, second, sizeof(float) * 60 * CRATES * 5) == 0, "the poses differ after the restore");
@@ -301,6 +312,17 @@ Test(state, the_hash_is_the_same_on_the_gpu, .timeout = 300)
     busy c = busy_scene(PP_BACKEND_CPU), g = busy_scene(PP_BACKEND_GPU);
     step_n(c.w, DT, 60);
     step_n(g.w, DT, 60);
+    /* A crater undone by a restore on each: the GPU's copy of the terrain takes the restored rows. */
+    busy *both[2] = {&c, &g};
+    for (int i = 0; i < 2; i++) {
+        int64_t size = 0;
+        uint8_t *bytes = save(both[i]->w, &size);
+        PP_OK_OR_FAIL(pp_world_erase_circle(both[i]->w, v2(420, 500), 20, NULL));
+        step_n(both[i]->w, DT, 5);
+        PP_OK_OR_FAIL(pp_world_restore_state(both[i]->w, bytes, size));
+        step_n(both[i]->w, DT, 30);
+        free(bytes);
+    }
     pp_step_stats stats;
     PP_OK_OR_FAIL(pp_world_get_stats(g.w, &stats));
     cr_assert_eq(stats.backend, PP_BACKEND_GPU);
