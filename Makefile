@@ -348,6 +348,13 @@ $(BUILD)/bench/bench_instr: $(INSTR_SRC) $(COST_HDR) $(STATIC)
 	@mkdir -p $(BUILD)/bench
 	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(INSTR_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
 
+# Save and restore of a world's state in memory against a step (issue 44): the rain and the destruction scene.
+STATE_SRC := tests/bench/state/main.c tests/bench/cost/scenes.c tests/bench/stability/scenes.c \
+  tests/bench/stability/scenes_physpix.c
+$(BUILD)/bench/bench_state: $(STATE_SRC) $(COST_HDR) tests/bench/machine.h $(STATIC)
+	@mkdir -p $(BUILD)/bench
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $(STATE_SRC) $(STATIC) $(LDFLAGS) $(LIBS)
+
 bench-instr: deps
 	$(MAKE) all $(BUILD)/bench/bench_instr
 	$(VENV_PY) tests/bench/instr/report.py --binary $(BUILD)/bench/bench_instr --csv $(BUILD)/bench/instr.csv
@@ -356,7 +363,8 @@ bench: deps
 	$(MAKE) all $(BUILD)/bench/bench $(BUILD)/bench/bench_narrow $(BUILD)/bench/bench_edit $(BUILD)/bench/bench_tunnel \
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
 	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
-	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr $(BUILD)/bench/bench_debug_draw
+	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr $(BUILD)/bench/bench_debug_draw \
+	  $(BUILD)/bench/bench_state
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_debug_draw --csv $(BUILD)/bench/debug_draw.csv
@@ -372,6 +380,7 @@ bench: deps
 	$(BUILD)/bench/bench_stability --csv $(BUILD)/bench/stability.csv
 	$(BUILD)/bench/bench_sleep --csv $(BUILD)/bench/sleep.csv
 	$(BUILD)/bench/bench_cost --csv $(BUILD)/bench/cost.csv
+	$(BUILD)/bench/bench_state --csv $(BUILD)/bench/state.csv
 	@# matplotlib only draws the plot: without it the plot is skipped (plot.py says why), never the bench.
 	@$(VENV_PY) -c 'import matplotlib' 2>/dev/null || { echo "make bench: installing into $(VENV) from PyPI: matplotlib"; \
 	  $(VENV_PY) -m pip install --quiet matplotlib || echo "make bench: pip could not install matplotlib (above)"; }

@@ -1020,6 +1020,26 @@ PP_API pp_status pp_world_save_snapshot(pp_world w, const char *folder);
 /// Create a world from a snapshot folder; stepping it continues exactly as the saved world would have.
 PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out);
 
+/* World state in memory, for rollback and undo: the whole world as bytes (bodies and their pixels, joints, the
+ * touching and held pairs, sleep, scheduled edits, events not yet read, time, the solver's step count), read only
+ * by this build of the library. The bytes carry a format version, the saving world's id and a checksum: bytes
+ * that were changed, cut short or come from another build are PP_ERR_FORMAT, bytes of another world
+ * PP_ERR_INVALID_ARGUMENT, and either way the world is unchanged. A restore copies the saved records back over the
+ * live ones (a body's pixels only when they changed since), and builds the saved world apart and swaps it in only
+ * when bodies or joints were made, destroyed or retyped since the save. A body of 65536 pixels or more (a terrain) is
+ * kept once by the world at its first save, and its states hold only the bands of 8 rows changed since: such bytes
+ * load into a new world (pp_world_load_state) only while the world that saved them exists, and not while another
+ * thread changes it (else PP_ERR_INVALID_ARGUMENT). The camera is not part of the state. */
+
+/// Save the world into buffer (capacity bytes); *size receives the bytes needed, PP_ERR_LIMIT when they do not fit.
+PP_API pp_status pp_world_save_state(pp_world w, void *buffer, int64_t capacity, int64_t *size);
+/// Put w back as it was when it saved the bytes (size bytes): handles live then are valid, later ones stale.
+PP_API pp_status pp_world_restore_state(pp_world w, const void *buffer, int64_t size);
+/// Create a new world from saved state bytes (size bytes); it continues exactly as the saved world would have.
+PP_API pp_status pp_world_load_state(const void *buffer, int64_t size, pp_world *out);
+/// 64 bits over everything the next steps depend on: equal hashes, equal futures, on either backend, in any run.
+PP_API pp_status pp_world_get_hash(pp_world w, uint64_t *out);
+
 #ifdef __cplusplus
 }
 #endif

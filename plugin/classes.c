@@ -633,6 +633,37 @@ static void world_load_snapshot(plugin_object *self, const pp_variant *a, pp_var
         world_replace(self, loaded);
 }
 
+static void world_save_state(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    const char *m = "PhysPixWorld.save_state";
+    int64_t size = 0;
+    const pp_status st = pp_world_save_state(self->world, NULL, 0, &size);
+    if (st != PP_ERR_LIMIT && !ret_ok(ret, st, m))
+        return;
+    uint8_t *out = ret_bytes(ret, size);
+    if (out)
+        ret_ok(ret, pp_world_save_state(self->world, out, size, &size), m);
+}
+
+static void world_restore_state(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_ok(ret, pp_world_restore_state(self->world, a[0].as.bytes.data, a[0].as.bytes.length), "PhysPixWorld.restore_state");
+}
+
+static void world_load_state(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_world loaded;
+    if (ret_ok(ret, pp_world_load_state(a[0].as.bytes.data, a[0].as.bytes.length, &loaded), "PhysPixWorld.load_state"))
+        world_replace(self, loaded); /* on failure the old world stays as it was */
+}
+
+static void world_get_hash(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    uint64_t h = 0;
+    if (ret_ok(ret, pp_world_get_hash(self->world, &h), "PhysPixWorld.get_hash"))
+        ret_int(ret, (int64_t)h);
+}
+
 static int camera_of(plugin_object *self, const char *m, pp_camera *cam, pp_variant *ret)
 {
     return ret_ok(ret, pp_world_get_camera(self->world, cam), m);

@@ -126,8 +126,10 @@ void raster_edit_done(pp_raster *r, int32_t y0, int32_t y1)
         while (r->row_count[r->y0] == 0) r->y0++;
         while (r->row_count[r->y1 - 1] == 0) r->y1--;
     }
-    if (y0 < y1)
+    if (y0 < y1) {
+        r->version++; /* a weight alone may have changed, which raster_write does not count */
         raster_mark_dirty(r, y0, y1);
+    }
 }
 
 void raster_free(pp_raster *r)
@@ -138,6 +140,7 @@ void raster_free(pp_raster *r)
     pp_free(r->row_count);
     pp_free(r->col_count);
     pp_free(r->tile_count);
+    pp_free(r->changed_bands);
     memset(r, 0, sizeof *r);
 }
 

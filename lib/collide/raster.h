@@ -8,6 +8,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 /* Occupancy tiles are RASTER_TILE × RASTER_TILE pixels; those on the right and bottom edges are
  * cut by the bitmap. 8 px measured best against 16 and 32 on terrain contacts (tests/bench/
@@ -34,6 +35,8 @@ typedef struct pp_raster {
     int32_t dirty_y0, dirty_y1; /* rows edited since the mirror was written; clean when y0 ≥ y1 */
     uint64_t version;        /* counts the mask's changes (1 when made): what is derived from the bits keys on it */
     struct raster_outline *outline; /* the boundary's runs (outline.c), as of its own version; NULL until asked */
+    uint8_t *changed_bands;  /* per band of RASTER_TILE rows: changed since the world kept its planes for saved
+                              * states (lib/io/state.c); NULL while it keeps none */
 } pp_raster;
 
 /* Validate a def's bitmap (sizes, limits, planes) without allocating. */
@@ -94,6 +97,9 @@ static inline uint32_t raster_weight(const pp_raster *r, int32_t x, int32_t y)
 /* Rows [y0, y1) changed: the GPU mirror rewrites them before its next use. */
 static inline void raster_mark_dirty(pp_raster *r, int32_t y0, int32_t y1)
 {
+    if (r->changed_bands && y0 < y1)
+        memset(r->changed_bands + (y0 >> RASTER_TILE_SHIFT), 1,
+               (size_t)(((y1 - 1) >> RASTER_TILE_SHIFT) - (y0 >> RASTER_TILE_SHIFT) + 1));
     if (r->dirty_y0 >= r->dirty_y1)
         r->dirty_y0 = y0, r->dirty_y1 = y1;
     r->dirty_y0 = y0 < r->dirty_y0 ? y0 : r->dirty_y0;

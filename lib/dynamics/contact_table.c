@@ -434,6 +434,38 @@ pp_status contact_table_add(world *wd, const contact_record *rec, const char *fn
     return PP_OK;
 }
 
+/* ---- a saved state (pp_world_restore_state) --------------------------------------------------------- */
+
+pp_status contact_table_reserve_state(world *wd, int32_t count, int32_t carry_count, const char *fn)
+{
+    contact_table *t = &wd->table;
+    pp_status st = reserve(t, count, fn);
+    if (!st && !ARRAY_RESERVE(t->carry_order, t->carry_capacity, carry_count))
+        st = pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d carried pairs", fn, (int)carry_count);
+    return st;
+}
+
+void contact_table_set_state(world *wd, const contact_table_counts *n, const contact_record *records,
+                             const int32_t *carry_order)
+{
+    contact_table *t = &wd->table;
+    PP_ASSERT(t->saved_count == 0 && n->count <= t->capacity && n->carry_count <= t->carry_capacity);
+    if (n->count > 0 && records != t->records)
+        memcpy(t->records, records, (size_t)n->count * sizeof *records);
+    if (n->carry_count > 0)
+        memcpy(t->carry_order, carry_order, (size_t)n->carry_count * sizeof *carry_order);
+    t->count = n->count, t->awake = n->awake, t->gone = n->gone, t->carry_count = n->carry_count;
+    t->substep = n->substep, t->found_count = n->found_count, t->resting_stale = n->resting_stale;
+    index_rebuild(t); /* room reserved: the keys are the records' */
+}
+
+void contact_table_get_counts(const world *wd, contact_table_counts *n)
+{
+    const contact_table *t = &wd->table;
+    *n = (contact_table_counts){t->count, t->awake, t->gone, t->carry_count, t->substep, t->found_count,
+                                t->resting_stale};
+}
+
 /* ---- the step transaction -------------------------------------------------------------------------- */
 
 pp_status contact_table_save(world *wd)

@@ -138,6 +138,19 @@ pp_status contact_table_add(struct world *wd, const contact_record *rec, const c
 /* The contacts a sleeping pair keeps: its manifold, when neither of its bodies is awake; else 0. */
 int32_t contact_table_resting_points(const struct world *wd, const contact_record *rec);
 
+/* What a saved state keeps of the table besides its records and carry order. */
+typedef struct contact_table_counts {
+    int32_t count, awake, gone, carry_count;
+    uint32_t substep;
+    int32_t found_count;
+    bool resting_stale;
+} contact_table_counts;
+void contact_table_get_counts(const struct world *wd, contact_table_counts *n);
+/* A saved state's table (state.c): room first, which is all that can fail, then the copy, the index made
+ * again from the records (validated by the caller once the awake set is listed again). */
+pp_status contact_table_reserve_state(struct world *wd, int32_t count, int32_t carry_count, const char *fn);
+void contact_table_set_state(struct world *wd, const contact_table_counts *n, const contact_record *records,
+                             const int32_t *carry_order);
 /* The step transaction (step_undo.c): start logging (it allocates; nothing changes on failure), put the table
  * back as the step found it (cannot fail), and stop logging after a step that ran whole. */
 pp_status contact_table_save(struct world *wd);

@@ -81,11 +81,11 @@ pp_status joint_step_done(world *wd);
 /* A snapshot's joint into its slot (free, of its generation): its ODE joint attached again as the saved one
  * last was, from at_a, at_b and the frame, so that the world continues bit for bit. jt is the caller's until
  * this succeeds; feedback is the last substep's force and torque on ODE's first body (solver_joint_feedback). */
-pp_status joint_restore(world *wd, joint *jt, const double feedback[6]);
+pp_status joint_restore(world *wd, joint *jt, const double feedback[6], const char *fn);
 /* The joint table as a snapshot saved it: capacity slots with their generations, no joint yet, and the free
- * list (checked by the caller). */
+ * list (checked by the caller); failures name fn. */
 pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t capacity, const uint32_t *free_slots,
-                              int32_t free_count);
+                              int32_t free_count, const char *fn);
 
 /* Free the joints of a world being destroyed. */
 void joint_free_all(world *wd);

@@ -451,14 +451,14 @@ static bool attach_plausible(const world *wd, const joint *jt)
            (fabs(dv_norm(jt->frame_axis) - 1) < 1e-6 && fabs(dv_norm(jt->axis_local) - 1) < 1e-6);
 }
 
-pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
+pp_status joint_restore(world *wd, joint *jt, const double feedback[6], const char *fn)
 {
     joint_table *t = &wd->joints;
     body *a = joint_body_a(wd, jt), *b = joint_body_b(wd, jt);
     if (!attach_plausible(wd, jt))
-        return pp_fail(PP_ERR_FORMAT, "pp_world_load_snapshot: joint %#llx was attached far from its bodies or along "
-                       "no axis", (unsigned long long)jt->handle.id);
-    pp_status st = solver_joint_create(wd->solver, jt->def.type, joint_soft_angle(&jt->def), "pp_world_load_snapshot",
+        return pp_fail(PP_ERR_FORMAT, "%s: joint %#llx was attached far from its bodies or along no axis", fn,
+                       (unsigned long long)jt->handle.id);
+    pp_status st = solver_joint_create(wd->solver, jt->def.type, joint_soft_angle(&jt->def), fn,
                                        &jt->sj);
     if (st)
         return st;
@@ -481,12 +481,12 @@ pp_status joint_restore(world *wd, joint *jt, const double feedback[6])
 }
 
 pp_status joint_table_restore(world *wd, const uint32_t *generations, int32_t capacity, const uint32_t *free_slots,
-                              int32_t free_count)
+                              int32_t free_count, const char *fn)
 {
     joint_table *t = &wd->joints;
     PP_ASSERT(t->ids.capacity == 0 && free_count <= capacity);
     t->items = pp_calloc((size_t)capacity + 1, sizeof *t->items);
     if (!t->items || !id_pool_restore(&t->ids, generations, capacity, free_slots, free_count, pp_realloc))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_load_snapshot: no memory for %d joint slots", (int)capacity);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d joint slots", fn, (int)capacity);
     return PP_OK;
 }

@@ -3,6 +3,7 @@
 #include "alloc.h"
 #include "awake.h"
 #include "check.h"
+#include "hash.h"
 #include "joint.h"
 #include "status.h"
 #include "step_undo.h"
@@ -11,20 +12,13 @@
 #include <string.h>
 
 #ifdef PP_CHECKS
-static uint64_t mix(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *b = p;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ b[i]) * 0x100000001b3ull;
-    return h;
-}
-#define MIX(h, v) ((h) = mix((h), &(v), sizeof(v)))
+#define MIX HASH_VALUE
 
-/* FNV-1a over what a step saves: each body's pose, bounds, sleep clock and ODE state, the contacts, the
+/* hash.h's hash over what a step saves: each body's pose, bounds, sleep clock and ODE state, the contacts, the
  * contact table's pairs, the events queued, the stats and the solver's step count. */
 static uint64_t fingerprint(const world *wd)
 {
-    uint64_t h = 0xcbf29ce484222325ull;
+    uint64_t h = HASH_START;
     for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         const body *bd = wd->bodies[i];
         if (!bd)

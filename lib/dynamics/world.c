@@ -37,14 +37,20 @@ int32_t world_live_count(void)
     return n;
 }
 
-world *world_lookup(pp_world w, const char *fn)
+world *world_find(uint64_t id)
 {
-    const uint32_t slot = world_id_slot(w.id), gen = world_id_gen(w.id);
+    const uint32_t slot = world_id_slot(id), gen = world_id_gen(id);
     world *wd = NULL;
     worlds_enter();
-    if (handle_kind_of(w.id) == HANDLE_WORLD && id_pool_current(&world_ids, slot, gen))
+    if (handle_kind_of(id) == HANDLE_WORLD && id_pool_current(&world_ids, slot, gen))
         wd = worlds[slot];
     pthread_mutex_unlock(&worlds_lock);
+    return wd;
+}
+
+world *world_lookup(pp_world w, const char *fn)
+{
+    world *wd = world_find(w.id);
     if (!wd && handle_is_other_kind(w.id, HANDLE_WORLD))
         pp_fail(PP_ERR_INVALID_HANDLE, "%s: %#llx is %s handle, not a world", fn, (unsigned long long)w.id,
                 handle_kind_name(w.id));
@@ -296,6 +302,11 @@ void world_free(world *wd)
     pp_free(wd->batch.bodies);
     contact_table_free(&wd->table);
     pp_free(wd->contacts);
+    for (int32_t i = 0; i < wd->base_count; i++) {
+        const state_base *b = &wd->bases[i];
+        pp_free(b->bits), pp_free(b->weights), pp_free(b->rows), pp_free(b->tiles), pp_free(b->sprite);
+    }
+    pp_free(wd->bases);
     pp_free(wd);
 }
 

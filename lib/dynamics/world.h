@@ -57,6 +57,8 @@ typedef struct body {
     int32_t joint_count;     /* joints attached to it (joint.c) */
     uint64_t sat_out;        /* the substep (wd->islands.substep_serial) its QuickStep island last sat out (island.c) */
     uint8_t behind;          /* substeps in a row it sat out, up to sat_out (island.c) */
+    uint64_t pixel_stamp;    /* names its pixels' content in the world (state.c): equal stamps, equal pixels */
+    uint64_t stamp_version;  /* the raster version the stamp was given at; a newer one needs a new stamp */
 } body;
 
 /* A body's pose at the start of a substep, for continuous collision. */
@@ -155,6 +157,17 @@ typedef struct forced_list {
     int32_t count, capacity;
 } forced_list;
 
+/* A big body's planes as the world kept them at its first saved state (lib/io/state.c): its states hold only the
+ * bands of rows changed since. Kept until the world goes, so that a state restores the body after it is destroyed. */
+typedef struct state_base {
+    uint64_t serial;         /* the body's */
+    uint64_t *bits;
+    uint8_t *weights;        /* NULL: every weight 255 */
+    int32_t *rows;           /* solid pixels per row */
+    uint8_t *tiles;          /* per tile */
+    uint8_t *sprite;         /* NULL without one; it never changes, so states leave it out */
+} state_base;
+
 typedef struct world {
     uint32_t slot;
     uint32_t tag;            /* what its bodies' ids carry of it (handle.h) */
@@ -185,6 +198,9 @@ typedef struct world {
     carry carry;             /* the step's first contacts, moved through its later substeps (carry.c) */
     forced_list forced;      /* the bodies a force, torque or gravity scale acts on (forces.c) */
     joint_table joints;
+    uint64_t pixel_clock;    /* the last pixel stamp handed out (state.c); never goes back, not even by a restore */
+    state_base *bases;       /* big bodies' planes kept for saved states (state.c) */
+    int32_t base_count, base_capacity;
 } world;
 
 /* The root of i's set in a union-find forest of parents, halving the path as it goes. */
@@ -201,6 +217,8 @@ void world_free(world *wd);
 
 /* Look a handle up; on failure record why and return NULL. `fn` names the API call for the message. */
 world *world_lookup(pp_world w, const char *fn);
+/* The live world of this id, or NULL, recording nothing. */
+world *world_find(uint64_t id);
 /* Each contact pp_world_get_contacts lists, in its order: the last substep's, then the manifolds the sleeping
  * pairs keep. */
 void world_each_contact(const world *wd, void (*visit)(const pp_contact *c, void *user), void *user);

@@ -490,7 +490,7 @@ static pp_status restore_joint(const json_ctx *c, const cJSON *obj, const char *
         .frame_b = dv(v[11], v[12]), .frame_axis = dv(v[13], v[14]), .frame_angle = v[15],
         .at_a = {.px = v[16], .py = v[17], .rotation_angle = v[18]}, .at_b = {.px = v[19], .py = v[20], .rotation_angle = v[21]},
     };
-    if ((st = joint_restore(wd, jt, v + 22)))
+    if ((st = joint_restore(wd, jt, v + 22, c->fn)))
         pp_free(jt);
     return st;
 }
@@ -515,7 +515,7 @@ static pp_status restore_joints(const json_ctx *c, const cJSON *root, world *wd)
                                (unsigned)free_slots[i]);
     }
     if (!st)
-        st = joint_table_restore(wd, gens, n, free_slots, n_free);
+        st = joint_table_restore(wd, gens, n, free_slots, n_free, c->fn);
     int32_t i = 0;
     char where[32];
     for (const cJSON *it = arr ? arr->child : NULL; it && st == PP_OK; it = it->next, i++) {

@@ -132,7 +132,7 @@ def _enum_names(values):
 
 _PY_SCALARS = {"float": "c_float", "double": "c_double", "int": "c_int", "int32_t": "c_int32", "uint32_t": "c_uint32",
                "int64_t": "c_int64", "uint64_t": "c_uint64", "uint8_t": "c_uint8", "const char *": "c_char_p",
-               "void *": "c_void_p", "uint8_t *": "u8p", "const uint8_t *": "u8p"}
+               "void *": "c_void_p", "const void *": "c_void_p", "uint8_t *": "u8p", "const uint8_t *": "u8p"}
 
 
 def _py_type(desc, ctype, fnptr_names):

@@ -723,6 +723,56 @@ static godot_variant load_snapshot(call *c)
     return ok(c, pp_world_load_snapshot(c->a[0].path, &loaded)) ? replace_world(c, loaded) : gdn_nil();
 }
 
+static godot_variant save_state(call *c)
+{
+    int64_t size = 0;
+    const pp_status st = pp_world_save_state(c->self->world, NULL, 0, &size);
+    if (st != PP_ERR_LIMIT && !ok(c, st))
+        return gdn_nil();
+    godot_pool_byte_array pool;
+    gdn->godot_pool_byte_array_new(&pool);
+    gdn->godot_pool_byte_array_resize(&pool, (int32_t)size);
+    godot_pool_byte_array_write_access *wr = gdn->godot_pool_byte_array_write(&pool);
+    const bool saved = ok(c, pp_world_save_state(c->self->world, gdn->godot_pool_byte_array_write_access_ptr(wr), size,
+                                                 &size));
+    gdn->godot_pool_byte_array_write_access_destroy(wr);
+    godot_variant r = gdn_nil();
+    if (saved)
+        gdn->godot_variant_new_pool_byte_array(&r, &pool);
+    gdn->godot_pool_byte_array_destroy(&pool);
+    return r;
+}
+
+/* The state bytes of argument 0 handed to fn (restore or load); its status. */
+static bool with_state_bytes(call *c, bool load, pp_world *loaded)
+{
+    godot_pool_byte_array pool = gdn->godot_variant_as_pool_byte_array(c->a[0].var);
+    godot_pool_byte_array_read_access *rd = gdn->godot_pool_byte_array_read(&pool);
+    const uint8_t *p = gdn->godot_pool_byte_array_read_access_ptr(rd);
+    const int64_t n = gdn->godot_pool_byte_array_size(&pool);
+    const bool done = ok(c, load ? pp_world_load_state(p, n, loaded) : pp_world_restore_state(c->self->world, p, n));
+    gdn->godot_pool_byte_array_read_access_destroy(rd);
+    gdn->godot_pool_byte_array_destroy(&pool);
+    return done;
+}
+
+static godot_variant restore_state(call *c)
+{
+    return with_state_bytes(c, false, NULL) ? gdn_bool(true) : gdn_nil();
+}
+
+static godot_variant load_state(call *c)
+{
+    pp_world loaded;
+    return with_state_bytes(c, true, &loaded) ? replace_world(c, loaded) : gdn_nil();
+}
+
+static godot_variant get_hash(call *c)
+{
+    uint64_t h = 0;
+    return ok(c, pp_world_get_hash(c->self->world, &h)) ? gdn_int((int64_t)h) : gdn_nil();
+}
+
 static godot_variant get_camera(call *c)
 {
     pp_camera cam;

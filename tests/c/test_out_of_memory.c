@@ -49,6 +49,8 @@ typedef struct script {
     int crowd_count;
     uint8_t *terrain_mask, *terrain_weights, *crate_rgba, *block_mask, *giant_mask, *disc_mask, *shelf_mask, *bar_mask;
     char dir[64], snapshot[96], scene[96], png[96];
+    uint8_t *state;                /* pp_world_save_state's bytes (the host's memory, not the library's) */
+    int64_t state_size;
 } script;
 
 static int32_t body_count(pp_world w)
@@ -379,6 +381,19 @@ static pp_status op_save_snapshot(script *s)
     return st;
 }
 static pp_status op_load_snapshot(script *s) { return pp_world_load_snapshot(s->snapshot, &s->loaded); }
+
+static pp_status op_save_state(script *s)
+{
+    free(s->state);
+    s->state = NULL;
+    pp_status st = pp_world_save_state(s->w, NULL, 0, &s->state_size);
+    if (st != PP_ERR_LIMIT)
+        return st;
+    s->state = malloc((size_t)s->state_size);
+    return pp_world_save_state(s->w, s->state, s->state_size, &s->state_size);
+}
+static pp_status op_restore_state(script *s) { return pp_world_restore_state(s->w, s->state, s->state_size); }
+static pp_status op_load_state(script *s) { return pp_world_load_state(s->state, s->state_size, &s->loaded); }
 static pp_status op_save_png(script *s) { return pp_image_save(s->png, s->crate_rgba, 16, 16); }
 
 static pp_status op_load_png(script *s)
@@ -404,6 +419,15 @@ static const op scene_ops[] = {
     OP(op_destroy_crate), OP(op_extra), OP(op_step), OP(op_step), OP(op_save_png), OP(op_load_png),
     OP(op_save_snapshot), OP(op_load_snapshot), OP(op_step_loaded), OP(op_step_loaded), OP(op_step), OP(op_step),
     OP(op_save_snapshot),
+};
+
+/* State in memory: restored in place, and over a crate destroyed and one made since (built apart), then loaded; the
+ * 256×256 block is big enough for the world to keep its pixels once and save its changed bands. */
+static const op state_ops[] = {
+    OP(op_create_world), OP(op_terrain), OP(op_block), OP(op_crate0), OP(op_crate1), OP(op_crate2), OP(op_crate3),
+    OP(op_step), OP(op_step), OP(op_step), OP(op_save_state), OP(op_step), OP(op_erase),
+    OP(op_step), OP(op_restore_state), OP(op_step), OP(op_destroy_crate), OP(op_extra), OP(op_step),
+    OP(op_restore_state), OP(op_step), OP(op_load_state), OP(op_step_loaded), OP(op_step), OP(op_save_snapshot),
 };
 
 /* A pair big enough for the narrowphase's worker threads, beside a crate. */
@@ -555,6 +579,7 @@ static void script_close(script *s)
     free(s->terrain_mask), free(s->terrain_weights), free(s->crate_rgba);
     free(s->block_mask), free(s->giant_mask), free(s->disc_mask), free(s->shelf_mask), free(s->bar_mask);
     remove_tree(s->dir);
+    free(s->state);
 }
 
 /* Run every op with the N-th allocation failing (0: none). Returns the allocations made, and, when
@@ -689,6 +714,13 @@ Test(out_of_memory, every_allocation_of_a_crowded_spawn_can_fail_and_changes_not
 {
     static const char *const must_fail[] = {"op_crowd", "op_step"};
     const script_ops so = {crowd_ops, (int)(sizeof crowd_ops / sizeof *crowd_ops), false};
+    fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
+}
+
+Test(out_of_memory, every_allocation_of_a_state_restored_or_loaded_can_fail_and_changes_nothing, .timeout = 300)
+{
+    static const char *const must_fail[] = {"op_save_state", "op_restore_state", "op_load_state"};
+    const script_ops so = {state_ops, (int)(sizeof state_ops / sizeof *state_ops), false};
     fail_each_allocation(&so, must_fail, (int)(sizeof must_fail / sizeof *must_fail));
 }
 

@@ -813,6 +813,24 @@ func _init():
 	check(pa != at_save, "and it moved after the snapshot (%s -> %s), so the comparison means something" % [at_save, pa])
 	check(remove_tree(tmp), "removed %s" % tmp)
 
+	# The same in memory: save_state, 60 steps, restore_state and 60 steps again; load_state into a third object.
+	var mem_orig = orig.save_state()
+	var mem_hash = orig.get_hash()
+	check(typeof(mem_orig) == TYPE_RAW_ARRAY and mem_orig.size() > 0 and is_int(mem_hash),
+		"save_state() -> %d bytes, get_hash() -> %s %s" % [mem_orig.size(), mem_hash, orig.get_last_error()])
+	steps(orig, 60)
+	var mem_first = orig.get_position(crate_a)
+	check(orig.restore_state(mem_orig) == true and orig.get_hash() == mem_hash,
+		"restore_state: the hash as saved %s" % orig.get_last_error())
+	steps(orig, 60)
+	check(orig.get_position(crate_a) == mem_first, "restored, 60 steps on: %s == %s" % [orig.get_position(crate_a), mem_first])
+	var mem_copy = PhysPixWorld.new()
+	check(mem_copy.load_state(mem_orig) == true and mem_copy.get_hash() == mem_hash,
+		"load_state into a third PhysPixWorld hashes as saved %s" % mem_copy.get_last_error())
+	var mem_cut = mem_orig.subarray(0, 63)
+	check(orig.restore_state(mem_cut) == null and orig.get_last_error().find("PP_ERR_FORMAT") >= 0,
+		"cut state bytes refused: %s" % orig.get_last_error())
+
 	test_rays_and_queries()
 	test_explode_and_casts()
 	test_sensor()

@@ -306,6 +306,13 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     }
     /* The motor joint keeps the box where the hinge holds it. */
     call(world, "set_joint_offsets", (pp_variant[]){V_INT(joints[3]), V_VEC2(50, 91), V_FLOAT(0)}, 3);
+    /* The world's state now, for restore_state (and load_state on the scratch world). */
+    pp_variant saved = call(world, "save_state", NULL, 0);
+    cr_assert_eq(saved.type, PP_VARIANT_BYTES);
+    const int64_t state_size = saved.as.bytes.length;
+    uint8_t *state = malloc((size_t)state_size);
+    memcpy(state, saved.as.bytes.data, (size_t)state_size);
+    plugin.api.variant_clear(&saved);
     const recipe world_recipes[] = {
         {"step", {V_FLOAT(1.0 / 60)}},
         {"add_body", {V_BYTES(box_mask, sizeof box_mask), V_INT(BOX), V_INT(BOX), V_VEC2(20, 20), V_STR("static")}},
@@ -362,6 +369,10 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"save_snapshot", {V_STR(snap)}},
         {"load_snapshot", {V_STR(snap)}}, /* on the scratch world too, after save_snapshot wrote it */
         {"get_time", {{0}}},
+        {"save_state", {{0}}},
+        {"restore_state", {V_BYTES(state, state_size)}},
+        {"load_state", {V_BYTES(state, state_size)}}, /* on the scratch world: it replaces the world */
+        {"get_hash", {{0}}},
         {"get_camera_center", {{0}}},
         {"get_camera_zoom", {{0}}},
         {"get_camera_size", {{0}}},
@@ -446,7 +457,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
             cr_assert(r >= 0, "%s.%s has no recipe", c->name, m->name);
             const pp_variant *right = targets[t].recipes[r].args;
             const bool replaces = strcmp(m->name, "load_scene") == 0 || strcmp(m->name, "load_snapshot") == 0 ||
-                                  strcmp(m->name, "create") == 0;
+                                  strcmp(m->name, "create") == 0 || strcmp(m->name, "load_state") == 0;
             const uint64_t object = replaces ? scratch : targets[t].object;
 
             /* Each argument of a wrong type: INVALID_ARGUMENT naming its position, name and type. */
@@ -481,6 +492,7 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld has no method 'no_such_method'");
     cr_log_info("%d calls checked", calls + 1);
     remove_snapshot(snap);
+    free(state);
 }
 
 /* The positions of every body of a world object, in its body order. */
@@ -520,6 +532,40 @@ Test(methods, a_snapshot_saved_and_loaded_through_the_plugin_continues_exactly)
     expect_error(&ret, PP_ERR_IO, "PhysPixWorld.load_snapshot");
     cr_assert_eq(call(back, "get_body_count", NULL, 0).as.integer, 4, "a failed load leaves the world as it was");
     remove_snapshot(snap);
+}
+
+Test(methods, a_state_saved_in_memory_restores_loads_and_hashes_through_the_plugin)
+{
+    uint64_t box, ground;
+    const uint64_t world = make_scene(&box, &ground);
+    for (int i = 0; i < 20; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    pp_variant saved = call(world, "save_state", NULL, 0);
+    cr_assert_eq(saved.type, PP_VARIANT_BYTES, "%s", saved.type == PP_VARIANT_ERROR ? saved.as.error.message : "");
+    const int64_t hash = call(world, "get_hash", NULL, 0).as.integer;
+    pp_vec2 a[8], b[8];
+    for (int i = 0; i < 40; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    const int na = positions_of(world, a, 8);
+    cr_assert_neq(call(world, "get_hash", NULL, 0).as.integer, hash);
+    pp_variant ret = call(world, "restore_state", &saved, 1);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    cr_assert_eq(call(world, "get_hash", NULL, 0).as.integer, hash);
+    for (int i = 0; i < 40; i++)
+        call(world, "step", (pp_variant[]){V_FLOAT(1.0 / 60)}, 1);
+    cr_assert(positions_of(world, b, 8) == na && memcmp(a, b, sizeof(pp_vec2) * (size_t)na) == 0,
+              "the restored world went another way");
+    pp_variant made;
+    plugin.api.object_create("PhysPixWorld", &made);
+    const uint64_t back = ok_object(made);
+    ret = call(back, "load_state", &saved, 1);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+    cr_assert_eq(call(back, "get_hash", NULL, 0).as.integer, hash);
+    uint8_t cut[64];
+    memcpy(cut, saved.as.bytes.data, sizeof cut);
+    ret = call(world, "restore_state", (pp_variant[]){V_BYTES(cut, sizeof cut)}, 1);
+    expect_error(&ret, PP_ERR_FORMAT, "PhysPixWorld.restore_state");
+    plugin.api.variant_clear(&saved);
 }
 
 Test(methods, bodies_made_through_the_plugin_have_the_mass_of_their_pixels_and_fall)

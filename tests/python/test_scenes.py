@@ -206,3 +206,39 @@ def test_a_snapshot_continues_bit_for_bit(tmp_path):
         assert restored.time == end_time
     for i, (g, e) in enumerate(zip(got, expected)):
         assert g == e, f"step {i + 1} after the snapshot differs"
+
+
+def test_state_in_memory_restores_loads_and_hashes():
+    """A world saved as bytes, stepped, restored and stepped again retraces its steps; a body made after the save
+    goes stale; a loaded world hashes alike; changed bytes raise FormatError and change nothing."""
+    world = World(gravity=(0, 980))
+    rect(world, 400, 40, type=BodyType.STATIC, position=(200, 300))
+    crates = [rect(world, 16, 16, position=(100 + 40 * i, 200 - 30 * i)) for i in range(5)]
+    for _ in range(20):
+        world.step(1 / 60)
+    data = world.save_state()
+    assert isinstance(data, bytes) and len(data) > 400 * 40 // 8
+    h = world.hash
+    late = rect(world, 8, 8, position=(50, 50))
+    for _ in range(30):
+        world.step(1 / 60)
+    first = [c.position for c in crates]
+    assert world.hash != h
+    world.restore_state(data)
+    assert world.hash == h
+    with pytest.raises(physpix.InvalidHandleError):
+        late.position
+    rect(world, 8, 8, position=(50, 50))  # as late was, so that the future is the same
+    for _ in range(30):
+        world.step(1 / 60)
+    assert [c.position for c in crates] == first
+    copy = World.load_state(data)
+    assert copy.hash == h and copy.hash != world.hash
+    broken = bytearray(data)
+    broken[len(data) // 2] ^= 1
+    now = world.hash
+    raises_from_library(physpix.FormatError, ["checksum"], copy.restore_state, bytes(broken))
+    raises_from_library(physpix.InvalidArgumentError, ["saved from world"], world.restore_state, data[:0] + copy.save_state())
+    assert world.hash == now
+    copy.close()
+    world.close()

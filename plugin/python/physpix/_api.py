@@ -386,6 +386,10 @@ SIGNATURES = {
     "pp_world_debug_draw": (STATUS, [pp_world, c_uint32, pp_vec2, pp_vec2, P(pp_debug_segment), c_int32, P(c_int32)]),
     "pp_world_load_scene": (STATUS, [c_char_p, P(pp_world)]),
     "pp_world_save_snapshot": (STATUS, [pp_world, c_char_p]),
+    "pp_world_save_state": (STATUS, [pp_world, c_void_p, c_int64, P(c_int64)]),
+    "pp_world_restore_state": (STATUS, [pp_world, c_void_p, c_int64]),
+    "pp_world_load_state": (STATUS, [c_void_p, c_int64, P(pp_world)]),
+    "pp_world_get_hash": (STATUS, [pp_world, P(c_uint64)]),
     "pp_world_load_snapshot": (STATUS, [c_char_p, P(pp_world)]),
 }
 

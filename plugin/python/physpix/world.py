@@ -20,7 +20,7 @@ import numpy as np
 from . import _native as N
 from .enums import (DEBUG_DRAW_ALL, Backend, BodyType, ContactMode, EditType, EventType, JointType, NormalMethod,
                     Preset)
-from .errors import IntegerRangeError, InvalidArgumentError, PhysPixError
+from .errors import IntegerRangeError, InvalidArgumentError, LimitError, PhysPixError
 
 try:  # the array hints' names, so that typing.get_type_hints resolves them (numpy.typing.NDArray: numpy >= 1.21)
     import numpy.typing as npt
@@ -365,6 +365,42 @@ class World:
     def save_snapshot(self, folder: PathLike) -> None:
         """Write the world's whole state into a new folder (world.json and PNG planes)."""
         lib.pp_world_save_snapshot(self._handle, _path(folder, "folder"))
+
+    def save_state(self) -> bytes:
+        """The world's whole state as bytes in memory, for rollback and undo (restore_state, load_state)."""
+        size = c_int64()
+        try:
+            lib.pp_world_save_state(self._handle, None, 0, byref(size))
+        except LimitError:  # the bytes it needs are in size
+            pass
+        buf = ctypes.create_string_buffer(size.value)
+        lib.pp_world_save_state(self._handle, buf, size.value, byref(size))
+        return buf.raw[:size.value]
+
+    def restore_state(self, data: bytes) -> None:
+        """Put the world back as it was when it saved these bytes: bodies and joints made since go stale, those
+        destroyed since live again. Changed or cut bytes raise FormatError, another world's InvalidArgumentError;
+        either way the world is unchanged."""
+        data = bytes(data)
+        lib.pp_world_restore_state(self._handle, data, len(data))
+
+    @classmethod
+    def load_state(cls: Type[_W], data: bytes) -> _W:
+        """A new world from saved state bytes; it continues exactly as the saved world would have."""
+        data = bytes(data)
+        world = cls.__new__(cls)
+        handle = N.pp_world()
+        lib.pp_world_load_state(data, len(data), byref(handle))
+        world._adopt(handle)
+        return world
+
+    @property
+    def hash(self) -> int:
+        """64 bits over everything the next steps depend on (0..2**64-1): equal hashes, equal futures, on either
+        backend and in any run."""
+        h = c_uint64()
+        lib.pp_world_get_hash(self._handle, byref(h))
+        return h.value
 
     def close(self) -> None:
         """Destroy the world and its bodies; later calls with it raise InvalidHandleError. Idempotent."""

@@ -29,6 +29,10 @@ typedef struct cost_destruction {
     stab_scene crates;  ///< the crates only, dynamic boxes
 } cost_destruction;
 
+/// The settings PhysPix runs the rain and the destruction scene with outside bench_cost (bench_instr, bench_state):
+/// BALANCED, the CPU backend on one thread, STAB_GRAVITY, sleep on or off.
+pp_world_def cost_world_def(int sleep);
+
 /// Build the destruction scene; 0, or -1 (no memory).
 int cost_destruction_build(cost_destruction *out);
 /// Release its memory.

@@ -116,3 +116,13 @@ void cost_crater(const cost_destruction *d, int k, double *x, double *y)
     *x = c->x;
     *y = depth < COST_TERRAIN_H - 2 * COST_CRATER_R ? depth : COST_TERRAIN_H - 2 * COST_CRATER_R;
 }
+
+pp_world_def cost_world_def(int sleep)
+{
+    pp_world_def def = pp_world_def_preset(PP_PRESET_BALANCED);
+    def.allow_sleep = (uint32_t)sleep;
+    def.backend = PP_BACKEND_CPU;
+    def.worker_threads = 1;
+    def.gravity = (pp_vec2){0.0f, (float)STAB_GRAVITY};
+    return def;
+}

@@ -35,11 +35,7 @@ static void die(const char *what)
 /* As bench_cost: BALANCED, the CPU backend on one thread, so the counts are those of one core's work. */
 static pp_world make_world(int sleep)
 {
-    pp_world_def def = pp_world_def_preset(PP_PRESET_BALANCED);
-    def.allow_sleep = (uint32_t)sleep;
-    def.backend = PP_BACKEND_CPU;
-    def.worker_threads = 1;
-    def.gravity = (pp_vec2){0.0f, (float)STAB_GRAVITY};
+    const pp_world_def def = cost_world_def(sleep);
     pp_world w;
     check(pp_world_create(&def, &w), "pp_world_create");
     return w;
