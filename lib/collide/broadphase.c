@@ -12,6 +12,9 @@
 
 /* A leaf's box is its body's grown by this, px: a body that moves less keeps its leaf. */
 #define BP_MARGIN 4.0
+/* A step's grown boxes are searched grown by this more, px: a body at rest stays inside them the next step, whose
+ * pairs then come from these candidates without a search (a pile at rest jitters by hundredths of a pixel). */
+#define BP_STEP_MARGIN 1.0
 
 static pp_aabb combine(pp_aabb a, pp_aabb b)
 {
@@ -503,9 +506,54 @@ static pp_status pairs_from_candidates(pp_broadphase *bp, const bp_proxy *px)
     return st ? st : settle_pairs(bp, px, first, n);
 }
 
+/* Whether the candidates hold every pair find_pairs would find with each awake body's box at boxes[slot] (its box
+ * now, or its box grown over a new step), or at its box now when boxes is NULL. */
+static bool candidates_hold(const pp_broadphase *bp, const bp_proxy *px, const int32_t *awake, int32_t awake_count,
+                            const pp_aabb *boxes)
+{
+    if (!bp->cand_valid || bp->cand_serial != bp->tree_serial || bp->cand_awake_count != awake_count)
+        return false;
+    for (int32_t k = 0; k < awake_count; k++) {
+        const int32_t s = awake[k];
+        if (bp->cand_awake[k] != (px[s].awake ? s : ~s) ||
+            (px[s].awake && !contains(bp->grown[s], boxes ? boxes[s] : px[s].box)))
+            return false;
+    }
+    return true;
+}
+
+/* The pairs now from the candidates: the same pairs, in the same order, as the tree and the sweep find (checked
+ * against them in PP_CHECKS builds, where a failed allocation fails the step). */
+static pp_status pairs_reused(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
+                              int32_t awake_count)
+{
+    pp_status st = pairs_from_candidates(bp, proxies);
+#ifdef PP_CHECKS
+    const int32_t n = bp->pair_count;
+    bp_pair *got = st ? NULL : pp_malloc((size_t)n * sizeof *got + 1);
+    int32_t first;
+    if (!st && (!got || (st = find_pairs(bp, proxies, slots, awake, awake_count, &first))))
+        st = st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to check %d pairs", (int)n);
+    if (got && !st) {
+        if (n > 0)
+            memcpy(got, bp->pairs, (size_t)n * sizeof *got); /* find_pairs' */
+        PP_ASSERT(bp->pair_count == n);
+        if ((st = pairs_from_candidates(bp, proxies)) == PP_OK)
+            for (int32_t k = 0; k < n; k++)
+                PP_ASSERT(bp->pairs[k].a == got[k].a && bp->pairs[k].b == got[k].b);
+    }
+    pp_free(got);
+#else
+    (void)slots, (void)awake, (void)awake_count;
+#endif
+    return st;
+}
+
 pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                      int32_t awake_count, const pp_aabb *grown)
 {
+    if (candidates_hold(bp, proxies, awake, awake_count, grown)) /* the last step's hold this one's */
+        return pairs_reused(bp, proxies, slots, awake, awake_count);
     bp->cand_valid = false;
     if (!ARRAY_RESERVE(bp->grown, bp->grown_cap, slots) ||
         !ARRAY_RESERVE(bp->cand_awake, bp->cand_awake_cap, awake_count))
@@ -515,8 +563,10 @@ pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32
         const int32_t s = awake[k];
         bp->cand_awake[k] = proxies[s].awake ? s : ~s;
         if (proxies[s].awake) {
+            const pp_aabb g = grown[s];
             bp->grown[s] = proxies[s].box;
-            proxies[s].box = grown[s];
+            proxies[s].box = (pp_aabb){g.x0 - BP_STEP_MARGIN, g.y0 - BP_STEP_MARGIN, g.x1 + BP_STEP_MARGIN,
+                                       g.y1 + BP_STEP_MARGIN};
         }
     }
     int32_t first = 0;
@@ -542,43 +592,12 @@ pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32
     return PP_OK;
 }
 
-/* Whether the step's candidates hold every pair find_pairs would find now. */
-static bool candidates_hold(const pp_broadphase *bp, const bp_proxy *px, const int32_t *awake, int32_t awake_count)
-{
-    if (!bp->cand_valid || bp->cand_serial != bp->tree_serial || bp->cand_awake_count != awake_count)
-        return false;
-    for (int32_t k = 0; k < awake_count; k++) {
-        const int32_t s = awake[k];
-        if (bp->cand_awake[k] != (px[s].awake ? s : ~s) || (px[s].awake && !contains(bp->grown[s], px[s].box)))
-            return false;
-    }
-    return true;
-}
-
 pp_status broadphase_find_later_pairs(pp_broadphase *bp, const bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                       int32_t awake_count)
 {
-    if (!candidates_hold(bp, proxies, awake, awake_count))
+    if (!candidates_hold(bp, proxies, awake, awake_count, NULL))
         return broadphase_find_pairs(bp, proxies, slots, awake, awake_count);
-    pp_status st = pairs_from_candidates(bp, proxies);
-#ifdef PP_CHECKS
-    /* The same pairs, in the same order, as the tree and the sweep find (a failed allocation fails the step). */
-    const int32_t n = bp->pair_count;
-    bp_pair *got = st ? NULL : pp_malloc((size_t)n * sizeof *got + 1);
-    int32_t first;
-    if (!st && (!got || (st = find_pairs(bp, proxies, slots, awake, awake_count, &first))))
-        st = st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "broadphase: no memory to check %d pairs", (int)n);
-    if (got && !st) {
-        if (n > 0)
-            memcpy(got, bp->pairs, (size_t)n * sizeof *got); /* find_pairs' */
-        PP_ASSERT(bp->pair_count == n);
-        if ((st = pairs_from_candidates(bp, proxies)) == PP_OK)
-            for (int32_t k = 0; k < n; k++)
-                PP_ASSERT(bp->pairs[k].a == got[k].a && bp->pairs[k].b == got[k].b);
-    }
-    pp_free(got);
-#endif
-    return st;
+    return pairs_reused(bp, proxies, slots, awake, awake_count);
 }
 
 void broadphase_free(pp_broadphase *bp)

@@ -87,7 +87,8 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
 
 /* broadphase_find_pairs for a step's first substep, which also keeps the candidates of the whole step: the pairs
  * found with each awake body's box grown to grown[slot] (its box over the step, which the caller makes from its
- * velocity). The pairs themselves are those of the boxes now. */
+ * velocity) and a pixel more. The pairs themselves are those of the boxes now. When the last step's candidates
+ * still hold (as for a later substep, with every grown box inside its last one) they are kept: no search. */
 pp_status broadphase_find_step_pairs(pp_broadphase *bp, bp_proxy *proxies, int32_t slots, const int32_t *awake,
                                      int32_t awake_count, const pp_aabb *grown);
 
