@@ -89,16 +89,16 @@ static bool may_split(const body *bd)
 }
 
 /* Before writing [x0, x1) × [y0, y1) (clipped here): room for a destroyed event, and, if the writes may remove
- * pixels, the pixels to put back should the edit fail after them: the body's split, or in an erase of every body,
- * a later body's job (a static terrain's crater is taken back as a crate's failed split is). */
+ * pixels, the pixels to put back should the edit fail after them: the body's split, or, with `others` (an erase of
+ * every body), a later body's job (a static terrain's crater is taken back as a crate's failed split is). */
 static pp_status job_begin(world *wd, body *bd, int64_t x0, int64_t y0, int64_t x1, int64_t y1, bool removes,
-                           const char *fn, edit_job *j, int32_t *events)
+                           bool others, const char *fn, edit_job *j, int32_t *events)
 {
     const pp_raster *r = &bd->raster;
     *j = (edit_job){.bd = bd, .sums = bd->sums, .fn = fn};
     *events += 1 + (removes ? bd->joint_count : 0); /* destroyed, and each joint an anchor's pixels may break */
     pp_status st = world_reserve_events(wd, *events, fn);
-    if (st || !removes)
+    if (st || !removes || !(others || may_split(bd)))
         return st;
     j->x0 = (int32_t)(x0 > 0 ? x0 : 0), j->y0 = (int32_t)(y0 > 0 ? y0 : 0);
     j->x1 = (int32_t)(x1 < r->width ? x1 : r->width), j->y1 = (int32_t)(y1 < r->height ? y1 : r->height);
@@ -215,8 +215,8 @@ static void circle_write(body *bd, edit_span *e, dvec2 c, double r, int32_t x0, 
 static dvec2 world_to_local(const body *bd, pp_vec2 p) { return body_world_to_local(bd, dv(p.x, p.y)); }
 
 /* Erase a circle from one body, up to the commit. */
-static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, const char *fn, edit_job *j,
-                              int32_t *events)
+static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius, bool others, const char *fn,
+                              edit_job *j, int32_t *events)
 {
     const pp_raster *r = &bd->raster;
     const dvec2 c = world_to_local(bd, center);
@@ -225,7 +225,7 @@ static pp_status erase_circle(world *wd, body *bd, pp_vec2 center, float radius,
     const double x1 = fmin(r->x1, ceil(c.x + radius) + 1), y1 = fmin(r->y1, ceil(c.y + radius) + 1);
     const bool touches = !raster_empty(r) && x0 < x1 && y0 < y1;
     pp_status st = job_begin(wd, bd, touches ? (int64_t)x0 : 0, touches ? (int64_t)y0 : 0, touches ? (int64_t)x1 : 0,
-                             touches ? (int64_t)y1 : 0, touches, fn, j, events);
+                             touches ? (int64_t)y1 : 0, touches, others, fn, j, events);
     if (st)
         return st;
     if (touches)
@@ -277,9 +277,10 @@ static pp_status erase_everywhere(world *wd, pp_vec2 world_center, float radius,
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d bodies", fn, (int)n_hit);
     }
     int32_t n = 0, events = 0;
+    const bool others = n_hit > 1 || before_commit; /* something may fail after a job: it must be taken back */
     for (int32_t k = 0; k < n_hit && !st; k++)
         if ((wd->bodies[hit[k]]->category_bits & mask_bits) &&
-            (st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, fn, &jobs[n], &events)) == PP_OK)
+            (st = erase_circle(wd, wd->bodies[hit[k]], world_center, radius, others, fn, &jobs[n], &events)) == PP_OK)
             n++;
     pp_free(hit);
     if (!st && before_commit)
@@ -313,7 +314,7 @@ pp_status edit_erase_circle(world *wd, body *bd, pp_vec2 world_center, float rad
         return st ? st : erase_everywhere(wd, world_center, radius, ~0u, fn, changed, NULL, NULL);
     edit_job j;
     int32_t events = 0;
-    if ((st = erase_circle(wd, bd, world_center, radius, fn, &j, &events)))
+    if ((st = erase_circle(wd, bd, world_center, radius, false, fn, &j, &events)))
         return st;
     if (changed)
         *changed = j.e.changed;
@@ -340,7 +341,7 @@ pp_status edit_paint_circle(world *wd, body *bd, pp_vec2 world_center, float rad
         return st;
     edit_job j;
     int32_t events = 0;
-    if ((st = job_begin(wd, bd, 0, 0, 0, 0, false, fn, &j, &events)))
+    if ((st = job_begin(wd, bd, 0, 0, 0, 0, false, false, fn, &j, &events)))
         return st;
     circle_write(bd, &j.e, world_to_local(bd, world_center), radius, 0, 0, bd->raster.width, bd->raster.height, true,
                  weight);
@@ -374,7 +375,7 @@ PP_API pp_status pp_body_write_pixels(pp_world w, pp_body b, int32_t x, int32_t 
         return st;
     edit_job j;
     int32_t events = 0;
-    if ((st = job_begin(wd, bd, cx0, cy0, cx1, cy1, true, fn, &j, &events)))
+    if ((st = job_begin(wd, bd, cx0, cy0, cx1, cy1, true, false, fn, &j, &events)))
         return st;
     for (int64_t py = cy0; py < cy1; py++)
         for (int64_t px = cx0; px < cx1; px++) {
