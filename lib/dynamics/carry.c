@@ -278,7 +278,7 @@ pp_status carry_push(world *wd)
             continue;
         const body *a = wd->bodies[handle_slot(t->records[i].a)], *b = wd->bodies[handle_slot(t->records[i].b)];
         bool keep = true;
-        pp_status st = contact_table_found(wd, a, b, &r, &keep);
+        pp_status st = contact_table_found(wd, a, b, &r, i, &keep);
         if (st)
             return st;
         if (!keep)

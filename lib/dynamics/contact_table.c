@@ -264,7 +264,7 @@ static bool one_way_passes(const body *a, const body *b, const np_result *r)
     return dv_dot(n, d) < ONE_WAY_COS;
 }
 
-pp_status contact_table_found(world *wd, const body *a, const body *b, const np_result *r, bool *keep)
+pp_status contact_table_found(world *wd, const body *a, const body *b, const np_result *r, int32_t at, bool *keep)
 {
     static const char *fn = "pp_world_step";
     *keep = true;
@@ -273,7 +273,8 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
         return PP_OK;
     }
     contact_table *t = &wd->table;
-    int32_t i = lookup(t, pair_key(a->index, b->index));
+    int32_t i = at >= 0 ? at : lookup(t, pair_key(a->index, b->index));
+    PP_ASSERT(i == lookup(t, pair_key(a->index, b->index)));
     PP_ASSERT(i < 0 || (t->records[i].a == a->handle.id && t->records[i].b == b->handle.id));
     /* Room for the record and its event first: a failure changes nothing. */
     pp_status st = world_reserve_events(wd, 1, fn);

@@ -90,10 +90,11 @@ typedef struct contact_table {
 /* Start a substep's search. */
 void contact_table_begin_substep(struct world *wd);
 
-/* A pair the narrowphase found touching (r->count > 0): find or make its record, queue its BEGIN event if it is
- * new, and say whether its contacts go to the solver (not for sensors or a passing one-way pair). */
+/* A pair the narrowphase found touching (r->count > 0): find or make its record (at: its index when the caller
+ * holds it, as a carried pair's does, else -1), queue its BEGIN event if it is new, and say whether its contacts
+ * go to the solver (not for sensors or a passing one-way pair). */
 pp_status contact_table_found(struct world *wd, const struct body *a, const struct body *b, const np_result *r,
-                              bool *keep);
+                              int32_t at, bool *keep);
 
 /* After every pair: end each awake pair not found (its END event queued), put to rest those neither of whose
  * bodies was awake to be tested (a sleeping stack still touches), and take back the resting pairs a woken body

@@ -212,7 +212,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;
-        if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, &keep)))
+        if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, -1, &keep)))
             return st;
         if (r.count > 0)
             carry_collided(wd, a->index, b->index);
