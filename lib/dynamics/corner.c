@@ -21,7 +21,6 @@
 
 #include <math.h>
 
-#define CORNER_PIXELS 3
 #define CORNER_RADIUS 6.0
 #define CORNER_MARGIN 0.1 /* px: the narrowphase's normal stays unless a face beats it by this */
 #define COS_MIN_TURN 0.98480775301220806 /* cos 10°: a face nearer the narrowphase's normal is not tried */

@@ -5,6 +5,9 @@
 
 #include "world.h"
 
+/* A pair meeting through at most this many pixels is a corner on a face (or on a corner). */
+#define CORNER_PIXELS 3
+
 /* Where r's pair meets through at most CORNER_PIXELS pixels, turn its normals to the face of a or b along
  * which the two overlap least, when that beats the narrowphase's normal; points and depths stay. Where it is
  * deeper than DEEP_DEPTH, the same over a window holding the overlap, perpendicular faces included; a face

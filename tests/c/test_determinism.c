@@ -157,9 +157,9 @@ static const struct {
     const char *name;
     uint64_t hash;
 } golden[] = {
-    {PP_PRESET_FAST, "FAST", 0xe760f57540388101ull},
-    {PP_PRESET_BALANCED, "BALANCED", 0x28374aa5ea53a832ull},
-    {PP_PRESET_ACCURATE, "ACCURATE", 0x28374aa5ea53a832ull},
+    {PP_PRESET_FAST, "FAST", 0x04dc08de2c68889dull},
+    {PP_PRESET_BALANCED, "BALANCED", 0x835778152b1e611eull},
+    {PP_PRESET_ACCURATE, "ACCURATE", 0x835778152b1e611eull},
 };
 
 static uint64_t golden_run(pp_preset preset, pp_backend backend) {

@@ -241,14 +241,19 @@ Test(stacking, box2d_v3s_card_house_3_levels_stands, .timeout = 120)
     cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
 }
 
-/* Box2D v3's full card house (5 levels, 40 cards) at ACCURATE: the top tent swayed about 1.5 px, its apex (a
- * one-pixel corner on a card's face) slipped past 2 px, re-anchored and slid on, and the house fell at 1.1 s.
- * A friction anchor that holds to 4 px of slip stands it. */
-Test(stacking, box2d_v3s_card_house_stands_at_accurate, .timeout = 120)
+/* Box2D v3's full card house (5 levels, 40 cards): its top tent stands on a one-pixel apex, a card's corner on
+ * the other's face. Closing the slop gap there drove the corner down that face (the tent's only way to close
+ * it) and the house fell at 0.13 s with 30 to 120 iterations; BALANCED's 20 stood it by chance, half the time.
+ * At ACCURATE the friction anchor's 4 px held the sway it has as well. */
+Test(stacking, box2d_v3s_card_house_stands, .timeout = 120)
 {
-    const double moved = scene_move_from_built("cardhouse_v3", PP_PRESET_ACCURATE, 10.0);
-    cr_log_info("Box2D v3's card house, 5 levels, ACCURATE: no card moved over %.2f px in 10 s", moved);
-    cr_assert_lt(moved, 20.0, "a card moved %.2f px from where it was built", moved);
+    const pp_preset presets[] = {PP_PRESET_BALANCED, PP_PRESET_ACCURATE};
+    for (int p = 0; p < 2; p++) {
+        const double moved = scene_move_from_built("cardhouse_v3", presets[p], 30.0);
+        cr_log_info("Box2D v3's card house, 5 levels, preset %d: no card moved over %.2f px in 30 s", (int)presets[p],
+                    moved);
+        cr_assert_lt(moved, 20.0, "preset %d: a card moved %.2f px from where it was built", (int)presets[p], moved);
+    }
 }
 
 /* Box2D v3's arch (16 blocks and a keystone, 130-200 px joints, four 400 × 100 px slabs on top): the exact solve
