@@ -54,7 +54,7 @@ const char *state_world_problem(const state_world *w)
         return "its time is not finite";
     if (((const uint8_t *)w)[offsetof(state_world, table.resting_stale)] > 1)
         return "its contact table's flags are invalid";
-    if (t->gone < 0 || t->gone > t->awake || t->found_count < 0 || t->found_count > t->count)
+    if (t->gone < 0 || t->gone > t->awake || t->found_count < 0)
         return "its contact table's counts do not add up";
     if (w->body_count + w->body_free != w->body_capacity || w->joint_count + w->joint_free != w->joint_capacity)
         return "its slots are neither live nor free";
@@ -187,9 +187,10 @@ const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t 
         return "a setting is out of range";
     if (b->one_way && !unit(b->one_way_dir.x, b->one_way_dir.y))
         return "its one-way direction is not a unit";
-    /* The mass is its pixels' (ODE refuses a body without one), and a dynamic body of no pixels is destroyed. */
-    const pp_mass m = b->type == PP_BODY_STATIC ? (pp_mass){0}
-                                                 : mass_from_sums(&b->sums, b->raster.width, b->raster.height, b->density);
+    /* A dynamic body's mass is its pixels' (ODE refuses a body without one; a kinematic body's mass waits for a
+     * change of type), and a dynamic body of no pixels is destroyed. */
+    const pp_mass m = b->type == PP_BODY_DYNAMIC
+                          ? mass_from_sums(&b->sums, b->raster.width, b->raster.height, b->density) : b->mass;
     if (b->sums.w < 0 || b->sums.w > 255 * b->raster.solid_count || memcmp(&m, &b->mass, sizeof m) != 0)
         return "its mass is not its pixels'";
     if (b->type == PP_BODY_DYNAMIC && (!(b->mass.mass > 0) || !(b->mass.inertia > 0) || b->raster.solid_count == 0))
