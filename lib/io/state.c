@@ -441,7 +441,8 @@ static pp_status read_view(const char *fn, const void *buffer, int64_t size, con
      * those set since, which set_arrays sets): else the saved world is made apart, with its own solver. */
     pp_world_def def = live->def;
     def.gravity = w->def.gravity, def.contact_events = w->def.contact_events;
-    v->same = memcmp(&def, &w->def, sizeof def) == 0 && live->body_ids.live == w->body_count && live->joints.ids.live == w->joint_count &&
+    v->same = memcmp(&def, &w->def, sizeof def) == 0 && live->body_ids.live == w->body_count &&
+              live->joints.ids.live == w->joint_count &&
               live->body_ids.capacity >= w->body_capacity && live->joints.ids.capacity >= w->joint_capacity;
     s.at = v->bodies_at;
     for (int32_t i = 0; v->same && i < w->body_count; i++) {
