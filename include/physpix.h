@@ -1023,10 +1023,12 @@ PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out);
 /* World state in memory, for rollback and undo: the whole world as bytes (bodies and their pixels, joints, the
  * touching and held pairs, sleep, scheduled edits, events not yet read, time, the solver's step count), read only
  * by this build of the library. The bytes carry a format version, the saving world's id and a checksum: bytes
- * that were changed, cut short or come from another build are PP_ERR_FORMAT, bytes of another world
- * PP_ERR_INVALID_ARGUMENT, and either way the world is unchanged. A restore copies the saved records back over the
- * live ones (a body's pixels only when they changed since), and builds the saved world apart and swaps it in only
- * when bodies or joints were made, destroyed or retyped since the save. A body of 65536 pixels or more (a terrain) is
+ * that were changed, cut short or come from another build are PP_ERR_FORMAT, and so are bytes with a right
+ * checksum whose values no world holds (a peer's bug); bytes of another world are PP_ERR_INVALID_ARGUMENT, settings
+ * asking for a GPU where there is none PP_ERR_UNSUPPORTED, and in every case the world is unchanged. A restore
+ * copies the saved records back over the live ones (a body's pixels only when they changed since), and builds the
+ * saved world apart and swaps it in only when bodies or joints were made, destroyed or retyped since the save, or
+ * the bytes hold other world settings than those it was made with. A body of 65536 pixels or more (a terrain) is
  * kept once by the world at its first save, and its states hold only the bands of 8 rows changed since: such bytes
  * load into a new world (pp_world_load_state) only while the world that saved them exists, and not while another
  * thread changes it (else PP_ERR_INVALID_ARGUMENT). The camera is not part of the state. */

@@ -149,7 +149,7 @@ static void apply_count_defaults(pp_world_def *d)
     if (d->raster_stride == 0) d->raster_stride = def.raster_stride;
 }
 
-static pp_status check_world_def(const pp_world_def *d, const char *fn)
+pp_status world_check_def(const pp_world_def *d, const char *fn)
 {
     if (!finite2(d->gravity.x, d->gravity.y))
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "%s: gravity must be finite", fn);
@@ -221,7 +221,7 @@ pp_status world_make(const pp_world_def *def, const char *fn, world **out)
                        def->struct_size == 0 ? " (fill the def from pp_world_def_default or a known preset)" : "");
     pp_world_def d = *def;
     apply_count_defaults(&d);
-    pp_status st = check_world_def(&d, fn);
+    pp_status st = world_check_def(&d, fn);
     if (st)
         return st;
     /* Refused before anything is allocated; the pool's take below stays the check that counts. */

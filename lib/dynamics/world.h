@@ -211,6 +211,8 @@ static inline int32_t world_group_root(int32_t *parent, int32_t i)
     return i;
 }
 
+/* Whether a def's values are valid (count defaults applied); failures name fn. */
+pp_status world_check_def(const pp_world_def *d, const char *fn);
 /* Make a world from a def (not NULL), failures naming `fn`; world_free takes it and everything in it. */
 pp_status world_make(const pp_world_def *def, const char *fn, world **out);
 void world_free(world *wd);

@@ -7,57 +7,15 @@
 #include "awake.h"
 #include "hash.h"
 #include "joint.h"
+#include "state.h"
 #include "status.h"
 #include "world.h"
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "PPSTATE"
-#define STATE_VERSION 1u
-
-typedef struct state_header {
-    char magic[8];
-    uint64_t checksum;       /* hash.h's over every byte after it */
-    uint32_t version;
-    uint32_t layout;         /* the sizes of the records copied whole: another build's bytes are another format */
-    uint64_t size;           /* the whole state, bytes */
-    uint64_t world;          /* the handle id of the world saved */
-} state_header;
-
-/* The world's own values; its arrays follow in the order of write_state. */
-typedef struct state_world {
-    pp_world_def def;
-    pp_step_stats stats;
-    double time;
-    uint64_t solver_steps, next_serial, substep_serial, pixel_clock, next_attach, edit_serial;
-    contact_table_counts table;
-    int32_t body_capacity, body_free, body_count;
-    int32_t joint_capacity, joint_free, joint_count;
-    int32_t contact_count, event_count, edit_count, forced_count;
-    uint32_t edits_in_order;
-} state_world;
-
-/* A body: its record with the pointers zeroed, its ODE state, then its planes (bits, weights, row, column and tile
- * counts, sprite); a big body's (has_base) as its changed-band flags, each changed band's rows of the planes, and
- * its column counts, the rest being the world's state_base. */
-typedef struct state_body {
-    body b;
-    solver_exact_state ode;
-    uint32_t has_weights, has_sprite, has_base, reserved;
-} state_body;
-
-/* Bodies of this many pixels or more are kept once by the world (state_base) and saved by their changed bands: a
- * terrain's untouched pixels are not copied into every state. */
-#define STATE_BASE_PIXELS (1 << 16)
-
-typedef struct state_joint {
-    joint j;                 /* sj zeroed */
-    double feedback[6];
-} state_joint;
-
-static int64_t pad8(int64_t n) { return (n + 7) & ~(int64_t)7; }
 
 static uint32_t layout_code(void)
 {
@@ -70,13 +28,6 @@ static uint32_t layout_code(void)
 static int64_t bits_bytes(const pp_raster *r) { return (int64_t)r->height * r->words_per_row * 8; }
 static int64_t plane_bytes(const pp_raster *r) { return (int64_t)r->width * r->height; }
 static int64_t tile_bytes(const pp_raster *r) { return (int64_t)r->tiles_x * r->tiles_y; }
-/* Rows of band b (the last may be cut by the bitmap). */
-static int32_t band_rows(const pp_raster *r, int32_t b)
-{
-    const int32_t y = b << RASTER_TILE_SHIFT;
-    return r->height - y < RASTER_TILE ? r->height - y : RASTER_TILE;
-}
-
 static const state_base *base_of(const world *wd, uint64_t serial)
 {
     for (int32_t i = 0; wd && i < wd->base_count; i++)
@@ -321,13 +272,6 @@ typedef struct state_view {
     bool same;               /* the live world holds exactly the bodies and joints saved: copied in place */
 } state_view;
 
-/* One body record: its head copied out and its planes found. */
-typedef struct body_view {
-    state_body h;
-    const uint8_t *bits, *weights, *rows, *cols, *tiles, *sprite;
-    const uint8_t *bands, *band_data; /* has_base: the changed-band flags, and the first changed band's planes */
-} body_view;
-
 static bool read_body(reader *s, body_view *v)
 {
     const uint8_t *p = take(s, sizeof v->h);
@@ -385,6 +329,57 @@ static bool joint_same(const world *wd, const state_joint *sj)
     return jt && memcmp(jt, &sj->j, offsetof(joint, sj)) == 0;
 }
 
+/* Every record's values checked (state_check.c), with the world that keeps big bodies' bases; nothing is used
+ * before. */
+static pp_status check_records(const char *fn, const state_view *v, const world *keeper)
+{
+    const state_world *w = &v->w;
+    const char *why = state_world_problem(w);
+    if (why)
+        return pp_fail(PP_ERR_FORMAT, "%s: the state is invalid: %s", fn, why);
+    uint8_t *marks = pp_calloc((size_t)w->body_capacity + (size_t)w->joint_capacity + 1, 1);
+    uint64_t *keys = pp_malloc(((size_t)w->table.count + 1) * sizeof *keys);
+    if (!marks || !keys) {
+        pp_free(marks), pp_free(keys);
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory to check a state of %d bodies", fn, (int)w->body_count);
+    }
+    uint8_t *joint_marks = marks + w->body_capacity;
+    const char *what = "its slots";
+    why = state_pool_problem(v->body_gens, w->body_capacity, v->body_free, w->body_free, marks);
+    if (!why)
+        why = state_pool_problem(v->joint_gens, w->joint_capacity, v->joint_free, w->joint_free, joint_marks);
+    reader s = {v->base, v->bodies_at, v->joints_at};
+    for (int32_t i = 0; !why && i < w->body_count; i++) {
+        body_view b;
+        read_body(&s, &b);
+        const uint32_t slot = handle_slot(b.h.b.handle.id);
+        what = "a body";
+        why = state_body_problem(&b, v->body_gens, w->body_capacity,
+                                 b.h.has_base ? base_of(keeper, b.h.b.serial) : NULL);
+        if (!why && marks[slot])
+            why = "its slot is free or taken twice";
+        if (!why)
+            marks[slot] = SLOT_BODY | (((const uint8_t *)&b.h)[offsetof(state_body, b.forced)] ? SLOT_FORCED : 0);
+    }
+    for (int32_t i = 0; !why && i < w->joint_count; i++) {
+        state_joint sj;
+        memcpy(&sj, v->base + v->joints_at + (int64_t)i * pad8(sizeof sj), sizeof sj);
+        what = "a joint";
+        why = state_joint_problem(&sj, v->joint_gens, w->joint_capacity);
+        if (!why && joint_marks[sj.j.index])
+            why = "its slot is free or taken twice";
+        if (!why)
+            joint_marks[sj.j.index] = SLOT_BODY;
+    }
+    if (!why) {
+        what = "its contacts, events or edits";
+        why = state_arrays_problem(w, marks, v->body_gens, v->contacts, v->records, v->carry, v->events, v->edits,
+                                   v->forced, keys);
+    }
+    pp_free(marks), pp_free(keys);
+    return why ? pp_fail(PP_ERR_FORMAT, "%s: the state is invalid: %s: %s", fn, what, why) : PP_OK;
+}
+
 /* Check the header and find every section; with `live`, also decide whether the bytes copy over it in place. */
 static pp_status read_view(const char *fn, const void *buffer, int64_t size, const world *live, state_view *v)
 {
@@ -423,24 +418,14 @@ static pp_status read_view(const char *fn, const void *buffer, int64_t size, con
     ok = ok && (v->body_gens = take(&s, (int64_t)w->body_capacity * 4)) &&
          (v->body_free = take(&s, (int64_t)w->body_free * 4)) && (v->joint_gens = take(&s, (int64_t)w->joint_capacity * 4)) &&
          (v->joint_free = take(&s, (int64_t)w->joint_free * 4));
-    v->same = ok && live && live->body_ids.live == w->body_count && live->joints.ids.live == w->joint_count &&
-              live->body_ids.capacity >= w->body_capacity && live->joints.ids.capacity >= w->joint_capacity;
     v->bodies_at = s.at;
     for (int32_t i = 0; ok && i < w->body_count; i++) {
         body_view b;
         ok = read_body(&s, &b) && handle_slot(b.h.b.handle.id) < (uint32_t)w->body_capacity;
-        v->same = v->same && ok && body_same(live, &b);
     }
     v->joints_at = s.at;
-    for (int32_t i = 0; ok && i < w->joint_count; i++) {
-        state_joint sj;
-        const uint8_t *jp = take(&s, sizeof sj);
-        ok = jp != NULL;
-        if (ok)
-            memcpy(&sj, jp, sizeof sj);
-        ok = ok && handle_slot(sj.j.handle.id) < (uint32_t)w->joint_capacity;
-        v->same = v->same && ok && joint_same(live, &sj);
-    }
+    for (int32_t i = 0; ok && i < w->joint_count; i++)
+        ok = take(&s, sizeof(state_joint)) != NULL;
     ok = ok && (v->contacts = take(&s, (int64_t)w->contact_count * (int64_t)sizeof(pp_contact))) &&
          (v->records = take(&s, (int64_t)w->table.count * (int64_t)sizeof(contact_record))) &&
          (v->carry = take(&s, (int64_t)w->table.carry_count * 4)) &&
@@ -449,6 +434,27 @@ static pp_status read_view(const char *fn, const void *buffer, int64_t size, con
          (v->forced = take(&s, (int64_t)w->forced_count * 4)) && s.at == size;
     if (!ok)
         return pp_fail(PP_ERR_FORMAT, "%s: the state's sections do not add up", fn);
+    pp_status st = check_records(fn, v, live ? live : world_find(h.world));
+    if (st || !live)
+        return st;
+    /* Checked: whether the records copy over the live ones in place, in a world made with the same settings (but
+     * those set since, which set_arrays sets): else the saved world is made apart, with its own solver. */
+    pp_world_def def = live->def;
+    def.gravity = w->def.gravity, def.contact_events = w->def.contact_events;
+    v->same = memcmp(&def, &w->def, sizeof def) == 0 && live->body_ids.live == w->body_count &&
+              live->joints.ids.live == w->joint_count &&
+              live->body_ids.capacity >= w->body_capacity && live->joints.ids.capacity >= w->joint_capacity;
+    s.at = v->bodies_at;
+    for (int32_t i = 0; v->same && i < w->body_count; i++) {
+        body_view b;
+        read_body(&s, &b);
+        v->same = body_same(live, &b);
+    }
+    for (int32_t i = 0; v->same && i < w->joint_count; i++) {
+        state_joint sj;
+        memcpy(&sj, v->base + v->joints_at + (int64_t)i * pad8(sizeof sj), sizeof sj);
+        v->same = joint_same(live, &sj);
+    }
     return PP_OK;
 }
 
@@ -601,6 +607,11 @@ static void set_body(world *wd, body *bd, const body_view *v, uint32_t tag)
     bd->awake_at = live.awake_at, bd->changed_at = live.changed_at;
     bd->stamp_version = live.stamp_version;
     r->changed_bands = live.raster.changed_bands;
+    bd->joint_count = live.joint_count; /* the joints are the live ones, or counted again as they are made */
+    if (same_pixels) { /* the live pixels stay, and what is counted of them */
+        r->solid_count = live.raster.solid_count;
+        r->x0 = live.raster.x0, r->y0 = live.raster.y0, r->x1 = live.raster.x1, r->y1 = live.raster.y1;
+    }
     if (!same_pixels && v->h.has_base) {
         set_bands(r, base_of(wd, bd->serial), v);
     } else if (!same_pixels) {
@@ -796,6 +807,11 @@ static pp_status build(world *wd, const state_view *v, const world *source, bool
             const uint32_t slot = handle_slot(jt->handle.id);
             if (!id_pool_current(&wd->joints.ids, slot, handle_gen(jt->handle.id)) || wd->joints.items[slot])
                 st = pp_fail(PP_ERR_FORMAT, "%s: joint slot %u is taken twice", fn, (unsigned)slot);
+            else if (joint_check_def(wd, fn, &jt->def)) { /* its def's message, as corrupt bytes */
+                char why[512];
+                snprintf(why, sizeof why, "%s", pp_last_error());
+                st = pp_fail(PP_ERR_FORMAT, "%s (a joint of the state)", why);
+            }
             if (st || (st = joint_restore(wd, jt, sj.feedback, fn)))
                 pp_free(jt);
         }

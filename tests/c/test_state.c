@@ -3,6 +3,10 @@
  * the world unchanged; a loaded world is equal; the hash is the backend's business not, and sees an impulse. */
 #include "helpers.h"
 
+#include "hash.h" /* to make a changed state's checksum right (lib/core) */
+
+#include <stddef.h>
+
 PP_TEST_SUITE(state);
 
 #define DT (1.0f / 60.0f)
@@ -178,12 +182,19 @@ Test(state, a_short_buffer_gives_the_size, .timeout = 30)
     pp_world_destroy(s.w);
 }
 
+/* The busy scene on the CPU after 30 steps, and its state. */
+static uint8_t *busy_saved(busy *s, int64_t *size)
+{
+    *s = busy_scene(PP_BACKEND_CPU);
+    step_n(s->w, DT, 30);
+    return save(s->w, size);
+}
+
 Test(state, changed_or_cut_bytes_are_refused_and_change_nothing, .timeout = 60)
 {
-    busy s = busy_scene(PP_BACKEND_CPU);
-    step_n(s.w, DT, 30);
+    busy s;
     int64_t size = 0;
-    uint8_t *st = save(s.w, &size);
+    uint8_t *st = busy_saved(&s, &size);
     step_n(s.w, DT, 10);
     const uint64_t now = hash_of(s.w);
     const int64_t flips[] = {0, 12, 20, 40, size / 3, size / 2, size - 1};
@@ -201,6 +212,77 @@ Test(state, changed_or_cut_bytes_are_refused_and_change_nothing, .timeout = 60)
     cr_assert_eq(hash_of(s.w), now);
     free(st);
     pp_world_destroy(s.w);
+}
+
+/* The state's world settings as they lie in the bytes (lib/io/state.c: the 40-byte header, then the def). */
+#define STATE_DEF_AT 40
+
+/* Bytes changed by a peer, with their checksum made right again (hash.h's over every byte after the first 16). */
+static void set_field(uint8_t *st, int64_t size, size_t at, const void *value, size_t n)
+{
+    memcpy(st + at, value, n);
+    const uint64_t sum = hash_bytes(HASH_START, st + 16, (size_t)size - 16);
+    memcpy(st + 8, &sum, 8);
+}
+
+Test(state, wrong_values_with_a_right_checksum_are_refused_and_change_nothing, .timeout = 60)
+{
+    busy s;
+    int64_t size = 0;
+    uint8_t *st = busy_saved(&s, &size);
+    step_n(s.w, DT, 10);
+    const uint64_t now = hash_of(s.w);
+    const int32_t zero = 0;
+    const float nan = NAN;
+    const size_t substeps = STATE_DEF_AT + offsetof(pp_world_def, substeps);
+    const size_t ppm = STATE_DEF_AT + offsetof(pp_world_def, pixels_per_meter);
+    int32_t was_substeps;
+    float was_ppm;
+    memcpy(&was_substeps, st + substeps, 4), memcpy(&was_ppm, st + ppm, 4);
+    set_field(st, size, substeps, &zero, 4);
+    EXPECT_ERR(pp_world_restore_state(s.w, st, size), PP_ERR_FORMAT, "pp_world_restore_state");
+    pp_world loaded = {0};
+    EXPECT_ERR(pp_world_load_state(st, size, &loaded), PP_ERR_FORMAT, "pp_world_load_state");
+    set_field(st, size, substeps, &was_substeps, 4);
+    set_field(st, size, ppm, &nan, 4);
+    EXPECT_ERR(pp_world_restore_state(s.w, st, size), PP_ERR_FORMAT, "pp_world_restore_state");
+    cr_assert_eq(hash_of(s.w), now, "a refused restore changed the world");
+    set_field(st, size, ppm, &was_ppm, 4);
+    PP_OK_OR_FAIL(pp_world_restore_state(s.w, st, size)); /* the bytes as saved, checksum and all */
+    free(st);
+    pp_world_destroy(s.w);
+}
+
+Test(state, settings_changed_in_the_bytes_make_the_world_anew, .timeout = 60)
+{
+    busy s;
+    int64_t size = 0;
+    uint8_t *st = busy_saved(&s, &size);
+    const int32_t iterations = 7; /* the solver is made with them: not copied over the live world's */
+    set_field(st, size, STATE_DEF_AT + offsetof(pp_world_def, solver_iterations), &iterations, 4);
+    PP_OK_OR_FAIL(pp_world_restore_state(s.w, st, size));
+    pp_world loaded = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &loaded));
+    step_n(s.w, DT, 10);
+    step_n(loaded, DT, 10);
+    cr_assert_eq(hash_of(s.w), hash_of(loaded), "the restored world goes as a world loaded from the same bytes");
+    free(st);
+    pp_world_destroy(loaded);
+    pp_world_destroy(s.w);
+}
+
+Test(state, a_kinematic_body_of_another_density_restores, .timeout = 30)
+{
+    pp_world_def wd = pp_world_def_default();
+    pp_world w = make_world_def(&wd);
+    const pp_body k = add_rect(w, body_def(PP_BODY_KINEMATIC, 50, 50, 0), 10, 10);
+    PP_OK_OR_FAIL(pp_body_set_density(w, k, 3)); /* its mass waits for a change of type: still a valid state */
+    int64_t size = 0;
+    uint8_t *st = save(w, &size);
+    step_n(w, DT, 3);
+    PP_OK_OR_FAIL(pp_world_restore_state(w, st, size));
+    free(st);
+    pp_world_destroy(w);
 }
 
 Test(state, bytes_of_another_world_are_refused, .timeout = 60)

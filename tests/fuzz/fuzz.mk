@@ -7,18 +7,19 @@ FUZZ_SECONDS      ?= 600
 FUZZ_TEST_SECONDS ?= 15
 FUZZ_SEED         ?= 1
 FUZZ_DIR          := $(BUILD)/fuzz
-FUZZ_TARGETS      := fuzz_png fuzz_scene fuzz_snapshot fuzz_api
+FUZZ_TARGETS      := fuzz_png fuzz_scene fuzz_snapshot fuzz_api fuzz_state
 FUZZ_BINS         := $(FUZZ_TARGETS:%=$(FUZZ_DIR)/%)
 FUZZ_OBJ          := $(LIB_SRC:lib/%.c=$(FUZZ_DIR)/obj/%.o) $(FUZZ_DIR)/obj/glsl_sources.o
 FUZZ_SAN          := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 FUZZ_CFLAGS       := $(PP_CFLAGS) -O1 -g $(FUZZ_SAN) -DPP_CHECKS
-FUZZ_HDR          := tests/fuzz/fuzz_common.h tests/fuzz/fuzz_archive.h include/physpix.h
+FUZZ_HDR          := tests/fuzz/fuzz_common.h tests/fuzz/fuzz_archive.h include/physpix.h lib/core/hash.h
 # Per target: the longest input, and the dictionary of the JSON targets. Every target: 10 s and 256 MB in one
 # malloc at most (no legitimate input of the harnesses comes near either).
 FUZZ_OPTS_fuzz_png      := -max_len=16384
 FUZZ_OPTS_fuzz_scene    := -max_len=4096 -dict=tests/fuzz/json.dict
 FUZZ_OPTS_fuzz_snapshot := -max_len=16384 -dict=tests/fuzz/json.dict
 FUZZ_OPTS_fuzz_api      := -max_len=1024
+FUZZ_OPTS_fuzz_state    := -max_len=1024
 FUZZ_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Any of these in a log fails the run even when the exit status did not.
 FUZZ_BAD := ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|ERROR: libFuzzer|SUMMARY: UndefinedBehaviorSanitizer
