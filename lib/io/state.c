@@ -355,7 +355,7 @@ static pp_status check_records(const char *fn, const state_view *v, const world 
         const uint32_t slot = handle_slot(b.h.b.handle.id);
         what = "a body";
         why = state_body_problem(&b, v->body_gens, w->body_capacity,
-                                 b.h.has_base ? base_of(keeper, b.h.b.serial) : NULL);
+                                 b.h.has_base ? base_of(keeper, b.h.b.serial) : NULL, w->def.pixels_per_meter);
         if (!why && marks[slot])
             why = "its slot is free or taken twice";
         if (!why)

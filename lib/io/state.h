@@ -74,8 +74,10 @@ const char *state_world_problem(const state_world *w);
 const char *state_pool_problem(const uint8_t *gens, int32_t capacity, const uint8_t *free_slots, int32_t free_count,
                                uint8_t *mark);
 /* What is wrong with a body record (gens: the body slots' generations), or NULL; base: a big body's kept planes
- * where known. A sound record's planes and counts agree, so the raster never runs off its arrays. */
-const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t capacity, const state_base *base);
+ * where known; ppm: the state's pixels per metre. A sound record's planes and counts agree, so the raster never
+ * runs off its arrays, and its solver state lies within its bitmap's reach of its pose. */
+const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t capacity, const state_base *base,
+                               double ppm);
 /* What is wrong with a joint record (gens: the joint slots' generations), or NULL. */
 const char *state_joint_problem(const state_joint *sj, const uint8_t *gens, int32_t capacity);
 /* What is wrong with the contacts, touching pairs, carry order, events, edits and forced bodies, or NULL. live: per

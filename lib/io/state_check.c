@@ -151,7 +151,20 @@ static const char *planes_problem(const body_view *v, const state_base *base)
     return NULL;
 }
 
-const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t capacity, const state_base *base)
+/* Whether a moving body's ODE centre of mass lies within its bitmap's reach of where its pose puts it (island.c's
+ * reach): the solver steps only what the library could have made. One far off, with the rest of its ODE state
+ * zeroed, passed every other check and aborted ODE (dNormalize4) at the first step. */
+static bool ode_within_reach(const body *b, const solver_exact_state *ode, double ppm)
+{
+    if (b->type == PP_BODY_STATIC)
+        return true;
+    const dvec2 com = body_com_world(b), off = dv_sub(dv(ode->px * ppm, ode->py * ppm), com);
+    const double reach = 1.0 + (double)b->raster.width + (double)b->raster.height;
+    return dv_dot(off, off) <= reach * reach;
+}
+
+const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t capacity, const state_base *base,
+                               double ppm)
 {
     static const size_t bools[] = {
         offsetof(state_body, b.fixed_rotation), offsetof(state_body, b.detach_islands), offsetof(state_body, b.bullet),
@@ -195,6 +208,8 @@ const char *state_body_problem(const body_view *v, const uint8_t *gens, int32_t 
         return "its mass is not its pixels'";
     if (b->type == PP_BODY_DYNAMIC && (!(b->mass.mass > 0) || !(b->mass.inertia > 0) || b->raster.solid_count == 0))
         return "a dynamic body without mass";
+    if (!ode_within_reach(b, &v->h.ode, ppm))
+        return "its solver state is far from its pose";
     return planes_problem(v, base);
 }
 
