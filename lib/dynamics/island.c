@@ -22,7 +22,9 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * prescribed motion: a frame turning at 25°/s round 50 tumbling boxes strayed 0.53 rad in 10 s), all solved
  * every substep; an awake body that sat the last substep out, and one that did not; a body a collided pair
  * touched this step (carry_struck: the island is not at rest); a contact; a pair the narrowphase found
- * touching this step (carry_was_collided: a lone body with contacts and none collided is at rest). */
+ * touching this step (carry_was_collided: a lone body with contacts and none collided is at rest); past the
+ * step's first substep, carry_struck whatever the substep knows (ROOT_HIT: a resting lone body keeps sitting
+ * out); an awake body that sat out fewer than the three substeps before (ROOT_SHORT: no span of four). */
 enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8, ROOT_TOUCHING = 16,
        ROOT_COLLIDED = 32, ROOT_HIT = 64, ROOT_SHORT = 128 };
 /* The span ROOT_* flags decide; ROOT_STRUCK only chooses the iterations. */
@@ -222,8 +224,8 @@ static void set_spans(world *wd, substep_pairing pairing)
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
             else if (second && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND) {
-                /* A stack no collided pair touched this step sits the first pair of four out too and solves the
-                 * four at once: list_of reads ROOT_STRUCK and ROOT_HIT from the flags left behind. */
+                /* A lone exact body at rest, struck by no collided pair this step, sits the first pair of four
+                 * out too and solves the four at once; list_of reads ROOT_STRUCK from the flags left behind. */
                 if (pairing == PAIR_MID && kind == ISLAND_EXACT_ALONE && at_rest && !(f & ROOT_HIT))
                     span = SPAN_SKIP;
                 else
