@@ -745,7 +745,9 @@ typedef struct pp_character_move {
 PP_API pp_character_def pp_character_def_default(void);
 /// Move a character's capsule from position (px) along velocity (px/s) × dt (s, ≥ 0) against the solid pixels of
 /// the bodies def->mask_bits meets, sliding along them, climbing steps, keeping to the ground; "up" is against the
-/// world's gravity ((0, -1) without one). out receives where it ends. Nothing in the world changes.
+/// world's gravity ((0, -1) without one). The capsule's round bottom also climbs, as a slope, a ledge whose corner is
+/// no steeper than max_slope (up to radius·(1 − cos max_slope) high). out receives where it ends. Nothing in the
+/// world changes.
 PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def, pp_vec2 position, pp_vec2 velocity,
                                          float dt, pp_character_move *out);
 

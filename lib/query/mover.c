@@ -392,7 +392,9 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
         dvec2 down = t.p;
         advance(&mv, &down, dv_scale(mv.up, -(rose + MOVER_PROBE)), &hit);
         const dvec2 lu = dv_scale(level, 1 / dv_norm(level));
-        if (hit.b && find_ground(&mv, cos_slope, down, MOVER_PROBE).b &&
+        /* Climbing the rest of a taller ledge by its rounded corner is no step. */
+        if (hit.b && dv_dot(dv_sub(down, p0), mv.up) <= def->step_height + 0.05 &&
+            find_ground(&mv, cos_slope, down, MOVER_PROBE).b &&
             dv_dot(dv_sub(down, p0), lu) > dv_dot(dv_sub(s.p, p0), lu) + 1e-3) {
             t.p = down, t.surfaces += s.surfaces;
             s = t;

@@ -190,6 +190,41 @@ Test(mover, it_climbs_stairs_of_2_px_steps)
     terrain_free(&t);
 }
 
+static double tall_stairs_top(double x, const void *arg)
+{
+    (void)arg;
+    /* From x = 200, a 4 px step up every 24 px, 6 steps; then level. */
+    const int k = x < 200 ? 0 : (int)fmin((x - 200) / 24 + 1, 6);
+    return 300 - 4.0 * k;
+}
+
+Test(mover, it_steps_up_4_px_ledges_with_step_height_4_and_not_without_steps)
+{
+    terrain t;
+    terrain_make(&t, G, 600, 400);
+    terrain_ground(&t, tall_stairs_top, NULL);
+    terrain_build(&t);
+    t.def.step_height = 4;
+    pp_vec2 p = v2(100, (float)(300 - foot(&t) - 0.01));
+    pp_character_move m = {.grounded = 1};
+    for (int i = 0; i < 300; i++)
+        m = frame(&t, &p, walk(100, &m));
+    cr_expect(p.x > 400 && fabs(p.y - (276 - foot(&t))) <= 0.5 && m.grounded, "at (%g, %g) grounded %u, the top is y 276",
+              p.x, p.y, m.grounded);
+    /* Without steps a 4 px ledge is a wall: the capsule's round bottom climbs by itself only ledges up to
+     * r(1 − cos max_slope) = 2.4 px, whose corner is no steeper than max_slope. */
+    t.def.step_height = 0;
+    p = v2(100, (float)(300 - foot(&t) - 0.01));
+    m = (pp_character_move){.grounded = 1};
+    for (int i = 0; i < 300; i++)
+        m = frame(&t, &p, walk(100, &m));
+    /* Stopped with its lower disc on the ledge's corner (200, 296). */
+    const double touch = 200 - sqrt(t.def.radius * t.def.radius - (t.def.radius - 4) * (t.def.radius - 4));
+    cr_expect(fabs(p.x - touch) <= 0.5 && m.grounded, "at (%g, %g): not stopped at x %g by the first 4 px ledge", p.x,
+              p.y, touch);
+    terrain_free(&t);
+}
+
 Test(mover, a_12_px_wall_stops_it_touching)
 {
     terrain t;
