@@ -165,64 +165,59 @@ Test(mover, on_random_bumps_it_stays_grounded_without_jitter_or_stalls)
     terrain_free(&t);
 }
 
+/* Stairs from x = 200: `count` steps, each `rise` px up and `run` px long; then level. */
+typedef struct stairs {
+    double rise, run;
+    int count;
+} stairs;
+
 static double stairs_top(double x, const void *arg)
 {
-    (void)arg;
-    /* From x = 200, a 2 px step up every 12 px, 15 steps; then level. */
-    const int k = x < 200 ? 0 : (int)fmin((x - 200) / 12 + 1, 15);
-    return 300 - 2.0 * k;
+    const stairs *s = arg;
+    const int k = x < 200 ? 0 : (int)fmin((x - 200) / s->run + 1, s->count);
+    return 300 - s->rise * k;
+}
+
+/* A walk at 100 px/s from x 100 for `frames` frames up the stairs, with this step_height; where it ends. */
+static pp_character_move walk_stairs(const stairs *s, float step_height, int frames, pp_vec2 *p)
+{
+    terrain t;
+    terrain_make(&t, G, 600, 400);
+    terrain_ground(&t, stairs_top, s);
+    terrain_build(&t);
+    t.def.step_height = step_height;
+    *p = v2(100, (float)(300 - foot(&t) - 0.01));
+    pp_character_move m = {.grounded = 1};
+    for (int i = 0; i < frames; i++)
+        m = frame(&t, p, walk(100, &m));
+    terrain_free(&t);
+    return m;
 }
 
 Test(mover, it_climbs_stairs_of_2_px_steps)
 {
-    terrain t;
-    terrain_make(&t, G, 600, 400);
-    terrain_ground(&t, stairs_top, NULL);
-    terrain_build(&t);
-    t.def.step_height = 4;
-    pp_vec2 p = v2(100, (float)(300 - foot(&t) - 0.01));
-    pp_character_move m = {.grounded = 1};
-    for (int i = 0; i < 240; i++)
-        m = frame(&t, &p, walk(100, &m));
-    cr_expect(p.x > 420, "stopped at x %g", p.x);
-    cr_expect(fabs(p.y - (270 - foot(&t))) <= 0.5 && m.grounded, "at (%g, %g) grounded %u, the top is y 270", p.x,
+    const stairs s = {2, 12, 15};
+    pp_vec2 p;
+    const pp_character_move m = walk_stairs(&s, 4, 240, &p);
+    const float top = 270 - 16; /* the top, less the default capsule's foot */
+    cr_expect(p.x > 420 && fabs(p.y - top) <= 0.5 && m.grounded, "at (%g, %g) grounded %u, the top is y 270", p.x,
               p.y, m.grounded);
-    terrain_free(&t);
-}
-
-static double tall_stairs_top(double x, const void *arg)
-{
-    (void)arg;
-    /* From x = 200, a 4 px step up every 24 px, 6 steps; then level. */
-    const int k = x < 200 ? 0 : (int)fmin((x - 200) / 24 + 1, 6);
-    return 300 - 4.0 * k;
 }
 
 Test(mover, it_steps_up_4_px_ledges_with_step_height_4_and_not_without_steps)
 {
-    terrain t;
-    terrain_make(&t, G, 600, 400);
-    terrain_ground(&t, tall_stairs_top, NULL);
-    terrain_build(&t);
-    t.def.step_height = 4;
-    pp_vec2 p = v2(100, (float)(300 - foot(&t) - 0.01));
-    pp_character_move m = {.grounded = 1};
-    for (int i = 0; i < 300; i++)
-        m = frame(&t, &p, walk(100, &m));
-    cr_expect(p.x > 400 && fabs(p.y - (276 - foot(&t))) <= 0.5 && m.grounded, "at (%g, %g) grounded %u, the top is y 276",
+    const stairs s = {4, 24, 6};
+    pp_vec2 p;
+    pp_character_move m = walk_stairs(&s, 4, 300, &p);
+    cr_expect(p.x > 400 && fabs(p.y - (276 - 16)) <= 0.5 && m.grounded, "at (%g, %g) grounded %u, the top is y 276",
               p.x, p.y, m.grounded);
     /* Without steps a 4 px ledge is a wall: the capsule's round bottom climbs by itself only ledges up to
-     * r(1 − cos max_slope) = 2.4 px, whose corner is no steeper than max_slope. */
-    t.def.step_height = 0;
-    p = v2(100, (float)(300 - foot(&t) - 0.01));
-    m = (pp_character_move){.grounded = 1};
-    for (int i = 0; i < 300; i++)
-        m = frame(&t, &p, walk(100, &m));
-    /* Stopped with its lower disc on the ledge's corner (200, 296). */
-    const double touch = 200 - sqrt(t.def.radius * t.def.radius - (t.def.radius - 4) * (t.def.radius - 4));
+     * r(1 − cos max_slope) = 2.4 px, whose corner is no steeper than max_slope. Stopped with its lower disc (radius
+     * 8) on the first ledge's corner (200, 296). */
+    m = walk_stairs(&s, 0, 300, &p);
+    const double touch = 200 - sqrt(8 * 8 - 4 * 4);
     cr_expect(fabs(p.x - touch) <= 0.5 && m.grounded, "at (%g, %g): not stopped at x %g by the first 4 px ledge", p.x,
               p.y, touch);
-    terrain_free(&t);
 }
 
 Test(mover, a_12_px_wall_stops_it_touching)
