@@ -144,17 +144,6 @@ outside:
     }
 }
 
-/* Has this pixel an empty neighbour (corners count)? Only such a pixel's square can be touched first, and the
- * capsule overlapping a pixel with none overlaps one of its neighbours too. */
-static bool open_pixel(const pp_raster *r, int32_t x, int32_t y)
-{
-    for (int32_t dy = -1; dy <= 1; dy++)
-        for (int32_t dx = -1; dx <= 1; dx++)
-            if (!raster_solid_clamped(r, x + dx, y + dy))
-                return true;
-    return false;
-}
-
 /* The first touch of the capsule moved from p by d, or hit->b NULL. */
 static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
 {
@@ -185,7 +174,7 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
             if (r->row_count[y] == 0)
                 continue;
             for (int32_t x = raster_row_next(r, y, (int32_t)ax); x <= (int32_t)bx; x = raster_row_next(r, y, x + 1)) {
-                if (!open_pixel(r, x, y))
+                if (!raster_edge_pixel(r, x, y)) /* one with none: its neighbours are met first */
                     continue;
                 const double before = t;
                 ray_grown(mb, mv->r, q, D, dv(x + 0.5, y + 0.5), &t, &n);
