@@ -718,6 +718,39 @@ PP_API pp_status pp_world_cast_body(pp_world w, pp_body b, pp_vec2 translation, 
 PP_API pp_status pp_world_raycast_all(pp_world w, pp_vec2 from, pp_vec2 to, uint32_t mask_bits, pp_raycast_hit *out,
                                       int32_t capacity, int32_t *count);
 
+/// A character for pp_world_move_character: a capsule the host owns, not a body.
+typedef struct pp_character_def {
+    uint32_t struct_size;   ///< set by pp_character_def_default
+    float radius;           ///< px, > 0: a capsule of two discs of this radius
+    float half_height;      ///< px, ≥ 0: the discs' centres at position ± (0, half_height); 0: one disc
+    float step_height;      ///< px, ≥ 0: a ledge up to this high is climbed while moving along the ground (default 4)
+    float snap_distance;    ///< px, ≥ 0: a grounded character moving on keeps to ground within this below it (default 4)
+    float max_slope;        ///< rad, 0..π/2: ground steeper than this is a wall to slide down (default 0.8)
+    uint32_t mask_bits;     ///< solid pixels of bodies whose category_bits meet it block (default all; sensors never)
+} pp_character_def;
+
+/// Where a move took a character (pp_world_move_character).
+typedef struct pp_character_move {
+    pp_vec2 position;        ///< where the character ends, px
+    pp_vec2 velocity;        ///< the velocity asked for, less the parts the surfaces met took away, px/s
+    uint32_t grounded;       ///< nonzero: standing on ground no steeper than max_slope
+    pp_vec2 ground_normal;   ///< unit, out of the ground; (0, 0) when not grounded
+    pp_body ground_body;     ///< the body stood on; zero when not grounded
+    pp_vec2 ground_velocity; ///< that body's velocity under the character, px/s (moving platforms)
+    int32_t surfaces;        ///< surfaces met during the move
+} pp_character_move;
+
+/// A character def with the defaults: radius 8 px, half_height 8 px, step_height 4 px, snap_distance 4 px,
+/// max_slope 0.8 rad, every mask bit.
+PP_API pp_character_def pp_character_def_default(void);
+/// Move a character's capsule from position (px) along velocity (px/s) × dt (s, ≥ 0) against the solid pixels of
+/// the bodies def->mask_bits meets, sliding along them, climbing steps, keeping to the ground; "up" is against the
+/// world's gravity ((0, -1) without one). The capsule's round bottom also climbs, as a slope, a ledge whose corner is
+/// no steeper than max_slope (up to radius·(1 − cos max_slope) high). out receives where it ends. Nothing in the
+/// world changes.
+PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def, pp_vec2 position, pp_vec2 velocity,
+                                         float dt, pp_character_move *out);
+
 /// Cell flags written by pp_world_debug_collision.
 #define PP_CELL_A 1u        ///< the first body is solid in this cell
 #define PP_CELL_B 2u        ///< the second body is solid in this cell

@@ -79,6 +79,17 @@ static inline bool raster_solid_clamped(const pp_raster *r, int32_t x, int32_t y
     return (uint32_t)x < (uint32_t)r->width && (uint32_t)y < (uint32_t)r->height && raster_solid(r, x, y);
 }
 
+/* Has pixel (x, y) an empty neighbour (corners count, outside the bitmap is empty)? Only such a pixel's square can
+ * be touched first by a shape moving in from outside (the casts). */
+static inline bool raster_edge_pixel(const pp_raster *r, int32_t x, int32_t y)
+{
+    for (int32_t dy = -1; dy <= 1; dy++)
+        for (int32_t dx = -1; dx <= 1; dx++)
+            if (!raster_solid_clamped(r, x + dx, y + dy))
+                return true;
+    return false;
+}
+
 /* The state of tile (tx, ty) from its count (an edge tile holds fewer pixels). */
 static inline raster_state raster_tile_state(const pp_raster *r, int32_t tx, int32_t ty)
 {

@@ -120,16 +120,6 @@ static void cast_pair(cast_state *cs, dvec2 ca, dvec2 cb)
     }
 }
 
-/* Can this pixel touch first: has it an empty neighbour (corners count)? */
-static bool edge_pixel(const pp_raster *r, int32_t x, int32_t y)
-{
-    for (int32_t dy = -1; dy <= 1; dy++)
-        for (int32_t dx = -1; dx <= 1; dx++)
-            if (!raster_solid_clamped(r, x + dx, y + dy))
-                return true;
-    return false;
-}
-
 /* The columns and rows of r's solid bounds that the world box [lo, hi], grown by `grow` px, reaches in bd's
  * bitmap frame; false when none. */
 static bool local_rect(const body *bd, dvec2 lo, dvec2 hi, double grow, int32_t *x0, int32_t *y0, int32_t *x1,
@@ -175,7 +165,7 @@ static void sweep(cast_state *cs, const body *mover, const body *still, dvec2 re
         if (rm->row_count[y] == 0)
             continue;
         for (int32_t x = raster_row_next(rm, y, mx0); x <= mx1 && cs->t > 0; x = raster_row_next(rm, y, x + 1)) {
-            if (!edge_pixel(rm, x, y))
+            if (!raster_edge_pixel(rm, x, y))
                 continue;
             /* The still pixels the square's path meets, from the travel left. */
             const dvec2 cw = pixel_centre(fm, x, y), p0 = body_world_to_local(still, cw);

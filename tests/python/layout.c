@@ -90,6 +90,18 @@ int main(void)
     F(pp_explosion_def, mask_bits); F(pp_explosion_def, erase_mask_bits);
     end();
 
+    S(pp_character_def);
+    F(pp_character_def, struct_size); F(pp_character_def, radius); F(pp_character_def, half_height);
+    F(pp_character_def, step_height); F(pp_character_def, snap_distance); F(pp_character_def, max_slope);
+    F(pp_character_def, mask_bits);
+    end();
+
+    S(pp_character_move);
+    F(pp_character_move, position); F(pp_character_move, velocity); F(pp_character_move, grounded);
+    F(pp_character_move, ground_normal); F(pp_character_move, ground_body); F(pp_character_move, ground_velocity);
+    F(pp_character_move, surfaces);
+    end();
+
     S(pp_body_state);
     F(pp_body_state, body); F(pp_body_state, position); F(pp_body_state, angle); F(pp_body_state, linear_velocity);
     F(pp_body_state, angular_velocity); F(pp_body_state, awake); F(pp_body_state, user_data);

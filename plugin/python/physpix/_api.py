@@ -150,6 +150,30 @@ class pp_explosion_def(ctypes.Structure):
     ]
 
 
+class pp_character_def(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", c_uint32),
+        ("radius", c_float),
+        ("half_height", c_float),
+        ("step_height", c_float),
+        ("snap_distance", c_float),
+        ("max_slope", c_float),
+        ("mask_bits", c_uint32),
+    ]
+
+
+class pp_character_move(ctypes.Structure):
+    _fields_ = [
+        ("position", pp_vec2),
+        ("velocity", pp_vec2),
+        ("grounded", c_uint32),
+        ("ground_normal", pp_vec2),
+        ("ground_body", pp_body),
+        ("ground_velocity", pp_vec2),
+        ("surfaces", c_int32),
+    ]
+
+
 class pp_step_stats(ctypes.Structure):
     _fields_ = [
         ("broadphase_ms", c_float),
@@ -280,6 +304,8 @@ STRUCTS = {
     "pp_event": pp_event,
     "pp_raycast_hit": pp_raycast_hit,
     "pp_explosion_def": pp_explosion_def,
+    "pp_character_def": pp_character_def,
+    "pp_character_move": pp_character_move,
     "pp_step_stats": pp_step_stats,
     "pp_allocator": pp_allocator,
     "pp_camera": pp_camera,
@@ -313,6 +339,8 @@ SIGNATURES = {
     "pp_world_explode": (STATUS, [pp_world, P(pp_explosion_def), P(c_int32)]),
     "pp_world_raycast": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_raycast_hit), P(c_int32)]),
     "pp_world_raycast_all": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_raycast_hit), c_int32, P(c_int32)]),
+    "pp_character_def_default": (pp_character_def, []),
+    "pp_world_move_character": (STATUS, [pp_world, P(pp_character_def), pp_vec2, pp_vec2, c_float, P(pp_character_move)]),
     "pp_world_cast_body": (STATUS, [pp_world, pp_body, pp_vec2, c_uint32, P(pp_raycast_hit), P(c_int32)]),
     "pp_world_query_point": (STATUS, [pp_world, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
     "pp_world_query_aabb": (STATUS, [pp_world, pp_vec2, pp_vec2, c_uint32, P(pp_body), c_int32, P(c_int32)]),
@@ -393,4 +421,4 @@ SIGNATURES = {
     "pp_world_load_snapshot": (STATUS, [c_char_p, P(pp_world)]),
 }
 
-__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_explosion_def", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_debug_segment", "pp_body_state", "pp_joint_def"]
+__all__ = ["c_enum", "P", "u8p", "STATUS", "STRUCTS", "SIGNATURES", "pp_log_fn", "pp_alloc_fn", "pp_realloc_fn", "pp_free_fn", "pp_vec2", "pp_world", "pp_body", "pp_joint", "pp_world_def", "pp_body_def", "pp_contact", "pp_event", "pp_raycast_hit", "pp_explosion_def", "pp_character_def", "pp_character_move", "pp_step_stats", "pp_allocator", "pp_camera", "pp_timed_edit", "pp_collision_view", "pp_debug_segment", "pp_body_state", "pp_joint_def"]

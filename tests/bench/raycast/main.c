@@ -1,7 +1,8 @@
 /* Raycasts and queries per second: a 4096×2048 hilly terrain with caves (a static body, about half
  * solid) under 1,000 crates of 16–32 px. Short 64 px rays (bullets), rays across the whole map, rays
- * straight down onto the terrain, and circle (r 32) and box (64×64) queries at random points; the
- * best of three runs of each, printed as a table and written as CSV.
+ * straight down onto the terrain, circle (r 32) and box (64×64) queries at random points, and a character's move
+ * (pp_world_move_character, a frame at 150 px/s on the surface; "hits": grounded after it); the best of three runs
+ * of each, printed as a table and written as CSV.
  *
  *   bench_raycast [--csv PATH] [--scale F]   (F multiplies the counts; 1 by default)
  */
@@ -62,9 +63,9 @@ static uint8_t *terrain_mask(void)
     return m;
 }
 
-enum { SHORT, LONG, DOWN, CIRCLE, BOX, KINDS };
+enum { SHORT, LONG, DOWN, CIRCLE, BOX, MOVE, KINDS };
 static const char *kind_name[KINDS] = {"short 64 px", "across the map", "straight down", "query_circle r32",
-                                       "query_aabb 64x64"};
+                                       "query_aabb 64x64", "move_character"};
 
 /* Run n casts or queries of one kind from a fixed seed; returns the hits. */
 static int64_t run(pp_world w, int kind, int n)
@@ -89,6 +90,13 @@ static int64_t run(pp_world w, int kind, int n)
                   "raycast");
         } else if (kind == CIRCLE) {
             check(pp_world_query_circle(w, (pp_vec2){x, y}, 32, 0xffffffffu, found, 64, &hit), "query_circle");
+        } else if (kind == MOVE) { /* a frame of a default character walking at 150 px/s just over the ground */
+            const pp_character_def c = pp_character_def_default();
+            const int cx = 20 + (int)((TW - 40) * rnd());
+            const pp_vec2 at = {(float)cx, (float)(TOP + surface(cx) - 16.5)}, v = {rnd() < 0.5 ? -150.0f : 150.0f, 16};
+            pp_character_move m;
+            check(pp_world_move_character(w, &c, at, v, 1.0f / 60, &m), "move_character");
+            hit = (int32_t)m.grounded;
         } else {
             check(pp_world_query_aabb(w, (pp_vec2){x - 32, y - 32}, (pp_vec2){x + 32, y + 32}, 0xffffffffu, found, 64,
                                       &hit),
@@ -139,7 +147,7 @@ int main(int argc, char **argv)
         pp_body b;
         check(pp_body_create(w, &bd, &b), "crate");
     }
-    const int counts[KINDS] = {200000, 20000, 100000, 100000, 100000};
+    const int counts[KINDS] = {200000, 20000, 100000, 100000, 100000, 50000};
     char cpu[256];
     bench_cpu_model(cpu, sizeof cpu);
     printf("raycasts and queries: a %d x %d terrain (%.0f%% solid, caves), %d crates of 16-32 px; best of 3 runs\n",
