@@ -23,7 +23,7 @@ VERSION := $(SOMAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 # clang and its runtime (libFuzzer, TSan) build the fuzz targets; valgrind checks the demo for leaks;
 # git clones the repository for the fresh-clone test; python3-venv gives Debian's python3 its venv module.
 DEPS := gcc g++ make pkg-config binutils git libode-dev libcriterion-dev libegl-dev libgles-dev libegl-mesa0 \
-        libgl1-mesa-dri libpng-dev libcjson-dev godot3-server python3 python3-venv clang libclang-rt-14-dev valgrind
+        libgl1-mesa-dri libpng-dev libcjson-dev libxxhash-dev godot3-server python3 python3-venv clang libclang-rt-14-dev valgrind
 # godot3 (Godot 3.2's X11 build), xvfb and xauth render the Godot example's pictures (make godot-pictures) through
 # Mesa; no test needs them.
 DEPS += godot3 xvfb xauth

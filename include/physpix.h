@@ -1058,7 +1058,9 @@ PP_API pp_status pp_world_load_snapshot(const char *folder, pp_world *out);
  * by this build of the library. The bytes carry a format version, the saving world's id and a checksum: bytes
  * that were changed, cut short or come from another build are PP_ERR_FORMAT, and so are bytes with a right
  * checksum whose values no world holds (a peer's bug); bytes of another world are PP_ERR_INVALID_ARGUMENT, settings
- * asking for a GPU where there is none PP_ERR_UNSUPPORTED, and in every case the world is unchanged. A restore
+ * asking for a GPU where there is none PP_ERR_UNSUPPORTED, and in every case the world is unchanged. Bytes a world
+ * saved itself carry its seal (a keyed hash of their checksum, keyed by a value of the world's that no bytes hold):
+ * restored into it unchanged, they skip those value checks, so rollback pays a copy and a checksum. A restore
  * copies the saved records back over the live ones (a body's pixels only when they changed since), and builds the
  * saved world apart and swaps it in only when bodies or joints were made, destroyed or retyped since the save, or
  * the bytes hold other world settings than those it was made with. A body of 65536 pixels or more (a terrain) is

@@ -200,6 +200,7 @@ typedef struct world {
     joint_table joints;
     uint64_t pixel_clock;    /* the last pixel stamp handed out (state.c); never goes back, not even by a restore */
     state_base *bases;       /* big bodies' planes kept for saved states (state.c) */
+    uint64_t state_key;      /* the seal's key of the states it saves (state.c): never in the bytes, 0 until a save */
     int32_t base_count, base_capacity;
 } world;
 

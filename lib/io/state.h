@@ -6,11 +6,13 @@
 #include "world.h"
 
 #define STATE_MAGIC "PPSTATE"
-#define STATE_VERSION 1u
+#define STATE_VERSION 2u
+#define STATE_SUMMED 24 /* the bytes after the magic, the checksum and the seal */
 
 typedef struct state_header {
     char magic[8];
-    uint64_t checksum;       /* hash.h's over every byte after it */
+    uint64_t checksum;       /* hash.h's over every byte from STATE_SUMMED on */
+    uint64_t seal;           /* the checksum keyed by the saving world's state_key: bytes it wrote, unchanged */
     uint32_t version;
     uint32_t layout;         /* the sizes of the records copied whole: another build's bytes are another format */
     uint64_t size;           /* the whole state, bytes */

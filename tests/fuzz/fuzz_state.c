@@ -6,11 +6,13 @@
 
 #include "hash.h" /* the checksum the header carries (lib/core) */
 
-/* The header's fields as lib/io/state.c lays them out: the checksum covers every byte after the first 16. */
+/* The header's fields as lib/io/state.c lays them out: the checksum covers every byte after the first 24 (the
+ * magic, itself and the seal, which the edited bytes keep: a seal for other bytes, so they are checked in full). */
 #define STATE_CHECKSUM_AT 8
-#define STATE_SIZE_AT 24
-#define STATE_WORLD_AT 32
-#define STATE_HEADER 40
+#define STATE_SUMMED 24
+#define STATE_SIZE_AT 32
+#define STATE_WORLD_AT 40
+#define STATE_HEADER 48
 
 /* Harness caps, not library limits: edited bytes past this size, and steps per accepted state. */
 #define FUZZ_STATE_MAX_BYTES (4 << 20)
@@ -253,7 +255,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint64_t total = (uint64_t)n;
         if (!(flags & 4))
             memcpy(buf + STATE_SIZE_AT, &total, 8);
-        const uint64_t sum = hash_bytes(HASH_START, buf + 16, (size_t)n - 16);
+        const uint64_t sum = hash_bytes(HASH_START, buf + STATE_SUMMED, (size_t)n - STATE_SUMMED);
         memcpy(buf + STATE_CHECKSUM_AT, &sum, 8);
     }
 
