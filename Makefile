@@ -278,6 +278,11 @@ $(BUILD)/bench/bench_raycast: tests/bench/raycast/main.c tests/bench/machine.h $
 	$(Q)mkdir -p $(BUILD)/bench
 	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
 
+# Whole scenes (a 4096×2048 terrain, falling crates, blasts) on the CPU backend, the GPU backend and AUTO.
+$(BUILD)/bench/bench_backends: tests/bench/backends/main.c tests/bench/machine.h $(STATIC)
+	$(Q)mkdir -p $(BUILD)/bench
+	$(call quiet,LD,$@)$(CC) $(PP_CFLAGS) -O2 -g $(USER_CFLAGS) -o $@ $< $(STATIC) $(LDFLAGS) $(LIBS)
+
 # What pp_world_debug_draw costs beside a step: a cratered 2048×1024 terrain with 300 crates.
 $(BUILD)/bench/bench_debug_draw: tests/bench/debug_draw/main.c tests/bench/machine.h $(STATIC)
 	$(Q)mkdir -p $(BUILD)/bench
@@ -364,7 +369,7 @@ bench: deps
 	  $(BUILD)/bench/bench_accuracy $(BUILD)/bench/bench_features $(BUILD)/bench/bench_core $(BUILD)/bench/bench_scale \
 	  $(BUILD)/bench/bench_raycast $(BUILD)/bench/bench_load $(BUILD)/bench/bench_spawn $(BUILD)/bench/bench_stability \
 	  $(BUILD)/bench/bench_sleep $(BUILD)/bench/bench_cost $(BUILD)/bench/bench_instr $(BUILD)/bench/bench_debug_draw \
-	  $(BUILD)/bench/bench_state
+	  $(BUILD)/bench/bench_state $(BUILD)/bench/bench_backends
 	$(BUILD)/bench/bench_edit --csv $(BUILD)/bench/edit.csv
 	$(BUILD)/bench/bench_raycast --csv $(BUILD)/bench/raycast.csv
 	$(BUILD)/bench/bench_debug_draw --csv $(BUILD)/bench/debug_draw.csv
@@ -373,6 +378,7 @@ bench: deps
 	$(BUILD)/bench/bench --csv $(BUILD)/bench/bench.csv
 	$(BUILD)/bench/bench_core
 	$(BUILD)/bench/bench_narrow --csv $(BUILD)/bench/narrowphase.csv
+	$(BUILD)/bench/bench_backends --csv $(BUILD)/bench/backends.csv
 	$(BUILD)/bench/bench_tunnel --csv $(BUILD)/bench/tunnel.csv --detail $(BUILD)/bench/tunnel_speeds.csv
 	$(BUILD)/bench/bench_accuracy --csv $(BUILD)/bench/accuracy.csv
 	$(BUILD)/bench/bench_scale --csv $(BUILD)/bench/scale.csv

@@ -44,17 +44,14 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
     return PP_OK;
 }
 
-/* AUTO sends a batch to a hardware GPU from this many sampled cells on. Not yet a measured
- * hardware crossover: the smallest GPU batch (one 16² pair) takes 0.43 ms on llvmpipe in make bench,
- * the CPU's time for about 20,000 cells at its measured ~22 ns a cell. A software rasteriser
- * (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
-#define GPU_AUTO_MIN_CELLS 20000
-
-static pp_backend choose_backend(world *wd, int64_t cells)
+/* AUTO's backend for a batch: the CPU but where a hardware GPU is up and backend_auto.h's models of the batches
+ * run so far find it cheaper. A software rasteriser (llvmpipe) never gets AUTO's work: make bench finds it 3–6×
+ * slower than the CPU. */
+static pp_backend choose_backend(world *wd, int32_t pairs, int64_t cells)
 {
     if (wd->def.backend != PP_BACKEND_AUTO)
         return wd->def.backend;
-    if (cells < GPU_AUTO_MIN_CELLS)
+    if (cells < AUTO_MIN_CELLS)
         return PP_BACKEND_CPU;
     if (!wd->gpu_tried) {
         wd->gpu_tried = true;
@@ -63,15 +60,21 @@ static pp_backend choose_backend(world *wd, int64_t cells)
         else if (!wd->gpu)
             pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: %s", pp_last_error());
     }
-    return wd->gpu && !gpu_narrow_is_software(wd->gpu) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+    if (!wd->gpu || gpu_narrow_is_software(wd->gpu))
+        return PP_BACKEND_CPU;
+    return backend_auto_wants_gpu(&wd->auto_costs, pairs, cells) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
 }
 
 pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
                           int32_t *threads)
 {
     const np_settings set = world_np_settings(wd);
-    *ran = choose_backend(wd, cells);
+    *ran = choose_backend(wd, n, cells);
     *threads = 0;
+    /* AUTO times the batches it could send either way, to learn what each backend costs. */
+    const bool timed = wd->def.backend == PP_BACKEND_AUTO && cells >= AUTO_MIN_CELLS && wd->gpu &&
+                       !gpu_narrow_is_software(wd->gpu);
+    const double t0 = timed ? now_ms() : 0;
     /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
     np_pair *pairs = first ? wd->batch.pairs + first : wd->batch.pairs;
     np_core *cores = first ? wd->batch.cores + first : wd->batch.cores;
@@ -82,6 +85,8 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
         const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
         st = workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
     }
+    if (timed && !st)
+        backend_auto_learn(&wd->auto_costs, *ran == PP_BACKEND_GPU, n, cells, now_ms() - t0);
     return st ? pp_fail_in(fn, st) : PP_OK;
 }
 
@@ -345,7 +350,7 @@ static pp_status quiet_substeps(world *wd, float dt)
         if (k == 0) { /* the first substep looks for pairs; the others are still */
             contact_table_begin_substep(wd);
             wd->broad.pair_count = 0;
-            wd->stats.backend = choose_backend(wd, 0);
+            wd->stats.backend = choose_backend(wd, 0, 0);
         }
         solver_islands islands;
         if ((st = island_plan(wd, PAIR_NONE, false, &islands)) || !solver_step(wd->solver, 0, &islands))

@@ -2,6 +2,7 @@
 #ifndef PP_WORLD_H
 #define PP_WORLD_H
 
+#include "backend_auto.h"
 #include "broadphase.h"
 #include "carry.h"
 #include "check.h"
@@ -185,6 +186,7 @@ typedef struct world {
     np_workers *workers;     /* NULL until a batch needs more than one thread */
     gpu_narrow *gpu;         /* NULL until the GPU is used (at creation for PP_BACKEND_GPU) */
     bool gpu_tried;          /* AUTO tried to bring the GPU up */
+    backend_auto auto_costs; /* AUTO's models of what a batch costs on each backend (backend_auto.h) */
     event_queue events;      /* since the host last read them (events.c) */
     pp_step_stats stats;
     double time;             /* simulated s, the sum of every step's dt */
