@@ -1451,13 +1451,20 @@ Test(methods, explode_pushes_a_box_away_and_casts_find_the_ground_and_every_body
     plugin.api.object_destroy(world, &ret);
 }
 
+/* set_character_options: a capsule of this radius (px) with half_height 4 px, step_height and snap_distance 4 px,
+ * max_slope 0.8 rad. */
+static pp_variant character_options(uint64_t world, double radius, int64_t mask)
+{
+    return call(world, "set_character_options",
+                (pp_variant[]){V_FLOAT(radius), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(mask)}, 6);
+}
+
 Test(methods, a_character_walks_grounded_on_flat_ground_and_bad_options_get_the_librarys_error)
 {
     const uint64_t world = new_world();
     const uint64_t ground = add_rect(world, 200, 40, (pp_vec2){100, 120}, "static"); /* top y = 100 */
     /* A capsule of radius 6 px and half_height 4 px: its foot 10 px below its position. */
-    call(world, "set_character_options",
-         (pp_variant[]){V_FLOAT(6), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(0xffffffff)}, 6);
+    character_options(world, 6, 0xffffffff);
     const double y0 = 100 - 10 - 0.01, speed = 120, dt = 1.0 / 60;
     pp_vec2 p = {40, (float)y0};
     double vy = 0;
@@ -1472,30 +1479,29 @@ Test(methods, a_character_walks_grounded_on_flat_ground_and_bad_options_get_the_
         const pp_vec2 n = call(world, "get_character_ground_normal", NULL, 0).as.vec2;
         cr_assert(fabs(n.x) < 1e-3 && fabs(n.y + 1) < 1e-3, "normal (%g, %g)", n.x, n.y);
         cr_assert_eq(call(world, "get_character_ground_body", NULL, 0).as.object, ground);
-        cr_assert_eq(call(world, "get_character_ground_velocity", NULL, 0).as.vec2.x, 0);
+        const pp_vec2 gv = call(world, "get_character_ground_velocity", NULL, 0).as.vec2;
+        cr_assert(gv.x == 0 && gv.y == 0, "a static ground's velocity (%g, %g)", gv.x, gv.y);
         vy = 0; /* grounded: the ground took the fall */
     }
     cr_assert(fabs(p.x - 40 - speed) <= 0.02 * speed, "walked %g px in 1 s at %g px/s", p.x - 40, speed);
     /* A mask that misses the ground's category: it falls through, meeting nothing. */
-    call(world, "set_character_options",
-         (pp_variant[]){V_FLOAT(6), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(0)}, 6);
+    character_options(world, 6, 0);
     const pp_vec2 fell = call(world, "move_character", (pp_variant[]){V_VEC2(p.x, p.y), V_VEC2(0, 600), V_FLOAT(0.1)},
                               3).as.vec2;
     cr_assert(fabs(fell.y - p.y - 60) < 1e-3 && !call(world, "is_character_grounded", NULL, 0).as.boolean);
     cr_assert_eq(call(world, "get_character_surfaces", NULL, 0).as.integer, 0);
     cr_assert_eq(call(world, "get_character_ground_body", NULL, 0).type, PP_VARIANT_NIL);
     /* Bad options are the library's to refuse, at the move; a bad mask is the plugin's. */
-    call(world, "set_character_options",
-         (pp_variant[]){V_FLOAT(0), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(0xffffffff)}, 6);
-    pp_variant ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(dt)}, 3);
-    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.move_character: pp_world_move_character: def->radius must be > 0");
-    ret = call(world, "set_character_options",
-               (pp_variant[]){V_FLOAT(6), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(-1)}, 6);
+    pp_variant ret = character_options(world, 0, 0xffffffff);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "the options are checked at the move");
+    ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(dt)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT,
+                 "PhysPixWorld.move_character: pp_world_move_character: def->radius must be > 0");
+    ret = character_options(world, 6, -1);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.set_character_options: mask must be in");
     ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(dt)}, 3);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "def->radius"); /* the refused options changed nothing */
-    call(world, "set_character_options",
-         (pp_variant[]){V_FLOAT(6), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(0xffffffff)}, 6);
+    character_options(world, 6, 0xffffffff);
     ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(-1)}, 3);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.move_character: pp_world_move_character: dt");
     plugin.api.object_destroy(world, &ret);
