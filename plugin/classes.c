@@ -475,6 +475,63 @@ static void world_explode(plugin_object *self, const pp_variant *a, pp_variant *
         ret_int(ret, erased);
 }
 
+/* ---- the character mover ---- */
+
+/* What move_character moves from now on; the library checks the fields at each move. */
+static void world_set_character_options(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    pp_character_def d = pp_character_def_default();
+    d.radius = (float)a[0].as.real, d.half_height = (float)a[1].as.real, d.step_height = (float)a[2].as.real;
+    d.snap_distance = (float)a[3].as.real, d.max_slope = (float)a[4].as.real;
+    if (mask_bits(&a[5], "PhysPixWorld.set_character_options", &d.mask_bits, ret)) {
+        self->cache->character = d;
+        self->cache->has_character = 1;
+    }
+}
+
+/* The end position; the rest of the move stays in the cache for get_character_*. A failed move leaves it as it was. */
+static void world_move_character(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    world_cache *c = self->cache;
+    const pp_character_def d = c->has_character ? c->character : pp_character_def_default();
+    pp_character_move m;
+    if (ret_ok(ret, pp_world_move_character(self->world, &d, a[0].as.vec2, a[1].as.vec2, (float)a[2].as.real, &m),
+               "PhysPixWorld.move_character")) {
+        c->moved = m;
+        ret_vec2(ret, m.position);
+    }
+}
+
+static void world_get_character_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->moved.velocity);
+}
+
+static void world_is_character_grounded(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_bool(ret, self->cache->moved.grounded != 0);
+}
+
+static void world_get_character_ground_normal(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->moved.ground_normal);
+}
+
+static void world_get_character_ground_body(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_body(self, self->cache->moved.ground_body, ret);
+}
+
+static void world_get_character_ground_velocity(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_vec2(ret, self->cache->moved.ground_velocity);
+}
+
+static void world_get_character_surfaces(plugin_object *self, const pp_variant *a, pp_variant *ret)
+{
+    ret_int(ret, self->cache->moved.surfaces);
+}
+
 /* Every hit of the segment into the cache, nearest first; get_ray_* read the one select_ray_hit picks. */
 static void world_raycast_all(plugin_object *self, const pp_variant *a, pp_variant *ret)
 {
@@ -596,6 +653,7 @@ static void world_replace(plugin_object *self, pp_world loaded)
     c->contact_count = c->event_count = c->body_count = c->edit_count = c->found_count = 0;
     c->debug_view = (pp_collision_view){0};
     c->ray = (pp_raycast_hit){0};
+    c->moved = (pp_character_move){0}; /* its ground body was the old world's */
 }
 
 /* Replace this object's world by one made from settings (JSON: "preset", then pp_world_def fields by name). */

@@ -35,6 +35,9 @@ typedef struct world_cache {
     pp_vec2 one_way_direction;
     pp_joint_def joint_options; /* set_joint_options: what add_joint gives its joints, once has_joint_options */
     uint32_t has_joint_options;
+    pp_character_def character; /* set_character_options: the capsule move_character moves, once has_character */
+    uint32_t has_character;
+    pp_character_move moved; /* of the last move_character; zero before one */
 } world_cache;
 
 /* One slot of the table; ids are (kind << 61) | (generation << 32) | (slot + 1) (handle.h's slot_id_make, the

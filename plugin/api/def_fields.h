@@ -85,6 +85,15 @@
     X(max_torque, FLOAT, NULL) \
     X(correction_factor, FLOAT, NULL)
 
+/* pp_character_def: read by godot. */
+#define PP_CHARACTER_DEF_FIELDS(X) \
+    X(radius, FLOAT, NULL) \
+    X(half_height, FLOAT, NULL) \
+    X(step_height, FLOAT, NULL) \
+    X(snap_distance, FLOAT, NULL) \
+    X(max_slope, FLOAT, NULL) \
+    X(mask_bits, BITS, NULL)
+
 static const char *const pp_backend_names[] = {"auto", "cpu", "gpu", NULL};
 static const char *const pp_normal_method_names[] = {"area_gradient", "kernel", NULL};
 static const char *const pp_contact_mode_names[] = {"manifold", "centroid", NULL};

@@ -45,8 +45,8 @@ typedef godot_variant (*method_fn)(call *c);
  * i int, f float (an int is accepted), v Vector2, b body (int), t body type ("dynamic",
  * "static" or "kinematic"), p path (String; res:// and user://
  * become filesystem paths through ProjectSettings.globalize_path, others are used as given),
- * m collision mask bits (int, 0..0xffffffff), o body options, d world settings and J a joint's def (Dictionary,
- * see fields.c), j joint (int),
+ * m collision mask bits (int, 0..0xffffffff), o body options, d world settings, J a joint's def and C a character's
+ * (Dictionary, see fields.c), j joint (int),
  * B bool, I an Image or a Texture with a readable image (see pixels.c), M PoolByteArray. */
 typedef struct method_def {
     const char *name;
@@ -90,6 +90,8 @@ bool fields_body_def(call *c, const godot_variant *dict, pp_body_def *def, body_
 /* A joint's def: "type" (required, a lower-case name) picks pp_joint_def_default's defaults, then any other
  * pp_joint_def field; bodies and user_data are ints (body 0 is the static world). */
 bool fields_joint_def(call *c, const godot_variant *dict, pp_joint_def *out);
+/* A character's def: pp_character_def fields over the def's values (move_character). */
+bool fields_character_def(call *c, const godot_variant *dict, pp_character_def *def);
 
 /* pixels.c: Images and Textures in, a body's pixels out and in. */
 bool pixels_bind(char *err, size_t err_size);

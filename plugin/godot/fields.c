@@ -1,6 +1,6 @@
 /* Dictionaries of def fields for PhysPixWorld: a world's settings (create, get_settings), a body's options
- * (add_body_mask, add_body_image) and a joint's def (create_joint). Keys are the C field names; an unknown key or a value of the wrong type is
- * refused, so a typo is never silently a default. Enums are the scene files' lower-case names. */
+ * (add_body_mask, add_body_image), a joint's def (create_joint) and a character's (move_character). Keys are the C
+ * field names; an unknown key or a value of the wrong type is refused, so a typo is never silently a default. Enums are the scene files' lower-case names. */
 #include <stdio.h>
 #include <string.h>
 
@@ -26,21 +26,27 @@ enum { SIZE_BOOL = 4, SIZE_BITS = 4, SIZE_INT = 4, SIZE_FLOAT = 4, SIZE_ENUM = 4
 #define W(name, KIND, names) ROW(pp_world_def, name, KIND, names)
 #define B(name, KIND, names) ROW(pp_body_def, name, KIND, names)
 #define J(name, KIND, names) ROW(pp_joint_def, name, KIND, names)
+#define C(name, KIND, names) ROW(pp_character_def, name, KIND, names)
 static const field WORLD_FIELDS[] = {PP_WORLD_DEF_FIELDS(W)};
 static const field BODY_FIELDS[] = {PP_BODY_DEF_FIELDS(B)}; /* "collision_mask" and "weights": body_special */
 static const field JOINT_FIELDS[] = {PP_JOINT_DEF_FIELDS(J)}; /* bodies and user_data: ints, 0 the static world */
+static const field CHARACTER_FIELDS[] = {PP_CHARACTER_DEF_FIELDS(C)};
 #undef W
 #undef B
 #undef J
+#undef C
 #define W(name, KIND, names) SIZED(pp_world_def, name, KIND)
 #define B(name, KIND, names) SIZED(pp_body_def, name, KIND)
 #define J(name, KIND, names) SIZED(pp_joint_def, name, KIND)
+#define C(name, KIND, names) SIZED(pp_character_def, name, KIND)
 PP_WORLD_DEF_FIELDS(W)
 PP_BODY_DEF_FIELDS(B)
 PP_JOINT_DEF_FIELDS(J)
+PP_CHARACTER_DEF_FIELDS(C)
 #undef W
 #undef B
 #undef J
+#undef C
 
 static const char *kind_name(field_kind k)
 {
@@ -199,6 +205,12 @@ bool fields_joint_def(call *c, const godot_variant *var, pp_joint_def *out)
     *out = pp_joint_def_default((pp_joint_type)type);
     return found > 0 && read_fields(c, var, "joint", JOINT_FIELDS, sizeof JOINT_FIELDS / sizeof JOINT_FIELDS[0], out,
                                     skip_leading, (void *)f.name);
+}
+
+bool fields_character_def(call *c, const godot_variant *var, pp_character_def *def)
+{
+    return read_fields(c, var, "character", CHARACTER_FIELDS, sizeof CHARACTER_FIELDS / sizeof CHARACTER_FIELDS[0],
+                       def, NULL, NULL);
 }
 
 godot_variant fields_world_dict(const pp_world_def *def)

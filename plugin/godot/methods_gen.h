@@ -263,6 +263,7 @@ static const method_def METHODS[] = {
     {"erase_circle", "bvf", api_erase_circle, "erase_circle(body: int, center: Vector2, radius: float) -> int"},
     {"paint_circle", "bvfi", paint_circle, "paint_circle(body: int, center: Vector2, radius: float, weight: int) -> int"},
     {"world_erase_circle", "vf", api_world_erase_circle, "world_erase_circle(center: Vector2, radius: float) -> int"},
+    {"move_character", "vvf|C", move_character, "move_character(position: Vector2, velocity: Vector2, delta: float, character: Dictionary = {}) -> Dictionary"},
     {"explode", "vf|fffmm", explode, "explode(position: Vector2, radius: float, falloff: float = 0.0, impulse_per_length: float = the library's default, erase_radius: float = 0.0, mask: int = 0xffffffff, erase_mask: int = 0xffffffff) -> int"},
     {"get_bodies", "", get_bodies, "get_bodies() -> Array"},
     {"create_joint", "J", create_joint, "create_joint(def: Dictionary) -> int"},

@@ -149,6 +149,8 @@ static bool read_arg(call *c, int i, char letter)
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (world settings)");
     case 'J':
         return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (joint def)");
+    case 'C':
+        return t == GDN_DICTIONARY || wrong_type(c, i, "Dictionary (character def)");
     case 'B':
         if (t != GDN_BOOL)
             return wrong_type(c, i, "bool");
@@ -674,6 +676,28 @@ static godot_variant explode(call *c)
     d.erase_mask_bits = mask_arg(c, 6);
     int32_t erased = 0;
     return ok(c, pp_world_explode(c->self->world, &d, &erased)) ? gdn_int(erased) : gdn_nil();
+}
+
+/* A character's capsule (pp_character_def fields by name; those left out keep pp_character_def_default's) moved from
+ * position along velocity × delta: {position, velocity, grounded, ground_normal, ground_body, ground_velocity,
+ * surfaces}, or nil on failure. */
+static godot_variant move_character(call *c)
+{
+    pp_character_def d = pp_character_def_default();
+    pp_character_move m;
+    if ((c->argc > 3 && !fields_character_def(c, c->a[3].var, &d)) ||
+        !ok(c, pp_world_move_character(c->self->world, &d, c->a[0].v, c->a[1].v, c->a[2].f, &m)))
+        return gdn_nil();
+    godot_dictionary r;
+    gdn->godot_dictionary_new(&r);
+    gdn_dict_put(&r, "position", gdn_vector2(m.position.x, m.position.y));
+    gdn_dict_put(&r, "velocity", gdn_vector2(m.velocity.x, m.velocity.y));
+    gdn_dict_put(&r, "grounded", gdn_bool(m.grounded != 0));
+    gdn_dict_put(&r, "ground_normal", gdn_vector2(m.ground_normal.x, m.ground_normal.y));
+    gdn_dict_put(&r, "ground_body", body_int(m.ground_body));
+    gdn_dict_put(&r, "ground_velocity", gdn_vector2(m.ground_velocity.x, m.ground_velocity.y));
+    gdn_dict_put(&r, "surfaces", gdn_int(m.surfaces));
+    return gdn_dict_variant(&r);
 }
 
 /* ---- scenes, snapshots, clock and camera ---------------------------------------------- */

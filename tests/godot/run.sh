@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs the Godot tests in godot3-server against the freshly built addon (make test-godot): test.gd (the
 # native PhysPixWorld), test_nodes.gd (the PhysPixWorld2D and PhysPixBody2D nodes) and test_joint.gd (the
-# PhysPixJoint2D node), test_editor.gd (the world's overlay in the editor) in tests/godot, and test_example.gd in a copy of the example `make godot-example` made.
+# PhysPixJoint2D node), test_character.gd (the PhysPixCharacter2D node), test_editor.gd (the world's overlay in the editor) in tests/godot, and test_example.gd and test_example_hero.gd (its hero played by scripted input) in a copy of the example `make godot-example` made.
 # Each project is copied under $BUILD/godot with addons/physpix from $BUILD/addons/physpix; each script runs under timeout and passes only on exit code 0,
 # the line "RESULT: PASS" and no "SCRIPT ERROR" (a runtime error in a frame does not stop the engine).
 set -u
@@ -60,11 +60,14 @@ make_project tests/godot tests
 run_script tests test.gd
 run_script tests test_nodes.gd
 run_script tests test_joint.gd
+run_script tests test_character.gd
 run_script tests test_editor.gd
 
 # The example as `make godot-example` left it, imported and ready to run: no import step here, so a target that
 # forgot it fails ("No loader found for resource: res://terrain.png").
 [ -e "$BUILD/godot-example/project.godot" ] || fail "$BUILD/godot-example is missing; run 'make godot-example'"
-make_project "$BUILD/godot-example" example tests/godot/test_example.gd tests/godot/checks.gd
+make_project "$BUILD/godot-example" example tests/godot/test_example.gd tests/godot/test_example_hero.gd \
+    tests/godot/checks.gd
 run_script example test_example.gd strict
+run_script example test_example_hero.gd strict
 echo "test-godot: PASS"

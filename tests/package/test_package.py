@@ -132,7 +132,8 @@ def prefix(tmp_path_factory):
 
 # The Godot addon as plugin/godot/README.md lists it, libraries beside its .gdnlib.
 GODOT_ADDON = ["plugin.cfg", "plugin.gd", "physpix.gdnlib", "physpix_world.gdns", "physpix_world_2d.gd",
-               "physpix_body_2d.gd", "physpix_joint_2d.gd", "libphyspix_godot.so", "libphyspix.so.0"]
+               "physpix_body_2d.gd", "physpix_joint_2d.gd", "physpix_character_2d.gd", "libphyspix_godot.so",
+               "libphyspix.so.0"]
 
 
 def test_install_puts_every_piece_under_the_prefix(prefix):

@@ -363,6 +363,14 @@ Test(methods, every_method_answers_right_types_with_its_result_and_wrong_types_w
         {"get_query_body", {V_INT(0)}},
         {"set_body_options", {V_BOOL(0), V_BOOL(0), V_VEC2(0, -1)}},
         {"set_contact_events", {V_BOOL(0)}},
+        {"set_character_options", {V_FLOAT(6), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(0xffffffff)}},
+        {"move_character", {V_VEC2(100, 40), V_VEC2(60, 0), V_FLOAT(1.0 / 60)}},
+        {"get_character_velocity", {{0}}},
+        {"is_character_grounded", {{0}}},
+        {"get_character_ground_normal", {{0}}},
+        {"get_character_ground_body", {{0}}},
+        {"get_character_ground_velocity", {{0}}},
+        {"get_character_surfaces", {{0}}},
         {"collide", {V_OBJ(box), V_OBJ(ground)}},
         {"get_step_ms", {{0}}},
         {"load_scene", {V_STR(scene)}}, /* on a scratch world: it replaces the world's bodies */
@@ -1440,5 +1448,61 @@ Test(methods, explode_pushes_a_box_away_and_casts_find_the_ground_and_every_body
                               V_INT(0xffffffff)},
                7);
     expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.explode");
+    plugin.api.object_destroy(world, &ret);
+}
+
+/* set_character_options: a capsule of this radius (px) with half_height 4 px, step_height and snap_distance 4 px,
+ * max_slope 0.8 rad. */
+static pp_variant character_options(uint64_t world, double radius, int64_t mask)
+{
+    return call(world, "set_character_options",
+                (pp_variant[]){V_FLOAT(radius), V_FLOAT(4), V_FLOAT(4), V_FLOAT(4), V_FLOAT(0.8), V_INT(mask)}, 6);
+}
+
+Test(methods, a_character_walks_grounded_on_flat_ground_and_bad_options_get_the_librarys_error)
+{
+    const uint64_t world = new_world();
+    const uint64_t ground = add_rect(world, 200, 40, (pp_vec2){100, 120}, "static"); /* top y = 100 */
+    /* A capsule of radius 6 px and half_height 4 px: its foot 10 px below its position. */
+    character_options(world, 6, 0xffffffff);
+    const double y0 = 100 - 10 - 0.01, speed = 120, dt = 1.0 / 60;
+    pp_vec2 p = {40, (float)y0};
+    double vy = 0;
+    for (int i = 0; i < 60; i++) {
+        pp_variant ret = call(world, "move_character", (pp_variant[]){V_VEC2(p.x, p.y), V_VEC2(speed, vy + 980 * dt),
+                                                                      V_FLOAT(dt)}, 3);
+        cr_assert_eq(ret.type, PP_VARIANT_VEC2, "%s", ret.type == PP_VARIANT_ERROR ? ret.as.error.message : "");
+        p = ret.as.vec2;
+        cr_assert(call(world, "is_character_grounded", NULL, 0).as.boolean, "frame %d: in the air at (%g, %g)", i,
+                  p.x, p.y);
+        cr_assert(fabs(p.y - y0) <= 0.5, "frame %d: height %g, started at %g", i, p.y, y0);
+        const pp_vec2 n = call(world, "get_character_ground_normal", NULL, 0).as.vec2;
+        cr_assert(fabs(n.x) < 1e-3 && fabs(n.y + 1) < 1e-3, "normal (%g, %g)", n.x, n.y);
+        cr_assert_eq(call(world, "get_character_ground_body", NULL, 0).as.object, ground);
+        const pp_vec2 gv = call(world, "get_character_ground_velocity", NULL, 0).as.vec2;
+        cr_assert(gv.x == 0 && gv.y == 0, "a static ground's velocity (%g, %g)", gv.x, gv.y);
+        vy = 0; /* grounded: the ground took the fall */
+    }
+    cr_assert(fabs(p.x - 40 - speed) <= 0.02 * speed, "walked %g px in 1 s at %g px/s", p.x - 40, speed);
+    /* A mask that misses the ground's category: it falls through, meeting nothing. */
+    character_options(world, 6, 0);
+    const pp_vec2 fell = call(world, "move_character", (pp_variant[]){V_VEC2(p.x, p.y), V_VEC2(0, 600), V_FLOAT(0.1)},
+                              3).as.vec2;
+    cr_assert(fabs(fell.y - p.y - 60) < 1e-3 && !call(world, "is_character_grounded", NULL, 0).as.boolean);
+    cr_assert_eq(call(world, "get_character_surfaces", NULL, 0).as.integer, 0);
+    cr_assert_eq(call(world, "get_character_ground_body", NULL, 0).type, PP_VARIANT_NIL);
+    /* Bad options are the library's to refuse, at the move; a bad mask is the plugin's. */
+    pp_variant ret = character_options(world, 0, 0xffffffff);
+    cr_assert_eq(ret.type, PP_VARIANT_NIL, "the options are checked at the move");
+    ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(dt)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT,
+                 "PhysPixWorld.move_character: pp_world_move_character: def->radius must be > 0");
+    ret = character_options(world, 6, -1);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.set_character_options: mask must be in");
+    ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(dt)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "def->radius"); /* the refused options changed nothing */
+    character_options(world, 6, 0xffffffff);
+    ret = call(world, "move_character", (pp_variant[]){V_VEC2(0, 0), V_VEC2(1, 0), V_FLOAT(-1)}, 3);
+    expect_error(&ret, PP_ERR_INVALID_ARGUMENT, "PhysPixWorld.move_character: pp_world_move_character: dt");
     plugin.api.object_destroy(world, &ret);
 }

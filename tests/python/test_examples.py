@@ -22,6 +22,7 @@ pygame = pytest.importorskip("pygame", reason="pygame is not installed: pip inst
                                               "(make deps installs it into build/venv)")
 sys.path.insert(0, str(EXAMPLES))
 import bridge  # noqa: E402
+import hero  # noqa: E402
 import laser  # noqa: E402
 import sensors  # noqa: E402
 import snapshots  # noqa: E402
@@ -128,3 +129,28 @@ def test_an_example_runs_as_a_newcomer_types_it(tmp_path):
                          env=env, cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert physpix.load_png(out).shape == (360, 640, 4)
+
+
+def test_hero_walks_jumps_lands_and_blasts_itself_into_a_crater(tmp_path):
+    """The self-play (hero.PLAY): walk right 40 frames at 150 px/s, jump, land, blast the ground under its feet."""
+    viewer = run_example(hero, 160, tmp_path)
+    moves = viewer.moves
+    start_y = hero.START[1]
+    walked = moves[10:50]
+    assert all(m.grounded and abs(m.position[1] - start_y) <= 0.5 for m in walked)
+    assert walked[-1].position[0] - hero.START[0] == pytest.approx(hero.WALK_SPEED * 40 * hero.DT, rel=0.02)
+    air = [i for i, m in enumerate(moves) if not m.grounded]
+    # Two flights: the jump from frame 50, and the fall into the crater after the blast of frame 130.
+    landing = next(i for i in air if i + 1 not in air)
+    assert air[0] == 50 and air[:landing - 49] == list(range(50, landing + 1))
+    assert air[landing - 49:] and air[landing - 49] == 131 and air[-1] < len(moves) - 1
+    peak = start_y - min(m.position[1] for m in moves[50:landing + 1])
+    assert peak == pytest.approx(hero.JUMP_SPEED ** 2 / (2 * hero.G), rel=0.05)
+    landed = moves[landing + 1]
+    assert landed.grounded and abs(landed.position[1] - start_y) <= 0.5 and landed.ground_body == viewer.ground
+    # The blast at its feet on the old ground; it ends grounded on the crater's floor, BLAST_RADIUS below.
+    assert viewer.blasts == [pytest.approx((moves[130].position[0], hero.GROUND_Y), abs=0.5)]
+    end = moves[-1]
+    assert end.grounded and end.ground_body == viewer.ground
+    assert end.position[0] == pytest.approx(viewer.blasts[0][0], abs=1)
+    assert end.position[1] + hero.HALF_HEIGHT + hero.RADIUS == pytest.approx(hero.GROUND_Y + hero.BLAST_RADIUS, abs=1)

@@ -1,7 +1,7 @@
 extends Node2D
 # The example's game: a blast (PhysPixWorld2D.explode) erases every body's pixels in a circle and throws the
 # dynamic bodies near it outward. Blasts come from the timer (the BLASTS points in turn, so the scene runs
-# unattended) and where the left mouse button clicks.
+# unattended), where the left mouse button clicks, and under the Hero's feet (hero.gd's blast signal).
 
 signal exploded(at)
 

@@ -14,7 +14,8 @@ from .enums import (CELL_A, CELL_B, CELL_CRITICAL, DEBUG_DRAW_AABBS, DEBUG_DRAW_
 from .errors import (AbiError, FormatError, IntegerRangeError, InvalidArgumentError, InvalidHandleError, LimitError,
                      OutOfMemoryError, PhysPixError, PhysPixIOError, UnsupportedError)
 from .image import image_info, load_png, save_png
-from .world import Body, Camera, CollisionView, Contact, Event, Joint, RaycastHit, ScheduledEdit, StepStats, World
+from .world import (Body, Camera, CharacterMove, CollisionView, Contact, Event, Joint, RaycastHit, ScheduledEdit,
+                    StepStats, World)
 
 #: Version of the loaded library, (major, minor, patch).
 library_version = (_native.version // 10000, _native.version // 100 % 100, _native.version % 100)
@@ -41,7 +42,7 @@ def set_log_hook(fn: "Optional[Callable[[int, str], None]]") -> None:
 
 
 __all__ = [
-    "World", "Body", "Joint", "Contact", "Event", "RaycastHit", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
+    "World", "Body", "Joint", "Contact", "Event", "RaycastHit", "CharacterMove", "StepStats", "Camera", "ScheduledEdit", "CollisionView",
     "load_png", "save_png", "image_info", "set_log_hook",
     "Backend", "BodyType", "ContactMode", "EditType", "EventType", "JointType", "NormalMethod", "Preset", "Status",
     "CELL_A", "CELL_B", "CELL_CRITICAL", "DebugKind", "DEBUG_DRAW_OUTLINES", "DEBUG_DRAW_AABBS", "DEBUG_DRAW_CONTACTS",

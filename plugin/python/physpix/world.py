@@ -258,6 +258,20 @@ class RaycastHit:
 
 
 @dataclass(frozen=True)
+class CharacterMove:
+    """Where World.move_character took a character: its end position (px), the velocity asked for less what the
+    surfaces took away (px/s), whether it stands on ground no steeper than max_slope, that ground's unit normal
+    ((0, 0) in the air), body (None in the air) and velocity under the character (px/s), and the surfaces met."""
+    position: Vec2
+    velocity: Vec2
+    grounded: bool
+    ground_normal: Vec2
+    ground_body: Optional[Body]
+    ground_velocity: Vec2
+    surfaces: int
+
+
+@dataclass(frozen=True)
 class StepStats:
     """What the last step did: times in milliseconds, counts, and the backend that ran."""
     broadphase_ms: float
@@ -594,6 +608,21 @@ class World:
         changed = c_int32(0)
         lib.pp_world_explode(self._handle, byref(d), byref(changed))
         return changed.value
+
+    def move_character(self, position: Vec2Like, velocity: Vec2Like, dt: float, **fields: Any) -> CharacterMove:
+        """Move a character's capsule (not a body: the caller keeps its position and velocity) from position (px)
+        along velocity (px/s) × dt (s) against the solid pixels, sliding along them, climbing steps and keeping to
+        the ground. Keywords are pp_character_def's fields: radius, half_height, step_height, snap_distance (px),
+        max_slope (rad), mask_bits; those left out keep pp_character_def_default's. Nothing in the world changes."""
+        d = lib.pp_character_def_default()
+        _fill_def(d, fields, "move_character", skip=("struct_size",))
+        out = N.pp_character_move()
+        lib.pp_world_move_character(self._handle, byref(d), vec2(position, "position"), vec2(velocity, "velocity"),
+                                    dt, byref(out))
+        return CharacterMove((out.position.x, out.position.y), (out.velocity.x, out.velocity.y), bool(out.grounded),
+                             (out.ground_normal.x, out.ground_normal.y),
+                             Body(self, out.ground_body.id) if out.ground_body.id else None,
+                             (out.ground_velocity.x, out.ground_velocity.y), out.surfaces)
 
     def _query(self, fn: Callable[..., Any], *args: Any) -> List[Body]:
         return [Body(self, h.id) for h in _read_list(fn, N.pp_body, self._handle, *args)]
