@@ -171,7 +171,8 @@ static void join_island(int32_t *parent, int32_t *rows, int32_t *dynamic, const 
  * (rare: a merge in between) solves one substep, and its late bodies stay one substep late. */
 static void set_spans(world *wd, substep_pairing pairing)
 {
-    int32_t *parent = wd->islands.group, *flags = wd->islands.group + 2 * wd->islands.group_capacity;
+    const int32_t *root = wd->islands.root;
+    int32_t *flags = wd->islands.group + 2 * wd->islands.group_capacity;
     /* At a step's first substep the pairs that will strike are not yet collided: nothing is at rest then. */
     const bool at_rest_known = wd->carry.substep > 0;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
@@ -181,17 +182,17 @@ static void set_spans(world *wd, substep_pairing pairing)
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
         const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
         if (node)
-            flags[world_group_root(parent, (int32_t)node->index)] |= ROOT_EVERY_SUBSTEP;
+            flags[root[node->index]] |= ROOT_EVERY_SUBSTEP;
     }
     for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
         const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
             dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
-            flags[world_group_root(parent, (int32_t)a->index)] |= ROOT_EVERY_SUBSTEP;
+            flags[root[a->index]] |= ROOT_EVERY_SUBSTEP;
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const body *bd = wd->bodies[wd->islands.nodes[n]];
-        int32_t *f = &flags[world_group_root(parent, wd->islands.nodes[n])];
+        int32_t *f = &flags[root[wd->islands.nodes[n]]];
         if (awake_mover(bd)) {
             const bool behind = bd->sat_out + 1 == wd->islands.substep_serial;
             *f |= behind ? ROOT_BEHIND : ROOT_CURRENT;
@@ -205,13 +206,13 @@ static void set_spans(world *wd, substep_pairing pairing)
             *f |= ROOT_STRUCK;
         if (wd->islands.kind[bd->index] == ISLAND_EXACT_ALONE) {
             /* Its island's rows, but a fixed rotation's, are its contacts' (a joint's island is not alone). */
-            const int32_t rows = wd->islands.group[wd->islands.group_capacity + world_group_root(parent, bd->index)];
+            const int32_t rows = wd->islands.group[wd->islands.group_capacity + root[bd->index]];
             *f |= (rows & INT32_MAX) > (bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0) ? ROOT_TOUCHING : 0;
             *f |= carry_was_collided(wd, bd->index) ? ROOT_COLLIDED : 0;
         }
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int32_t i = wd->islands.nodes[n], f = flags[world_group_root(parent, i)];
+        const int32_t i = wd->islands.nodes[n], f = flags[root[i]];
         uint8_t span = SPAN_ONE;
         /* A lone body solved exactly pairs its substeps while it rests: it has contacts, every one carried or held
          * (it moves under CARRY_MOTION_PX a step against what it touches), none collided this step. A free fall,
@@ -249,7 +250,7 @@ static void set_spans(world *wd, substep_pairing pairing)
 static int list_of(world *wd, int32_t i)
 {
     const body *bd = wd->bodies[i];
-    const int32_t root = world_group_root(wd->islands.group, i);
+    const int32_t root = wd->islands.root[i];
     if (wd->islands.group[wd->islands.group_capacity + root] >= 0)
         return -1; /* the island's rows carry no awake mark: asleep */
     if (island_exact(wd->islands.kind[i]))
@@ -275,20 +276,19 @@ static int list_of(world *wd, int32_t i)
 static void list_islands(world *wd, solver_islands *out)
 {
     int32_t filled[SOLVE_LISTS] = {0};
+    int8_t *list = wd->islands.list;
     *out = (solver_islands){{0}, {0}};
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int which = list_of(wd, wd->islands.nodes[n]);
-        if (which >= 0)
-            out->count[which]++;
+        list[n] = (int8_t)list_of(wd, wd->islands.nodes[n]);
+        if (list[n] >= 0)
+            out->count[list[n]]++;
     }
     out->list[0] = wd->islands.bodies;
     for (int w = 1; w < SOLVE_LISTS; w++)
         out->list[w] = out->list[w - 1] + out->count[w - 1];
-    for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int which = list_of(wd, wd->islands.nodes[n]);
-        if (which >= 0)
-            out->list[which][filled[which]++] = &wd->bodies[wd->islands.nodes[n]]->sb;
-    }
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        if (list[n] >= 0)
+            out->list[list[n]][filled[list[n]]++] = &wd->bodies[wd->islands.nodes[n]]->sb;
 }
 
 /* What the islands are made of: the contacts' pairs and the awake set, as a digest (PP_CHECKS builds). */
@@ -331,9 +331,10 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
     island_set *isl = &wd->islands;
     static const char *what = "the islands";
     pp_status st = world_slot_array(wd, (void **)&isl->group, &isl->group_capacity, 3 * sizeof *isl->group, what);
-    if (st || (st = world_slot_array(wd, (void **)&isl->bodies, &isl->bodies_capacity, sizeof *isl->bodies, what)) ||
+    if (st || (st = world_slot_array(wd, (void **)&isl->root, &isl->root_capacity, sizeof *isl->root, what)) || (st = world_slot_array(wd, (void **)&isl->bodies, &isl->bodies_capacity, sizeof *isl->bodies, what)) ||
         (st = world_slot_array(wd, (void **)&isl->kind, &isl->kind_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->span, &isl->span_capacity, 1, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->list, &isl->list_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->heaviest, &isl->heaviest_capacity, sizeof *isl->heaviest, what)) ||
         (st = world_slot_array(wd, (void **)&isl->sleep_group, &isl->sleep_group_capacity, 2 * sizeof *isl->sleep_group,
                                what)) ||
@@ -374,23 +375,28 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
             not_exact[world_group_root(parent, (int32_t)node->index)] |= NOT_EXACT_ALONE;
         }
     }
+    /* The islands are whole: each node's root, found once here, is what every later pass (set_spans and list_of
+     * at this substep and the still ones after it) reads. */
+    int32_t *root_of = isl->root;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        root_of[wd->islands.nodes[n]] = world_group_root(parent, wd->islands.nodes[n]);
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
      * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         if (!within_reach(wd, wd->bodies[wd->islands.nodes[n]])) {
-            const int32_t root = world_group_root(parent, wd->islands.nodes[n]);
+            const int32_t root = root_of[wd->islands.nodes[n]];
             dynamic[root] = INT32_MIN / 2; /* solved as a lone body: every substep */
             not_exact[root] |= NOT_EXACT;
         }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const body *bd = wd->bodies[wd->islands.nodes[n]];
-        double *heaviest = &wd->islands.heaviest[world_group_root(parent, wd->islands.nodes[n])];
+        double *heaviest = &wd->islands.heaviest[root_of[wd->islands.nodes[n]]];
         if (bd->type == PP_BODY_DYNAMIC && bd->mass.mass > *heaviest)
             *heaviest = bd->mass.mass;
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int32_t i = wd->islands.nodes[n], root = world_group_root(parent, i);
+        const int32_t i = wd->islands.nodes[n], root = root_of[i];
         const body *bd = wd->bodies[i];
         if (bd->type == PP_BODY_DYNAMIC && wd->islands.heaviest[root] > EXACT_MASS_RATIO * bd->mass.mass)
             not_exact[root] |= NOT_EXACT;
@@ -401,10 +407,10 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
     /* An island is stepped if any of its bodies is awake (ODE wakes the rest); mark those roots. */
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         if (awake_mover(wd->bodies[wd->islands.nodes[n]]))
-            rows[world_group_root(parent, wd->islands.nodes[n])] |= INT32_MIN;
+            rows[root_of[wd->islands.nodes[n]]] |= INT32_MIN;
     const int32_t limit = wd->def.exact_island_rows;
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const int32_t i = wd->islands.nodes[n], root = world_group_root(parent, i), r = rows[root];
+        const int32_t i = wd->islands.nodes[n], root = root_of[i], r = rows[root];
         const bool alone = wd->islands.kind[i] == ISLAND_QUICK_ALONE;
         if (r < 0 && !(not_exact[root] & NOT_EXACT) &&
             (wd->def.exact_solver || ((r & INT32_MAX) <= limit && !(alone && (not_exact[root] & NOT_EXACT_ALONE)) &&
@@ -495,11 +501,13 @@ bool island_sleep(world *wd, double h)
 void island_free(island_set *is)
 {
     pp_free(is->group);
+    pp_free(is->root);
     pp_free(is->node_mark);
     pp_free(is->nodes);
     pp_free(is->bodies);
     pp_free(is->kind);
     pp_free(is->span);
+    pp_free(is->list);
     pp_free(is->heaviest);
     pp_free(is->sleep_group);
     *is = (island_set){0};

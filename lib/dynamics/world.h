@@ -132,6 +132,8 @@ typedef struct island_set {
     int32_t *group;          /* three per slot: union-find parents, each root's rows or restless flag, and its
                               * ROOT_* flags */
     int32_t group_capacity;
+    int32_t *root;           /* by slot: a node's island root, found once the plan's islands are whole */
+    int32_t root_capacity;
     uint32_t *node_mark;     /* by slot: the island pass that last made it a node */
     int32_t node_mark_capacity;
     uint32_t node_pass;
@@ -143,6 +145,8 @@ typedef struct island_set {
     int32_t kind_capacity;
     uint8_t *span;           /* … and by slot, the substeps of time it advances (SPAN_*) */
     int32_t span_capacity;
+    int8_t *list;            /* by node: the solver list it goes in this substep, or −1 (list_islands' scratch) */
+    int32_t list_capacity;
     double *heaviest;        /* by root: its heaviest dynamic body's mass (island_plan's scratch) */
     int32_t heaviest_capacity;
     int32_t *sleep_group;    /* two per slot: island_sleep's union-find parents and restless flags, apart from
