@@ -129,7 +129,7 @@ static inline void sample_other(const pp_raster *r, int64_t qx, int64_t qy, uint
     const int64_t hx = qx - HALF_PIXEL, hy = qy - HALF_PIXEL;
     const int64_t x = hx >> NP_FIX_BITS, y = hy >> NP_FIX_BITS;
     uint32_t m0, m1; /* the footprint's rows y and y + 1: bit 0 pixel x, bit 1 pixel x + 1 */
-    if (x >= 0 && y >= 0 && x + 1 < r->width && y + 1 < r->height) {
+    if ((uint64_t)x < (uint64_t)r->width - 1 && (uint64_t)y < (uint64_t)r->height - 1) { /* x, y ≥ 0 and a pixel to spare */
         if (((x + 1) & (RASTER_TILE - 1)) && ((y + 1) & (RASTER_TILE - 1))) {
             const int32_t tx = (int32_t)(x >> RASTER_TILE_SHIFT), ty = (int32_t)(y >> RASTER_TILE_SHIFT);
             const raster_state st = raster_tile_state(r, tx, ty);
@@ -188,8 +188,29 @@ static void sample_ref_run(const np_pair *p, int64_t cj, int64_t c0, int64_t c1,
         return;
     }
     const uint64_t *row = ra->bits + py * ra->words_per_row;
-    for (int64_t ci = c0, px = (p->i0 - RING + c0) * p->s + p->off; ci < c1; ci++, px += p->s)
-        sa[k0 + ci] = px >= 0 && px < ra->width && ((row[px >> 6] >> (px & 63)) & 1u);
+    int64_t ci = c0, px = (p->i0 - RING + c0) * p->s + p->off;
+    for (; ci < c1 && px < 0; ci++, px += p->s) /* left of the bitmap, inside it, right of it */
+        sa[k0 + ci] = 0;
+    for (; ci < c1 && px < ra->width; ci++, px += p->s)
+        sa[k0 + ci] = (row[px >> 6] >> (px & 63)) & 1u;
+    for (; ci < c1; ci++)
+        sa[k0 + ci] = 0;
+}
+
+/* Whether any of the reference's 3×3 cells around cell k is solid: three rows' 8-byte loads OR-ed and their first
+ * three bytes kept (the bytes past them lie in the scratch, as sb follows sa). */
+static inline bool any_3x3(const uint8_t *sa, int64_t k, int64_t ex)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    uint64_t up, mid, down;
+    memcpy(&up, sa + k - ex - 1, sizeof up);
+    memcpy(&mid, sa + k - 1, sizeof mid);
+    memcpy(&down, sa + k + ex - 1, sizeof down);
+    return ((up | mid | down) & 0xffffffu) != 0;
+#else
+    return sa[k - ex - 1] | sa[k - ex] | sa[k - ex + 1] | sa[k - 1] | sa[k] | sa[k + 1] | sa[k + ex - 1] | sa[k + ex] |
+           sa[k + ex + 1];
+#endif
 }
 
 /* Plane cells [c0, c1) of plane row cj of the other body, where a reference cell is next to them
@@ -200,8 +221,7 @@ static void sample_other_run(const np_pair *p, int64_t cj, int64_t c0, int64_t c
     const int64_t ex = p->nx + 2 * RING;
     int64_t qx = p->qx0 + cj * p->djx + c0 * p->dix, qy = p->qy0 + cj * p->djy + c0 * p->diy;
     for (int64_t k = cj * ex + c0; k < cj * ex + c1; k++, qx += p->dix, qy += p->diy)
-        if (sa[k - ex - 1] | sa[k - ex] | sa[k - ex + 1] | sa[k - 1] | sa[k] | sa[k + 1] | sa[k + ex - 1] | sa[k + ex] |
-            sa[k + ex + 1])
+        if (any_3x3(sa, k, ex))
             sample_other(p->rb, qx, qy, &sb[k], &cb[k]);
 }
 
