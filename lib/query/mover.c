@@ -5,6 +5,7 @@
  * ground's normal is the solid pixels' own (the direction away from their weighted centroid near the touch). */
 #include "alloc.h"
 #include "awake.h"
+#include "check.h"
 #include "cover.h"
 #include "status.h"
 
@@ -36,7 +37,12 @@ typedef struct mover_body {
     dvec2 v[8], n[8]; /* vertices and each edge's outward normal (edge k from v[k] to v[k+1]) */
     double len[8];
     int nv;
+    int32_t first, count; /* its edge pixels in mover.px, row by row, within the move's reach */
 } mover_body;
+
+typedef struct mover_pixel {
+    int32_t x, y;
+} mover_pixel;
 
 typedef struct mover {
     const world *wd;
@@ -44,6 +50,11 @@ typedef struct mover {
     dvec2 up;
     mover_body *bodies;
     int32_t n;
+    /* The candidates' edge pixels (solid with an empty neighbour: only they can be met first), found once a move
+     * from the rows' bits; every cast reads them instead of the bitmaps. */
+    mover_pixel *px;
+    int32_t n_px, px_capacity;
+    dvec2 lo, hi; /* the world box whose edge pixels px holds */
 } mover;
 
 typedef struct mover_hit {
@@ -87,42 +98,83 @@ static void grown_square(mover_body *mb, dvec2 d)
     }
 }
 
-/* Where the ray q + t·D (bitmap frame, t in [0, *t)) first enters the grown square centred at c; *t, *n updated. */
-static void ray_grown(const mover_body *mb, double r, dvec2 q, dvec2 D, dvec2 c, double *t, dvec2 *n)
+/* Append mb's edge pixels within the world box [lo, hi] to mv->px, row by row; false when out of memory. */
+static bool collect_edges(mover *mv, mover_body *mb, dvec2 lo, dvec2 hi)
+{
+    const body *bd = mb->b;
+    const pp_raster *r = &bd->raster;
+    mb->first = mv->n_px, mb->count = 0;
+    double ax = INFINITY, ay = INFINITY, bx = -INFINITY, by = -INFINITY;
+    for (int c = 0; c < 4; c++) {
+        const dvec2 q = body_world_to_local(bd, dv(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y));
+        ax = fmin(ax, q.x), ay = fmin(ay, q.y), bx = fmax(bx, q.x), by = fmax(by, q.y);
+    }
+    ax = fmax(floor(ax), r->x0), ay = fmax(floor(ay), r->y0);
+    bx = fmin(ceil(bx), r->x1 - 1.0), by = fmin(ceil(by), r->y1 - 1.0);
+    if (!(ax <= bx && ay <= by))
+        return true;
+    for (int32_t y = (int32_t)ay; y <= (int32_t)by; y++) {
+        if (r->row_count[y] == 0)
+            continue;
+        for (int32_t x = (int32_t)ax; x <= (int32_t)bx; x += 62) {
+            const int32_t w = (int32_t)fmin(62, bx - x + 1);
+            for (uint64_t e = raster_edge_bits(r, y, x, w); e; e &= e - 1) {
+                if (!ARRAY_RESERVE(mv->px, mv->px_capacity, mv->n_px + 1))
+                    return false;
+                mv->px[mv->n_px++] = (mover_pixel){x + __builtin_ctzll(e), y};
+            }
+        }
+    }
+    mb->count = mv->n_px - mb->first;
+    return true;
+}
+
+/* Where the ray q + t·D (bitmap frame, t in [0, *t)) first enters the grown square centred at c; *t, *n updated.
+ * dlen is |D|. */
+static void ray_grown(const mover_body *mb, double r, dvec2 q, dvec2 D, double dlen, dvec2 c, double *t, dvec2 *n)
 {
     const dvec2 p = dv_sub(q, c);
-    /* Inside already (deeper than rounding): a touch at 0 unless the motion leaves it. */
-    double deepest = -INFINITY;
+    /* The deepest face's distance bounds the distance to the polygon from below: a ray that cannot close it to r
+     * meets nothing (most pixels of a cast's box). */
+    double side[8], deepest = -INFINITY;
     int deep_k = 0;
     for (int k = 0; k < mb->nv; k++) {
-        const double s = dv_dot(mb->n[k], dv_sub(p, mb->v[k]));
-        if (s > deepest)
-            deepest = s, deep_k = k;
+        side[k] = dv_dot(mb->n[k], dv_sub(p, mb->v[k]));
+        if (side[k] > deepest)
+            deepest = side[k], deep_k = k;
     }
+    if (deepest - dlen * *t >= r)
+        return;
+    /* Inside already (deeper than rounding): a touch at 0 unless the motion leaves it. */
     if (deepest < r - 1e-7) {
         dvec2 out = mb->n[deep_k];
         if (deepest > 0) { /* near a vertex or an edge outside the polygon: the nearest feature's direction */
             double best = INFINITY;
+            dvec2 f_best = out;
+            int k_best = deep_k;
             for (int k = 0; k < mb->nv; k++) {
-                const dvec2 e = dv_scale(dv(-mb->n[k].y, mb->n[k].x), 1), w = dv_sub(p, mb->v[k]);
-                const double u = fmin(fmax(dv_dot(w, e), 0), mb->len[k]);
+                const dvec2 e = dv(-mb->n[k].y, mb->n[k].x), w = dv_sub(p, mb->v[k]);
+                const double u = dmin(dmax(dv_dot(w, e), 0), mb->len[k]);
                 const dvec2 f = dv_sub(w, dv_scale(e, u));
-                const double dist = dv_norm(f);
-                if (dist < best)
-                    best = dist, out = dist > 0 ? dv_scale(f, 1 / dist) : mb->n[k];
+                const double dist2 = dv_dot(f, f);
+                if (dist2 < best)
+                    best = dist2, f_best = f, k_best = k;
             }
-            if (best >= r - 1e-7)
+            if (best >= (r - 1e-7) * (r - 1e-7))
                 goto outside;
+            const double dist = sqrt(best);
+            out = dist > 0 ? dv_scale(f_best, 1 / dist) : mb->n[k_best];
         }
         if (dv_dot(out, D) < 0)
             *t = 0, *n = out;
         return;
     }
-outside:
+outside:;
+    const double a = dv_dot(D, D);
     for (int k = 0; k < mb->nv; k++) {
         const double dn = dv_dot(mb->n[k], D);
         if (dn < 0) { /* the edge's face, moved out by r */
-            const double s = dv_dot(mb->n[k], dv_sub(p, mb->v[k])), te = (r - s) / dn;
+            const double te = (r - side[k]) / dn;
             if (te >= 0 && te < *t) {
                 const dvec2 e = dv(-mb->n[k].y, mb->n[k].x);
                 const double u = dv_dot(e, dv_sub(dv_add(p, dv_scale(D, te)), mb->v[k]));
@@ -132,9 +184,9 @@ outside:
         }
         /* The vertex's disc. */
         const dvec2 w = dv_sub(p, mb->v[k]);
-        const double a = dv_dot(D, D), b = dv_dot(w, D), cc = dv_dot(w, w) - r * r;
+        const double b = dv_dot(w, D);
         if (b < 0 && a > 0) {
-            const double disc = b * b - a * cc;
+            const double disc = b * b - a * (dv_dot(w, w) - r * r);
             if (disc > 0) {
                 const double tv = (-b - sqrt(disc)) / a;
                 if (tv >= 0 && tv < *t)
@@ -151,6 +203,7 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
     const double rx = mv->r + 1.5, ry = mv->r + mv->hh + 1.5;
     const dvec2 lo = dv(fmin(p.x, p.x + d.x) - rx, fmin(p.y, p.y + d.y) - ry);
     const dvec2 hi = dv(fmax(p.x, p.x + d.x) + rx, fmax(p.y, p.y + d.y) + ry);
+    PP_ASSERT(lo.x >= mv->lo.x && lo.y >= mv->lo.y && hi.x <= mv->hi.x && hi.y <= mv->hi.y);
     for (int32_t k = 0; k < mv->n; k++) {
         const mover_body *mb = &mv->bodies[k];
         const body *bd = mb->b;
@@ -167,20 +220,26 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
         if (!(ax <= bx && ay <= by))
             continue;
         const dvec2 q = body_world_to_local(bd, p), D = dv_unrot(d, bd->cos_a, bd->sin_a);
+        const double dlen = sqrt(dv_dot(D, D));
         double t = hit->t;
         dvec2 n = dv(0, 0);
         int32_t hx = 0, hy = 0;
-        for (int32_t y = (int32_t)ay; y <= (int32_t)by; y++) {
-            if (r->row_count[y] == 0)
+        const mover_pixel *px = mv->px + mb->first, *end = px + mb->count;
+        int32_t a = 0, z = mb->count; /* the first at or past row ay */
+        while (a < z) {
+            const int32_t mid = a + (z - a) / 2;
+            if (px[mid].y < ay)
+                a = mid + 1;
+            else
+                z = mid;
+        }
+        for (px += a; px < end && px->y <= by; px++) {
+            if (px->x < ax || px->x > bx)
                 continue;
-            for (int32_t x = raster_row_next(r, y, (int32_t)ax); x <= (int32_t)bx; x = raster_row_next(r, y, x + 1)) {
-                if (!raster_edge_pixel(r, x, y)) /* one with none: its neighbours are met first */
-                    continue;
-                const double before = t;
-                ray_grown(mb, mv->r, q, D, dv(x + 0.5, y + 0.5), &t, &n);
-                if (t < before)
-                    hx = x, hy = y;
-            }
+            const double before = t;
+            ray_grown(mb, mv->r, q, D, dlen, dv(px->x + 0.5, px->y + 0.5), &t, &n);
+            if (t < before)
+                hx = px->x, hy = px->y;
         }
         if (t < hit->t || (t == hit->t && !hit->b && t < 1.0)) {
             const dvec2 nw = dv_rot(n, bd->cos_a, bd->sin_a);
@@ -215,10 +274,12 @@ static dvec2 pixel_normal(const body *bd, dvec2 point, dvec2 fallback)
     const int32_t y0 = (int32_t)fmax(floor(c.y - R), r->y0), y1 = (int32_t)fmin(ceil(c.y + R), r->y1 - 1.0);
     const int32_t x0 = (int32_t)fmax(floor(c.x - R), r->x0), x1 = (int32_t)fmin(ceil(c.x + R), r->x1 - 1.0);
     double sx = 0, sy = 0;
+    PP_ASSERT(x1 - x0 < 63);
     for (int32_t y = y0; y <= y1; y++) {
-        if (r->row_count[y] == 0)
+        if (r->row_count[y] == 0 || x0 > x1)
             continue;
-        for (int32_t x = raster_row_next(r, y, x0); x <= x1; x = raster_row_next(r, y, x + 1)) {
+        for (uint64_t m = raster_row_bits(r, y, x0) & (((uint64_t)2 << (x1 - x0)) - 1); m; m &= m - 1) {
+            const int32_t x = x0 + __builtin_ctzll(m);
             const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y, w = 1 - (dx * dx + dy * dy) / (R * R);
             if (w > 0)
                 sx += w * w * dx, sy += w * w * dy;
@@ -360,6 +421,11 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
 
     /* Every body the whole move can reach: the motion, a step up and a snap down, the capsule and a pixel. */
     const double reach = def->radius + def->half_height + def->step_height + def->snap_distance + MOVER_NORMAL_RADIUS + 2;
+    /* What the casts reach: the capsule's bound around the motion, a step up or a snap down, and a pixel. */
+    const double cast_reach = def->radius + def->half_height + fmax(def->step_height, def->snap_distance) + MOVER_PROBE + 3;
+    /* Slides turn the motion but never lengthen it: every cast stays within |d| of p0, and a step or a snap. */
+    const double go = dv_norm(d) + cast_reach;
+    mv.lo = dv(p0.x - go, p0.y - go), mv.hi = dv(p0.x + go, p0.y + go);
     const pp_aabb box = {fmin(p0.x, p0.x + d.x) - reach, fmin(p0.y, p0.y + d.y) - reach, fmax(p0.x, p0.x + d.x) + reach,
                          fmax(p0.y, p0.y + d.y) + reach};
     int32_t *near = NULL, n_near = 0;
@@ -377,6 +443,10 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
         mover_body *mb = &mv.bodies[mv.n++];
         mb->b = o;
         grown_square(mb, dv_unrot(dv(0, def->half_height), o->cos_a, o->sin_a));
+        if (!collect_edges(&mv, mb, mv.lo, mv.hi)) {
+            pp_free(near), pp_free(mv.bodies), pp_free(mv.px);
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: out of memory for the pixels near the character", fn);
+        }
     }
     pp_free(near);
 
@@ -419,6 +489,7 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
             s.p = q, end = there, s.surfaces++;
     }
     pp_free(mv.bodies);
+    pp_free(mv.px);
 
     *out = (pp_character_move){.position = vec2_of(s.p), .velocity = vec2_of(s.v), .surfaces = s.surfaces};
     if (end.b) {
