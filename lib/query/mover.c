@@ -16,6 +16,17 @@
 #define MOVER_PLANES 4        /* planes one slide keeps */
 #define MOVER_PROBE 0.1       /* px below the capsule that still counts as standing */
 #define MOVER_NORMAL_RADIUS 8 /* px around the touch whose pixels give the ground's normal */
+/* A walker rides the pixels' exact contact smoothed: its height moves toward it by at most MOVER_RIDE_RATE, riding up
+ * to MOVER_RIDE_SINK into the pixel centres (under the contract's half pixel) or MOVER_RIDE_FLOAT above the pixels,
+ * so that ±1 px noise does not shake it. On ground sloping more than MOVER_RIDE_LEVEL (the pixel normal's slope on
+ * ±1 px noise stays under 0.21) the rate grows by twice the excess slope times the travel, so that a slope is
+ * followed, not sunk into. The next move starts again from the exact contact, looked for from MOVER_RIDE_LIFT above
+ * (more than a ride sinks: the centres' half pixel, the sink and the skin). */
+#define MOVER_RIDE_RATE 27.0  /* px/s: 0.45 px a frame at 60 Hz */
+#define MOVER_RIDE_LEVEL 0.25 /* rise per px */
+#define MOVER_RIDE_SINK 0.4   /* px */
+#define MOVER_RIDE_FLOAT 1.5  /* px */
+#define MOVER_RIDE_LIFT 1.5   /* px */
 
 PP_API pp_character_def pp_character_def_default(void)
 {
@@ -251,6 +262,58 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
     }
 }
 
+/* The first δ at which the point w − δ·D comes within rr of the segment {s·a : |s| ≤ hh} (a unit), or INFINITY. */
+static double point_capsule(dvec2 w, dvec2 D, dvec2 a, double hh, double rr)
+{
+    double first = INFINITY;
+    for (int e = -1; e <= 1; e += 2) { /* the end discs */
+        const dvec2 c = dv_sub(w, dv_scale(a, e * hh));
+        const double A = dv_dot(D, D), B = -dv_dot(c, D), C = dv_dot(c, c) - rr * rr, disc = B * B - A * C;
+        if (A > 0 && disc >= 0) {
+            const double t = (-B - sqrt(disc)) / A;
+            if (t >= 0 && t < first)
+                first = t;
+        }
+    }
+    const dvec2 nrm = dv(-a.y, a.x);
+    const double u0 = dv_dot(w, nrm), du = dv_dot(D, nrm);
+    for (int e = -1; e <= 1 && du != 0; e += 2) { /* the sides */
+        const double t = (u0 - e * rr) / du, along = dv_dot(dv_sub(w, dv_scale(D, t)), a);
+        if (t >= 0 && t < first && fabs(along) <= hh)
+            first = t;
+    }
+    return first;
+}
+
+/* How far the capsule at p moves by `dir` (unit), up to max, before its axis comes within rr of a solid pixel's
+ * centre; p clear of them by rr. Only edge pixels' centres can be met first (an inner one has a neighbour nearer). */
+static double sink_room(const mover *mv, dvec2 p, dvec2 dir, double max, double rr)
+{
+    const double rx = rr + 1.5, ry = rr + mv->hh + 1.5;
+    const dvec2 e = dv_add(p, dv_scale(dir, max));
+    const dvec2 lo = dv(dmin(p.x, e.x) - rx, dmin(p.y, e.y) - ry), hi = dv(dmax(p.x, e.x) + rx, dmax(p.y, e.y) + ry);
+    PP_ASSERT(lo.x >= mv->lo.x && lo.y >= mv->lo.y && hi.x <= mv->hi.x && hi.y <= mv->hi.y);
+    double room = max;
+    for (int32_t k = 0; k < mv->n; k++) {
+        const mover_body *mb = &mv->bodies[k];
+        const body *bd = mb->b;
+        if (bd->aabb.x0 > hi.x || bd->aabb.x1 < lo.x || bd->aabb.y0 > hi.y || bd->aabb.y1 < lo.y)
+            continue;
+        double ax = INFINITY, ay = INFINITY, bx = -INFINITY, by = -INFINITY;
+        for (int c = 0; c < 4; c++) {
+            const dvec2 q = body_world_to_local(bd, dv(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y));
+            ax = dmin(ax, q.x), ay = dmin(ay, q.y), bx = dmax(bx, q.x), by = dmax(by, q.y);
+        }
+        const dvec2 q = body_world_to_local(bd, p), D = dv_unrot(dir, bd->cos_a, bd->sin_a);
+        const dvec2 a = dv_unrot(dv(0, 1), bd->cos_a, bd->sin_a);
+        const mover_pixel *px = mv->px + mb->first, *end = px + mb->count;
+        for (; px < end && px->y <= by; px++)
+            if (px->y >= ay - 1 && px->x >= ax - 1 && px->x <= bx)
+                room = dmin(room, point_capsule(dv(px->x + 0.5 - q.x, px->y + 0.5 - q.y), D, a, mv->hh, rr));
+    }
+    return room;
+}
+
 /* Move from *p by d until a touch, stopping MOVER_SKIN short of it; the part of d moved. */
 static double advance(const mover *mv, dvec2 *p, dvec2 d, mover_hit *hit)
 {
@@ -422,7 +485,9 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
     /* Every body the whole move can reach: the motion, a step up and a snap down, the capsule and a pixel. */
     const double reach = def->radius + def->half_height + def->step_height + def->snap_distance + MOVER_NORMAL_RADIUS + 2;
     /* What the casts reach: the capsule's bound around the motion, a step up or a snap down, and a pixel. */
-    const double cast_reach = def->radius + def->half_height + fmax(def->step_height, def->snap_distance) + MOVER_PROBE + 3;
+    const double cast_reach = def->radius + def->half_height +
+                              fmax(fmax(def->step_height, def->snap_distance), MOVER_RIDE_LIFT + MOVER_RIDE_FLOAT) +
+                              MOVER_PROBE + 3;
     /* Slides turn the motion but never lengthen it: every cast stays within |d| of p0, and a step or a snap. */
     const double go = dv_norm(d) + cast_reach;
     mv.lo = dv(p0.x - go, p0.y - go), mv.hi = dv(p0.x + go, p0.y + go);
@@ -450,24 +515,38 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
     }
     pp_free(near);
 
-    const ground start = find_ground(&mv, cos_slope, p0, MOVER_PROBE);
-    slide_result s = slide(&mv, cos_slope, p0, d, v0);
+    /* A walker (not rising) may ride up to MOVER_RIDE_SINK into the pixels or MOVER_RIDE_FLOAT above them: its move
+     * starts from the exact contact under it. */
+    const bool walking = dv_dot(v0, mv.up) <= 1e-9;
+    dvec2 e0 = p0;
+    ground start = {0};
+    if (walking) {
+        dvec2 q = p0;
+        mover_hit hit;
+        advance(&mv, &q, dv_scale(mv.up, MOVER_RIDE_LIFT), &hit);
+        advance(&mv, &q, dv_scale(mv.up, -(dv_dot(dv_sub(q, p0), mv.up) + MOVER_RIDE_FLOAT + MOVER_PROBE)), &hit);
+        if (hit.b && (start = find_ground(&mv, cos_slope, q, MOVER_PROBE)).b)
+            e0 = q;
+    } else {
+        start = find_ground(&mv, cos_slope, p0, MOVER_PROBE);
+    }
+    slide_result s = slide(&mv, cos_slope, e0, d, v0);
 
     /* A ledge: up by step_height, the level part of the motion, down again onto walkable ground. */
     const dvec2 level = dv_sub(d, dv_scale(mv.up, dv_dot(d, mv.up)));
     if (start.b && s.wall && def->step_height > 0 && dv_dot(d, mv.up) <= 1e-9 && dv_norm(level) > 1e-7) {
-        dvec2 q = p0;
+        dvec2 q = e0;
         mover_hit hit;
         advance(&mv, &q, dv_scale(mv.up, def->step_height), &hit);
-        const double rose = dv_dot(dv_sub(q, p0), mv.up);
+        const double rose = dv_dot(dv_sub(q, e0), mv.up);
         slide_result t = slide(&mv, cos_slope, q, level, v0);
         dvec2 down = t.p;
         advance(&mv, &down, dv_scale(mv.up, -(rose + MOVER_PROBE)), &hit);
         const dvec2 lu = dv_scale(level, 1 / dv_norm(level));
         /* Climbing the rest of a taller ledge by its rounded corner is no step. */
-        if (hit.b && dv_dot(dv_sub(down, p0), mv.up) <= def->step_height + 0.05 &&
+        if (hit.b && dv_dot(dv_sub(down, e0), mv.up) <= def->step_height + 0.05 &&
             find_ground(&mv, cos_slope, down, MOVER_PROBE).b &&
-            dv_dot(dv_sub(down, p0), lu) > dv_dot(dv_sub(s.p, p0), lu) + 1e-3) {
+            dv_dot(dv_sub(down, e0), lu) > dv_dot(dv_sub(s.p, e0), lu) + 1e-3) {
             t.p = down, t.surfaces += s.surfaces;
             s = t;
         }
@@ -475,18 +554,40 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
 
     /* Walking over a bump or up a slope does not launch the character: no rise it did not ask for. */
     const double rise = dv_dot(s.v, mv.up);
-    if (start.b && dv_dot(v0, mv.up) <= 1e-9 && rise > 0)
+    if (start.b && walking && rise > 0)
         s.v = dv_sub(s.v, dv_scale(mv.up, rise));
 
     ground end = find_ground(&mv, cos_slope, s.p, MOVER_PROBE);
     /* Keep to the ground: a grounded character not rising snaps down to ground within snap_distance. */
-    if (!end.b && start.b && def->snap_distance > 0 && dv_dot(v0, mv.up) <= 1e-9) {
+    if (!end.b && start.b && def->snap_distance > 0 && walking) {
         dvec2 q = s.p;
         mover_hit hit;
         advance(&mv, &q, dv_scale(mv.up, -def->snap_distance), &hit);
         const ground there = hit.b ? find_ground(&mv, cos_slope, q, MOVER_PROBE) : (ground){0};
         if (there.b)
             s.p = q, end = there, s.surfaces++;
+    }
+
+    /* The ride: from the host's height toward the exact contact by at most MOVER_RIDE_RATE (descending as fast as
+     * the motion asks), floating at most MOVER_RIDE_FLOAT above it (no ceiling crossed), sinking no deeper than
+     * MOVER_RIDE_SINK into the pixel centres. */
+    if (walking && start.b && end.b) {
+        const double h0 = dv_dot(p0, mv.up), he = dv_dot(s.p, mv.up), nu = dv_dot(end.normal, mv.up);
+        const dvec2 went = dv_sub(s.p, e0);
+        const double travel = dv_norm(dv_sub(went, dv_scale(mv.up, dv_dot(went, mv.up))));
+        const double slope = sqrt(dmax(0, 1 - nu * nu)) / nu; /* nu ≥ cos max_slope > 0: walkable */
+        const double lim = MOVER_RIDE_RATE * dt + 2 * dmax(slope - MOVER_RIDE_LEVEL, 0) * travel;
+        double h = h0 + dmin(dmax(he - h0, dmin(-lim, dv_dot(d, mv.up))), lim);
+        h = dmin(h, he + MOVER_RIDE_FLOAT);
+        if (h < he) {
+            h = he - sink_room(&mv, s.p, dv_scale(mv.up, -1), he - h, mv.r - MOVER_RIDE_SINK);
+        } else if (h > he) {
+            dvec2 q = s.p;
+            mover_hit hit;
+            advance(&mv, &q, dv_scale(mv.up, h - he), &hit);
+            h = dv_dot(q, mv.up);
+        }
+        s.p = dv_add(s.p, dv_scale(mv.up, h - he));
     }
     pp_free(mv.bodies);
     pp_free(mv.px);
