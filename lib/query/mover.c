@@ -380,7 +380,7 @@ typedef struct slide_result {
 
 /* Cast and slide: d from p, the velocity v losing what each plane met takes. A steep plane met while walking
  * (not rising of its own) does not lift the character: its normal counts level. */
-static slide_result slide(const mover *mv, double cos_slope, dvec2 p, dvec2 d, dvec2 v)
+static slide_result slide(const mover *mv, double cos_slope, dvec2 p, dvec2 d, dvec2 v, const mover_hit *touching)
 {
     slide_result s = {p, v, 0, false};
     dvec2 planes[MOVER_PLANES];
@@ -388,7 +388,12 @@ static slide_result slide(const mover *mv, double cos_slope, dvec2 p, dvec2 d, d
     const bool rising = dv_dot(d, mv->up) > 1e-9;
     for (int it = 0; it < MOVER_ITERATIONS && dv_norm(d) > 1e-7; it++) {
         mover_hit hit;
-        const double moved = advance(mv, &s.p, d, &hit);
+        double moved;
+        /* A touch p already rests on (a skin away) that d goes into: the first cast's answer, known. */
+        if (it == 0 && touching && touching->b && -dv_dot(d, touching->normal) > MOVER_SKIN)
+            hit = *touching, moved = 0;
+        else
+            moved = advance(mv, &s.p, d, &hit);
         if (!hit.b)
             break;
         s.surfaces++;
@@ -423,17 +428,24 @@ typedef struct ground {
     dvec2 normal, point;
 } ground;
 
-/* The walkable ground within `depth` below p: its body, its pixels' normal and the touch; b NULL when none. */
-static ground find_ground(const mover *mv, double cos_slope, dvec2 p, double depth)
+/* The ground a cast down met: its body, its pixels' normal and the touch; b NULL when none or not walkable. */
+static ground ground_of(const mover *mv, double cos_slope, const mover_hit *hit_)
 {
-    mover_hit hit;
-    capsule_cast(mv, p, dv_scale(mv->up, -depth), &hit);
+    const mover_hit hit = *hit_;
     if (!hit.b || dv_dot(hit.normal, mv->up) <= 0)
         return (ground){0};
     const dvec2 n = pixel_normal(hit.b, hit.point, hit.normal);
     if (dv_dot(n, mv->up) < cos_slope)
         return (ground){0};
     return (ground){hit.b, n, hit.point};
+}
+
+/* The walkable ground within `depth` below p. */
+static ground find_ground(const mover *mv, double cos_slope, dvec2 p, double depth)
+{
+    mover_hit hit;
+    capsule_cast(mv, p, dv_scale(mv->up, -depth), &hit);
+    return ground_of(mv, cos_slope, &hit);
 }
 
 static pp_status check_def(const pp_character_def *def, const char *fn)
@@ -520,17 +532,19 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
     const bool walking = dv_dot(v0, mv.up) <= 1e-9;
     dvec2 e0 = p0;
     ground start = {0};
+    mover_hit under = {0};
     if (walking) {
-        dvec2 q = p0;
-        mover_hit hit;
-        advance(&mv, &q, dv_scale(mv.up, MOVER_RIDE_LIFT), &hit);
-        advance(&mv, &q, dv_scale(mv.up, -(dv_dot(dv_sub(q, p0), mv.up) + MOVER_RIDE_FLOAT + MOVER_PROBE)), &hit);
-        if (hit.b && (start = find_ground(&mv, cos_slope, q, MOVER_PROBE)).b)
+        /* A cast down is never stopped by pixels it starts in and leaves (a ceiling's): no cast up first. */
+        dvec2 q = dv_add(p0, dv_scale(mv.up, MOVER_RIDE_LIFT));
+        advance(&mv, &q, dv_scale(mv.up, -(MOVER_RIDE_LIFT + MOVER_RIDE_FLOAT + MOVER_PROBE)), &under);
+        if ((start = ground_of(&mv, cos_slope, &under)).b)
             e0 = q;
+        else
+            under.b = NULL;
     } else {
         start = find_ground(&mv, cos_slope, p0, MOVER_PROBE);
     }
-    slide_result s = slide(&mv, cos_slope, e0, d, v0);
+    slide_result s = slide(&mv, cos_slope, e0, d, v0, &under);
 
     /* A ledge: up by step_height, the level part of the motion, down again onto walkable ground. */
     const dvec2 level = dv_sub(d, dv_scale(mv.up, dv_dot(d, mv.up)));
@@ -539,7 +553,7 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
         mover_hit hit;
         advance(&mv, &q, dv_scale(mv.up, def->step_height), &hit);
         const double rose = dv_dot(dv_sub(q, e0), mv.up);
-        slide_result t = slide(&mv, cos_slope, q, level, v0);
+        slide_result t = slide(&mv, cos_slope, q, level, v0, NULL);
         dvec2 down = t.p;
         advance(&mv, &down, dv_scale(mv.up, -(rose + MOVER_PROBE)), &hit);
         const dvec2 lu = dv_scale(level, 1 / dv_norm(level));
