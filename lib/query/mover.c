@@ -244,8 +244,21 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
             else
                 z = mid;
         }
+        /* A body whose columns run along the capsule (unrotated, or by half turns): per row, only the pixels within
+         * the capsule-and-square's half width of the path (the least gap over the path, as if its every point were
+         * the nearest) can be met. */
+        const bool upright = bd->sin_a == 0;
+        int32_t row = INT32_MIN;
+        double row_x0 = ax, row_x1 = bx;
         for (px += a; px < end && px->y <= by; px++) {
-            if (px->x < ax || px->x > bx)
+            if (upright && px->y != row) {
+                row = px->y;
+                const double y0 = dmin(q.y, q.y + D.y * t), y1 = dmax(q.y, q.y + D.y * t), cy = row + 0.5;
+                const double e = dmax(0, dmax(y0 - cy, cy - y1) - mv->hh - 0.5);
+                const double hw = e < mv->r ? 0.5 + sqrt(mv->r * mv->r - e * e) + 1e-6 : -1;
+                row_x0 = dmax(ax, dmin(q.x, q.x + D.x * t) - hw - 0.5), row_x1 = dmin(bx, dmax(q.x, q.x + D.x * t) + hw - 0.5);
+            }
+            if (px->x < row_x0 || px->x > row_x1)
                 continue;
             const double before = t;
             ray_grown(mb, mv->r, q, D, dlen, dv(px->x + 0.5, px->y + 0.5), &t, &n);
