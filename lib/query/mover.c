@@ -510,10 +510,10 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
     /* Every body the whole move can reach: the motion, a step up and a snap down, the capsule and a pixel. */
     const double reach = def->radius + def->half_height + def->step_height + def->snap_distance + MOVER_NORMAL_RADIUS + 2;
     /* What the casts reach: the capsule's bound around the motion, a step up or a snap down, and a pixel. */
-    const double cast_reach = def->radius + def->half_height +
-                              fmax(fmax(def->step_height, def->snap_distance), MOVER_RIDE_LIFT + MOVER_RIDE_FLOAT) +
-                              MOVER_PROBE + 3;
-    /* Slides turn the motion but never lengthen it: every cast stays within |d| of p0, and a step or a snap. */
+    const double cast_reach = def->radius + def->half_height + fmax(def->step_height, def->snap_distance) +
+                              MOVER_RIDE_LIFT + MOVER_RIDE_FLOAT + MOVER_PROBE + 3;
+    /* Slides turn the motion but never lengthen it: every cast stays within |d| of the start (the ride's lift or
+     * drop from p0), and a step or a snap. */
     const double go = dv_norm(d) + cast_reach;
     mv.lo = dv(p0.x - go, p0.y - go), mv.hi = dv(p0.x + go, p0.y + go);
     const pp_aabb box = {fmin(p0.x, p0.x + d.x) - reach, fmin(p0.y, p0.y + d.y) - reach, fmax(p0.x, p0.x + d.x) + reach,
