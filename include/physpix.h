@@ -747,7 +747,7 @@ PP_API pp_character_def pp_character_def_default(void);
 /// the bodies def->mask_bits meets, sliding along them, climbing steps, keeping to the ground; "up" is against the
 /// world's gravity ((0, -1) without one). The capsule's round bottom also climbs, as a slope, a ledge whose corner is
 /// no steeper than max_slope (up to radius·(1 − cos max_slope) high). A walker (velocity not against gravity) on the
-/// ground rides its pixels smoothed: its height moves toward the exact contact by at most 27 px/s (0.45 px a frame at
+/// ground rides its pixels smoothed: its height moves toward the exact contact by at most 18 px/s (0.3 px a frame at
 /// 60 Hz; more on ground sloping over 0.25, to follow it), so ±1 px pixel noise does not shake it, sinking at most
 /// 0.4 px into the solid pixels' centres or floating at most 1.5 px above them (still grounded); pass the position
 /// back and the next move starts from the exact contact under it. out receives where it ends. Nothing in the world

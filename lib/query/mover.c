@@ -22,7 +22,7 @@
  * ±1 px noise stays under 0.21) the rate grows by twice the excess slope times the travel, so that a slope is
  * followed, not sunk into. The next move starts again from the exact contact, looked for from MOVER_RIDE_LIFT above
  * (more than a ride sinks: the centres' half pixel, the sink and the skin). */
-#define MOVER_RIDE_RATE 27.0  /* px/s: 0.45 px a frame at 60 Hz */
+#define MOVER_RIDE_RATE 18.0  /* px/s: 0.3 px a frame at 60 Hz */
 #define MOVER_RIDE_LEVEL 0.25 /* rise per px */
 #define MOVER_RIDE_SINK 0.4   /* px */
 #define MOVER_RIDE_FLOAT 1.5  /* px */
@@ -607,7 +607,7 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
         double h = h0 + dmin(dmax(he - h0, dmin(-lim, dv_dot(d, mv.up))), lim);
         h = dmin(h, he + MOVER_RIDE_FLOAT);
         if (h < he) {
-            h = he - sink_room(&mv, s.p, dv_scale(mv.up, -1), he - h, mv.r - MOVER_RIDE_SINK);
+            h = he - sink_room(&mv, s.p, dv_scale(mv.up, -1), he - h, dmax(mv.r - MOVER_RIDE_SINK, 0.5 * mv.r));
         } else if (h > he) {
             dvec2 q = s.p;
             mover_hit hit;

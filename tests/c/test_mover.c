@@ -171,7 +171,8 @@ static double walk_bumps(float speed)
 Test(mover, on_random_bumps_it_stays_grounded_without_jitter_or_stalls)
 {
     /* A round bottom riding the pixel squares' corners would rise 1 px over √(2r − 1) ≈ 3.9 px of travel: 0.87 px in
-     * a frame at 150 px/s. The ride smooths it at a platformer's walking speeds, both ways. */
+     * a frame at 150 px/s. The ride smooths it at a platformer's walking speeds, both ways (0.3 px a frame at most
+     * here: the ride's rate). */
     const float speeds[] = {150, 250, -150, -250};
     for (size_t k = 0; k < sizeof speeds / sizeof speeds[0]; k++) {
         const double jitter = walk_bumps(speeds[k]);
