@@ -103,14 +103,20 @@ static inline uint64_t raster_row_bits(const pp_raster *r, int32_t y, int32_t x)
     return o ? lo >> o | hi << (64 - o) : lo;
 }
 
-/* Row y's pixels x .. x + n − 1 (n ≤ 62) that are solid with an empty neighbour (raster_edge_pixel), as bits. */
-static inline uint64_t raster_edge_bits(const pp_raster *r, int32_t y, int32_t x, int32_t n)
+/* From the bits of rows y − 1, y, y + 1 at x − 1 (raster_row_bits): row y's pixels x .. x + n − 1 (n ≤ 62) that are
+ * solid with an empty neighbour (raster_edge_pixel), as bits. */
+static inline uint64_t raster_edge_bits_of(uint64_t a, uint64_t s, uint64_t b, int32_t n)
 {
-    const uint64_t a = raster_row_bits(r, y - 1, x - 1), s = raster_row_bits(r, y, x - 1),
-                   b = raster_row_bits(r, y + 1, x - 1);
     /* Bit k of a run of three: pixels k − 1, k, k + 1 all solid. */
     const uint64_t inner = (a & a >> 1 & a << 1) & (s & s >> 1 & s << 1) & (b & b >> 1 & b << 1);
     return (s & ~inner) >> 1 & (n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1);
+}
+
+/* Row y's pixels x .. x + n − 1 (n ≤ 62) that are solid with an empty neighbour, as bits. */
+static inline uint64_t raster_edge_bits(const pp_raster *r, int32_t y, int32_t x, int32_t n)
+{
+    return raster_edge_bits_of(raster_row_bits(r, y - 1, x - 1), raster_row_bits(r, y, x - 1),
+                               raster_row_bits(r, y + 1, x - 1), n);
 }
 
 /* The state of tile (tx, ty) from its count (an edge tile holds fewer pixels). */

@@ -124,12 +124,28 @@ static bool collect_edges(mover *mv, mover_body *mb, dvec2 lo, dvec2 hi)
     bx = fmin(ceil(bx), r->x1 - 1.0), by = fmin(ceil(by), r->y1 - 1.0);
     if (!(ax <= bx && ay <= by))
         return true;
+    const int32_t x0 = (int32_t)ax, w = (int32_t)(bx - ax) + 1;
+    if (w <= 62) { /* one word a row: each row read once, rolling down */
+        uint64_t above = raster_row_bits(r, (int32_t)ay - 1, x0 - 1), row = raster_row_bits(r, (int32_t)ay, x0 - 1);
+        for (int32_t y = (int32_t)ay; y <= (int32_t)by; y++) {
+            const uint64_t below = raster_row_bits(r, y + 1, x0 - 1);
+            for (uint64_t e = row ? raster_edge_bits_of(above, row, below, w) : 0; e; e &= e - 1) {
+                if (!ARRAY_RESERVE(mv->px, mv->px_capacity, mv->n_px + 1))
+                    return false;
+                mv->px[mv->n_px++] = (mover_pixel){x0 + __builtin_ctzll(e), y};
+                PP_ASSERT(raster_edge_pixel(r, mv->px[mv->n_px - 1].x, y));
+            }
+            above = row, row = below;
+        }
+        mb->count = mv->n_px - mb->first;
+        return true;
+    }
     for (int32_t y = (int32_t)ay; y <= (int32_t)by; y++) {
         if (r->row_count[y] == 0)
             continue;
-        for (int32_t x = (int32_t)ax; x <= (int32_t)bx; x += 62) {
-            const int32_t w = (int32_t)fmin(62, bx - x + 1);
-            for (uint64_t e = raster_edge_bits(r, y, x, w); e; e &= e - 1) {
+        for (int32_t x = x0; x <= (int32_t)bx; x += 62) {
+            const int32_t n = (int32_t)fmin(62, bx - x + 1);
+            for (uint64_t e = raster_edge_bits(r, y, x, n); e; e &= e - 1) {
                 if (!ARRAY_RESERVE(mv->px, mv->px_capacity, mv->n_px + 1))
                     return false;
                 mv->px[mv->n_px++] = (mover_pixel){x + __builtin_ctzll(e), y};
@@ -515,7 +531,9 @@ PP_API pp_status pp_world_move_character(pp_world w, const pp_character_def *def
     /* Slides turn the motion but never lengthen it: every cast stays within |d| of the start (the ride's lift or
      * drop from p0), and a step or a snap. */
     const double go = dv_norm(d) + cast_reach;
-    mv.lo = dv(p0.x - go, p0.y - go), mv.hi = dv(p0.x + go, p0.y + go);
+    /* Under vertical gravity the lifts, drops, steps and snaps keep to the column: sideways, the motion and a disc. */
+    const double go_x = mv.up.x == 0 ? dv_norm(d) + def->radius + 3 : go;
+    mv.lo = dv(p0.x - go_x, p0.y - go), mv.hi = dv(p0.x + go_x, p0.y + go);
     const pp_aabb box = {fmin(p0.x, p0.x + d.x) - reach, fmin(p0.y, p0.y + d.y) - reach, fmax(p0.x, p0.x + d.x) + reach,
                          fmax(p0.y, p0.y + d.y) + reach};
     int32_t *near = NULL, n_near = 0;
