@@ -2,7 +2,8 @@
  * capsule's centre is a ray against every pixel square grown by the capsule (the square swept along the capsule's
  * segment, rounded by its radius); a move is a few casts, each hit a plane the rest of the motion slides along (as
  * Box2D's b2SolvePlanes), then a step over a ledge, a snap to the ground and a probe that finds the ground. The
- * ground's normal is the solid pixels' own (the direction away from their weighted centroid near the touch). */
+ * ground's normal is the solid pixels' own (the direction away from their weighted centroid near the touch). The
+ * casts read the edge pixels listed once a move; a walker's height then rides that exact contact smoothed. */
 #include "alloc.h"
 #include "awake.h"
 #include "check.h"
