@@ -90,6 +90,35 @@ static inline bool raster_edge_pixel(const pp_raster *r, int32_t x, int32_t y)
     return false;
 }
 
+/* Pixels x .. x + 63 of row y as bits (bit k is pixel x + k), 0 outside the bitmap: a row's neighbourhood read a
+ * word at a time. */
+static inline uint64_t raster_row_bits(const pp_raster *r, int32_t y, int32_t x)
+{
+    if ((uint32_t)y >= (uint32_t)r->height)
+        return 0;
+    const uint64_t *row = r->bits + (int64_t)y * r->words_per_row;
+    const int32_t w = x >= 0 ? x >> 6 : -((63 - x) >> 6), o = x - 64 * w; /* w = floor(x / 64) */
+    const uint64_t lo = w >= 0 && w < r->words_per_row ? row[w] : 0;
+    const uint64_t hi = w + 1 >= 0 && w + 1 < r->words_per_row ? row[w + 1] : 0;
+    return o ? lo >> o | hi << (64 - o) : lo;
+}
+
+/* From the bits of rows y − 1, y, y + 1 at x − 1 (raster_row_bits): row y's pixels x .. x + n − 1 (n ≤ 62) that are
+ * solid with an empty neighbour (raster_edge_pixel), as bits. */
+static inline uint64_t raster_edge_bits_of(uint64_t a, uint64_t s, uint64_t b, int32_t n)
+{
+    /* Bit k of a run of three: pixels k − 1, k, k + 1 all solid. */
+    const uint64_t inner = (a & a >> 1 & a << 1) & (s & s >> 1 & s << 1) & (b & b >> 1 & b << 1);
+    return (s & ~inner) >> 1 & (n >= 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1);
+}
+
+/* Row y's pixels x .. x + n − 1 (n ≤ 62) that are solid with an empty neighbour, as bits. */
+static inline uint64_t raster_edge_bits(const pp_raster *r, int32_t y, int32_t x, int32_t n)
+{
+    return raster_edge_bits_of(raster_row_bits(r, y - 1, x - 1), raster_row_bits(r, y, x - 1),
+                               raster_row_bits(r, y + 1, x - 1), n);
+}
+
 /* The state of tile (tx, ty) from its count (an edge tile holds fewer pixels). */
 static inline raster_state raster_tile_state(const pp_raster *r, int32_t tx, int32_t ty)
 {

@@ -1,10 +1,12 @@
 /* Raycasts and queries per second: a 4096×2048 hilly terrain with caves (a static body, about half
  * solid) under 1,000 crates of 16–32 px. Short 64 px rays (bullets), rays across the whole map, rays
  * straight down onto the terrain, circle (r 32) and box (64×64) queries at random points, and a character's move
- * (pp_world_move_character, a frame at 150 px/s on the surface; "hits": grounded after it); the best of three runs
- * of each, printed as a table and written as CSV.
+ * (pp_world_move_character, a frame at 150 px/s on the surface; "hits": grounded after it), and the same move on a
+ * plain terrain (a 2048×1024 bitmap, its lower half solid, alone in its world); the best of three runs of each,
+ * printed as a table and written as CSV.
  *
- *   bench_raycast [--csv PATH] [--scale F]   (F multiplies the counts; 1 by default)
+ *   bench_raycast [--csv PATH] [--scale F] [--only KIND]   (F multiplies the counts, 1 by default; KIND: one row's
+ *   name, e.g. "move_character flat", as under callgrind)
  */
 #include "../machine.h"
 #include "physpix.h"
@@ -63,9 +65,30 @@ static uint8_t *terrain_mask(void)
     return m;
 }
 
-enum { SHORT, LONG, DOWN, CIRCLE, BOX, MOVE, KINDS };
+enum { SHORT, LONG, DOWN, CIRCLE, BOX, MOVE, MOVE_FLAT, KINDS };
 static const char *kind_name[KINDS] = {"short 64 px", "across the map", "straight down", "query_circle r32",
-                                       "query_aabb 64x64", "move_character"};
+                                       "query_aabb 64x64", "move_character", "move_character flat"};
+
+#define FW 2048
+#define FH 1024
+
+/* The plain terrain's world: one static 2048×1024 body whose rows from FH / 2 down are solid, its top-left at (0, 0). */
+static pp_world flat_world(void)
+{
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU;
+    pp_world w;
+    check(pp_world_create(&wd, &w), "pp_world_create");
+    uint8_t *mask = calloc((size_t)FW * FH, 1);
+    memset(mask + (size_t)FW * (FH / 2), 1, (size_t)FW * (FH / 2));
+    pp_body_def d = pp_body_def_default();
+    d.type = PP_BODY_STATIC, d.width = FW, d.height = FH, d.mask = mask;
+    d.position = (pp_vec2){FW / 2.0f, FH / 2.0f};
+    pp_body b;
+    check(pp_body_create(w, &d, &b), "plain terrain");
+    free(mask);
+    return w;
+}
 
 /* Run n casts or queries of one kind from a fixed seed; returns the hits. */
 static int64_t run(pp_world w, int kind, int n)
@@ -97,6 +120,12 @@ static int64_t run(pp_world w, int kind, int n)
             pp_character_move m;
             check(pp_world_move_character(w, &c, at, v, 1.0f / 60, &m), "move_character");
             hit = (int32_t)m.grounded;
+        } else if (kind == MOVE_FLAT) { /* on the plain terrain, standing on its surface (y FH / 2) */
+            const pp_character_def c = pp_character_def_default();
+            const pp_vec2 at = {(float)(20 + (FW - 40) * rnd()), FH / 2 - 16.01f}, v = {rnd() < 0.5 ? -150.0f : 150.0f, 16};
+            pp_character_move m;
+            check(pp_world_move_character(w, &c, at, v, 1.0f / 60, &m), "move_character");
+            hit = (int32_t)m.grounded;
         } else {
             check(pp_world_query_aabb(w, (pp_vec2){x - 32, y - 32}, (pp_vec2){x + 32, y + 32}, 0xffffffffu, found, 64,
                                       &hit),
@@ -111,13 +140,16 @@ int main(int argc, char **argv)
 {
     const char *csv_path = NULL;
     double scale = 1;
+    const char *only = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--csv") && i + 1 < argc)
             csv_path = argv[++i];
         else if (!strcmp(argv[i], "--scale") && i + 1 < argc)
             scale = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
         else {
-            fprintf(stderr, "usage: bench_raycast [--csv PATH] [--scale F]\n");
+            fprintf(stderr, "usage: bench_raycast [--csv PATH] [--scale F] [--only KIND]\n");
             return 2;
         }
     }
@@ -147,13 +179,14 @@ int main(int argc, char **argv)
         pp_body b;
         check(pp_body_create(w, &bd, &b), "crate");
     }
-    const int counts[KINDS] = {200000, 20000, 100000, 100000, 100000, 50000};
+    const int counts[KINDS] = {200000, 20000, 100000, 100000, 100000, 50000, 50000};
+    const pp_world flat = flat_world();
     char cpu[256];
     bench_cpu_model(cpu, sizeof cpu);
     printf("raycasts and queries: a %d x %d terrain (%.0f%% solid, caves), %d crates of 16-32 px; best of 3 runs\n",
            TW, TH, 100.0 * solid / ((double)TW * TH), CRATES);
     printf("machine: %s\n", cpu);
-    printf("%-18s %8s %9s %12s %11s %7s\n", "kind", "rays", "seconds", "rays/s", "mean us", "hits %");
+    printf("%-20s %8s %9s %12s %11s %7s\n", "kind", "rays", "seconds", "rays/s", "mean us", "hits %");
     FILE *f = NULL;
     if (csv_path && !(f = fopen(csv_path, "w"))) {
         perror(csv_path);
@@ -162,15 +195,17 @@ int main(int argc, char **argv)
     if (f)
         fprintf(f, "kind,rays,seconds,rays_per_s,mean_us,hit_pct\n");
     for (int k = 0; k < KINDS; k++) {
+        if (only && strcmp(only, kind_name[k]))
+            continue;
         const int n = (int)fmax(1, counts[k] * scale);
         double best = INFINITY;
         int64_t hits = 0;
         for (int rep = 0; rep < 3; rep++) {
             const double t0 = bench_clock_ms();
-            hits = run(w, k, n);
+            hits = run(k == MOVE_FLAT ? flat : w, k, n);
             best = fmin(best, (bench_clock_ms() - t0) / 1e3);
         }
-        printf("%-18s %8d %9.3f %12.0f %11.3f %7.1f\n", kind_name[k], n, best, n / best, best * 1e6 / n,
+        printf("%-20s %8d %9.3f %12.0f %11.3f %7.1f\n", kind_name[k], n, best, n / best, best * 1e6 / n,
                100.0 * hits / n);
         if (f)
             fprintf(f, "%s,%d,%.6f,%.1f,%.4f,%.2f\n", kind_name[k], n, best, n / best, best * 1e6 / n, 100.0 * hits / n);
@@ -180,5 +215,6 @@ int main(int argc, char **argv)
         printf("wrote %s\n", csv_path);
     }
     check(pp_world_destroy(w), "pp_world_destroy");
+    check(pp_world_destroy(flat), "pp_world_destroy");
     return 0;
 }
