@@ -110,20 +110,29 @@ static void grown_square(mover_body *mb, dvec2 d)
     }
 }
 
+/* The pixels of bd's solid bounds under the world box [lo, hi] (its corners mapped into the bitmap), inclusive, as
+ * whole numbers in doubles; false when none. */
+static bool pixel_box(const body *bd, dvec2 lo, dvec2 hi, double *ax, double *ay, double *bx, double *by)
+{
+    const pp_raster *r = &bd->raster;
+    *ax = *ay = INFINITY, *bx = *by = -INFINITY;
+    for (int c = 0; c < 4; c++) {
+        const dvec2 q = body_world_to_local(bd, dv(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y));
+        *ax = fmin(*ax, q.x), *ay = fmin(*ay, q.y), *bx = fmax(*bx, q.x), *by = fmax(*by, q.y);
+    }
+    *ax = fmax(floor(*ax), r->x0), *ay = fmax(floor(*ay), r->y0);
+    *bx = fmin(ceil(*bx), r->x1 - 1.0), *by = fmin(ceil(*by), r->y1 - 1.0);
+    return *ax <= *bx && *ay <= *by;
+}
+
 /* Append mb's edge pixels within the world box [lo, hi] to mv->px, row by row; false when out of memory. */
 static bool collect_edges(mover *mv, mover_body *mb, dvec2 lo, dvec2 hi)
 {
     const body *bd = mb->b;
     const pp_raster *r = &bd->raster;
     mb->first = mv->n_px, mb->count = 0;
-    double ax = INFINITY, ay = INFINITY, bx = -INFINITY, by = -INFINITY;
-    for (int c = 0; c < 4; c++) {
-        const dvec2 q = body_world_to_local(bd, dv(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y));
-        ax = fmin(ax, q.x), ay = fmin(ay, q.y), bx = fmax(bx, q.x), by = fmax(by, q.y);
-    }
-    ax = fmax(floor(ax), r->x0), ay = fmax(floor(ay), r->y0);
-    bx = fmin(ceil(bx), r->x1 - 1.0), by = fmin(ceil(by), r->y1 - 1.0);
-    if (!(ax <= bx && ay <= by))
+    double ax, ay, bx, by;
+    if (!pixel_box(bd, lo, hi, &ax, &ay, &bx, &by))
         return true;
     const int32_t x0 = (int32_t)ax, w = (int32_t)(bx - ax) + 1;
     if (w <= 62) { /* one word a row: each row read once, rolling down */
@@ -237,15 +246,8 @@ static void capsule_cast(const mover *mv, dvec2 p, dvec2 d, mover_hit *hit)
         const body *bd = mb->b;
         if (bd->aabb.x0 > hi.x || bd->aabb.x1 < lo.x || bd->aabb.y0 > hi.y || bd->aabb.y1 < lo.y)
             continue;
-        const pp_raster *r = &bd->raster;
-        double ax = INFINITY, ay = INFINITY, bx = -INFINITY, by = -INFINITY;
-        for (int c = 0; c < 4; c++) {
-            const dvec2 q = body_world_to_local(bd, dv(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y));
-            ax = fmin(ax, q.x), ay = fmin(ay, q.y), bx = fmax(bx, q.x), by = fmax(by, q.y);
-        }
-        ax = fmax(floor(ax), r->x0), ay = fmax(floor(ay), r->y0);
-        bx = fmin(ceil(bx), r->x1 - 1.0), by = fmin(ceil(by), r->y1 - 1.0);
-        if (!(ax <= bx && ay <= by))
+        double ax, ay, bx, by;
+        if (!pixel_box(bd, lo, hi, &ax, &ay, &bx, &by))
             continue;
         const dvec2 q = body_world_to_local(bd, p), D = dv_unrot(d, bd->cos_a, bd->sin_a);
         const double dlen = sqrt(dv_dot(D, D));
