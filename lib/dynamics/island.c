@@ -360,12 +360,6 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
         join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
                     ROWS_PER_CONTACT * (end - k));
     }
-    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
-        end = contact_pair_end(wd, k);
-        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
-        if (island_slanted_face(wd, k, end))
-            not_exact[world_group_root(parent, (int32_t)(a->sb.body ? a : b)->index)] |= NOT_EXACT_SLANT;
-    }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
@@ -380,6 +374,13 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
     int32_t *root_of = isl->root;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         root_of[wd->islands.nodes[n]] = world_group_root(parent, wd->islands.nodes[n]);
+    /* After every join: a flag put on a root that a later joint puts under another would be lost. */
+    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
+        end = contact_pair_end(wd, k);
+        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+        if (island_slanted_face(wd, k, end))
+            not_exact[root_of[(a->sb.body ? a : b)->index]] |= NOT_EXACT_SLANT;
+    }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
      * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */

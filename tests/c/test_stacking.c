@@ -289,3 +289,60 @@ Test(stacking, exact_island_rows_out_of_range_is_refused)
     EXPECT_ERR(pp_world_create(&d, &w), PP_ERR_INVALID_ARGUMENT, "exact_island_rows");
     cr_assert_eq(w.id, 0);
 }
+
+#ifdef PP_TEST_PRIVATE
+#include "world.h" /* wd->islands.kind: how a body's island was solved at the last substep */
+
+#define WEDGE_W 200
+#define WEDGE_H 60
+
+/* The two halves of a 200 × 60 block cut along y = 20 + x·tan 10° (bitmap px, y down): the lower half is solid
+ * below the cut, the upper above it and 1 px into the lower, so that their faces touch along 200 px, 10° off both
+ * bitmaps' axes. */
+static uint8_t *wedge_mask(bool upper)
+{
+    uint8_t *m = malloc(WEDGE_W * WEDGE_H);
+    cr_assert_not_null(m);
+    for (int y = 0; y < WEDGE_H; y++)
+        for (int x = 0; x < WEDGE_W; x++) {
+            const double cut = 20 + (x + 0.5) * 0.17632698070846498; /* tan 10° */
+            m[y * WEDGE_W + x] = upper ? y + 0.5 < cut + 1 : y + 0.5 >= cut;
+        }
+    return m;
+}
+
+/* A stack on a long slanted face stays on QuickStep (island.c: SLANT_FACE_PX), also when a joint joins it to
+ * another island after the face was found: the flag went on the stack's root, which the joint then put under the
+ * other island's, and the stack was solved exactly. */
+Test(stacking, a_stack_on_a_long_slanted_face_joined_by_a_joint_stays_on_quickstep)
+{
+    pp_world w = stack_world(pp_world_def_default());
+    pp_body half[2];
+    for (int k = 0; k < 2; k++) {
+        uint8_t *m = wedge_mask(k == 1);
+        pp_body_def d = body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - WEDGE_H / 2.0f, 0);
+        d.width = WEDGE_W, d.height = WEDGE_H, d.mask = m, d.friction = 1.0f;
+        PP_OK_OR_FAIL(pp_body_create(w, &d, &half[k]));
+        free(m);
+    }
+    const pp_body side = add_rect(w, body_def(PP_BODY_DYNAMIC, 560, GROUND_TOP - 8, 0), 16, 16);
+    pp_joint_def jd = pp_joint_def_default(PP_JOINT_REVOLUTE);
+    jd.body_a = half[0], jd.body_b = side, jd.anchor_a = v2(560, GROUND_TOP - 8);
+    pp_joint j;
+    PP_OK_OR_FAIL(pp_joint_create(w, &jd, &j));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    pp_contact c[16];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_contacts(w, c, 16, &n));
+    bool slanted = false;
+    for (int32_t i = 0; i < n; i++)
+        slanted |= c[i].a.id == half[0].id && c[i].b.id == half[1].id && fabsf(c[i].normal.x) > 0.1f;
+    cr_assert(slanted, "the halves do not touch along their cut (%d contacts)", (int)n);
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    for (int k = 0; k < 2; k++)
+        cr_assert_eq(wd->islands.kind[handle_slot(half[k].id)], ISLAND_QUICK_STACK, "half %d solved as kind %d", k,
+                     wd->islands.kind[handle_slot(half[k].id)]);
+    pp_world_destroy(w);
+}
+#endif
