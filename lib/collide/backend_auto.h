@@ -20,9 +20,9 @@
 #define AUTO_PROBE_EVERY 100
 #define AUTO_PROBE_MAX 4.0
 
-/* One backend's decayed sums: pairs², pairs·cells, cells², ms², pairs·ms, cells·ms; batches fitted. */
+/* One backend's decayed sums: pairs², pairs·cells, cells², pairs·ms, cells·ms; batches fitted. */
 typedef struct backend_fit {
-    double pp, pc, cc, tt, pt, ct;
+    double pp, pc, cc, pt, ct;
     int32_t batches;
 } backend_fit;
 
@@ -37,7 +37,7 @@ static inline void backend_auto_learn(backend_auto *a, bool gpu, int32_t pairs, 
     backend_fit *f = &a->fit[gpu];
     const double p = pairs, c = (double)cells;
     f->pp = AUTO_DECAY * f->pp + p * p, f->pc = AUTO_DECAY * f->pc + p * c, f->cc = AUTO_DECAY * f->cc + c * c;
-    f->tt = AUTO_DECAY * f->tt + ms * ms, f->pt = AUTO_DECAY * f->pt + p * ms, f->ct = AUTO_DECAY * f->ct + c * ms;
+    f->pt = AUTO_DECAY * f->pt + p * ms, f->ct = AUTO_DECAY * f->ct + c * ms;
     f->batches++;
 }
 

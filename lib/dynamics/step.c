@@ -44,9 +44,15 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
     return PP_OK;
 }
 
-/* AUTO's backend for a batch: the CPU but where a hardware GPU is up and backend_auto.h's models of the batches
- * run so far find it cheaper. A software rasteriser (llvmpipe) never gets AUTO's work: make bench finds it 3–6×
- * slower than the CPU. */
+/* Whether AUTO may send a batch of `cells` either way: large enough, and a hardware GPU up. A software rasteriser
+ * (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
+static bool auto_has_choice(const world *wd, int64_t cells)
+{
+    return wd->def.backend == PP_BACKEND_AUTO && cells >= AUTO_MIN_CELLS && wd->gpu && !gpu_narrow_is_software(wd->gpu);
+}
+
+/* AUTO's backend for a batch: the CPU but where it has a choice and backend_auto.h's models of the batches run so
+ * far find the GPU cheaper. */
 static pp_backend choose_backend(world *wd, int32_t pairs, int64_t cells)
 {
     if (wd->def.backend != PP_BACKEND_AUTO)
@@ -60,9 +66,8 @@ static pp_backend choose_backend(world *wd, int32_t pairs, int64_t cells)
         else if (!wd->gpu)
             pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: %s", pp_last_error());
     }
-    if (!wd->gpu || gpu_narrow_is_software(wd->gpu))
-        return PP_BACKEND_CPU;
-    return backend_auto_wants_gpu(&wd->auto_costs, pairs, cells) ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+    return auto_has_choice(wd, cells) && backend_auto_wants_gpu(&wd->auto_costs, pairs, cells) ? PP_BACKEND_GPU
+                                                                                                : PP_BACKEND_CPU;
 }
 
 pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, int64_t cells, pp_backend *ran,
@@ -72,8 +77,7 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     *ran = choose_backend(wd, n, cells);
     *threads = 0;
     /* AUTO times the batches it could send either way, to learn what each backend costs. */
-    const bool timed = wd->def.backend == PP_BACKEND_AUTO && cells >= AUTO_MIN_CELLS && wd->gpu &&
-                       !gpu_narrow_is_software(wd->gpu);
+    const bool timed = auto_has_choice(wd, cells);
     const double t0 = timed ? now_ms() : 0;
     /* A world with no pair yet has no arrays: NULL + 0 is undefined, so offset only a real array. */
     np_pair *pairs = first ? wd->batch.pairs + first : wd->batch.pairs;
