@@ -13,19 +13,14 @@ static double inv_mass(const body *bd)
 }
 
 /* The tangential speed that takes back, at the contact_erp rate, what a contact has slipped since its
- * pair's friction anchor (contact_table.c); Coulomb's bound still caps the force, so a sliding body slides.
+ * pair's friction anchor t (contact_table.c); Coulomb's bound still caps the force, so a sliding body slides.
  * Stacks slip unasked: QuickStep's because its solve stops short, the exact solver's because contact_cfm
  * lets a contact under a steady sideways load give (a 3-level card house's tents walked 0.035 px/s and
- * fell at 19 s; an arch crept 3 px). A lone body is left free: its anchor would brake a roll. */
+ * fell at 19 s; an arch crept 3 px). A lone body is left free (pair_solve finds it no anchor): its anchor
+ * would brake a roll. */
 static double anchor_speed(const world *wd, const body *a, const body *b, const contact_record *t,
-                           const pp_contact *c,
-                           double h)
+                           const pp_contact *c, double h)
 {
-    const int kind = wd->islands.kind[(a->sb.body ? a : b)->index];
-    if (kind != ISLAND_QUICK_STACK && kind != ISLAND_EXACT)
-        return 0;
-    if (!t || handle_slot(t->a) != a->index)
-        return 0;
     const dvec2 slip = contact_anchor_slip(t, a, b, dv(c->point.x, c->point.y));
     const double along = dv_dot(slip, dv(-c->normal.y, c->normal.x));
     const double v = wd->def.contact_erp * along / h, cap = wd->def.max_correction_speed;
@@ -39,24 +34,16 @@ static double approach_speed(const world *wd, const body *a, const body *b, cons
     return -dv_dot(dv_sub(body_point_velocity(wd, b, p), body_point_velocity(wd, a, p)), n);
 }
 
-/* Whether the pair's point bounces this substep: ODE bounces only what approaches faster than the threshold. */
-static bool bounces(const world *wd, const body *a, const body *b, const pp_contact *c, double e)
-{
-    return e > 0 && approach_speed(wd, a, b, c) > wd->def.bounce_threshold;
-}
-
 /* The contact is found a substep late, up to a substep's travel deep, and a bounce of e·v from there
  * would rise e²·depth short. The coefficient handed to ODE instead gives the speed that, against the
  * pair's gravity along the normal, reaches the slop depth at e times the speed the bodies met with:
- * v_out² = e²·v² + 2·g·d·(1 − e²), d the depth past contact_slop. Never more than the approach speed. */
-static double bounce_for(const world *wd, const body *a, const body *b, const pp_contact *c, double e)
+ * v_out² = e²·v² + 2·g·d·(1 − e²), d the depth past contact_slop. Never more than the approach speed.
+ * `closing` is the point's approach_speed; ODE bounces nothing slower than bounce_threshold. */
+static double bounce_for(const world *wd, const body *a, const body *b, const pp_contact *c, double e, double closing)
 {
-    if (e <= 0)
-        return 0;
-    const dvec2 n = dv(c->normal.x, c->normal.y);
-    const double closing = approach_speed(wd, a, b, c);
     if (!(closing > wd->def.bounce_threshold))
         return e; /* ODE bounces nothing this slow */
+    const dvec2 n = dv(c->normal.x, c->normal.y);
     const dvec2 g = dv(wd->def.gravity.x, wd->def.gravity.y);
     const dvec2 ga = a->type == PP_BODY_DYNAMIC ? g : dv(0, 0), gb = b->type == PP_BODY_DYNAMIC ? g : dv(0, 0);
     const double g_closing = -dv_dot(dv_sub(gb, ga), n), d = dmax(0.0, c->depth - wd->def.contact_slop);
@@ -80,34 +67,53 @@ static double bounce_for(const world *wd, const body *a, const body *b, const pp
 enum { CLOSING_MASS_RATIO = 4 };
 #define COS_BEARING 0.70710678118654752 /* cos 45° */
 
-/* Whether c's normal lies within 45° of gravity: what a pile's weight creeps through the slop band on. */
-static bool bears_weight(const world *wd, const pp_contact *c)
-{
-    const double gx = wd->def.gravity.x, gy = wd->def.gravity.y, g = hypot(gx, gy);
-    return g > 0 && fabs(c->normal.x * gx + c->normal.y * gy) >= COS_BEARING * g;
-}
+/* What a pair's points share, found once a pair. */
+typedef struct pair_solve {
+    const body *a, *b;
+    const contact_record *anchor; /* its friction anchor, on a stack's island (anchor_speed); else NULL */
+    double h;                     /* the time step of its island, s */
+    double inv_mass_a, inv_mass_b, friction, restitution;
+    double deepest;               /* px, its deepest point's depth */
+    bool closes;                  /* its island closes the slop band (see above) */
+    bool exact;                   /* on an exact island: the pair closes by its deepest point */
+} pair_solve;
 
-static double closing_speed(const world *wd, const body *a, const body *b, const pp_contact *c, double deepest,
-                            double h, double e)
+static pair_solve pair_solve_of(const world *wd, int32_t first, int32_t end, int span, double h)
 {
-    const int kind = wd->islands.kind[(a->sb.body ? a : b)->index];
-    const double gap = wd->def.contact_slop - (kind == ISLAND_EXACT ? deepest : c->depth);
-    const double ia = inv_mass(a), ib = inv_mass(b);
-    if (!(gap > 0) || (kind != ISLAND_QUICK_STACK && kind != ISLAND_EXACT))
-        return 0;
-    if ((kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 && dmax(ia, ib) > CLOSING_MASS_RATIO * dmin(ia, ib)) ||
-        (c->pixel_count <= CORNER_PIXELS && !bears_weight(wd, c)) || bounces(wd, a, b, c, e))
-        return 0;
-    return wd->def.contact_erp * gap / h;
-}
-
-/* The deepest of a pair's points, contacts [first, end). */
-static double pair_deepest(const world *wd, int32_t first, int32_t end)
-{
-    double deepest = wd->contacts[first].depth;
+    const pp_contact *c0 = &wd->contacts[first];
+    pair_solve p = {.a = body_of(wd, c0->a), .b = body_of(wd, c0->b), .h = span * h};
+    const int kind = wd->islands.kind[(p.a->sb.body ? p.a : p.b)->index];
+    const bool stack = kind == ISLAND_QUICK_STACK || kind == ISLAND_EXACT;
+    p.inv_mass_a = inv_mass(p.a), p.inv_mass_b = inv_mass(p.b);
+    p.friction = sqrt(p.a->friction * p.b->friction);
+    p.restitution = dmax(p.a->restitution, p.b->restitution);
+    const double ia = p.inv_mass_a, ib = p.inv_mass_b;
+    p.closes = stack && !(kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 &&
+                          dmax(ia, ib) > CLOSING_MASS_RATIO * dmin(ia, ib));
+    p.exact = kind == ISLAND_EXACT;
+    p.deepest = c0->depth;
     for (int32_t j = first + 1; j < end; j++)
-        deepest = dmax(deepest, wd->contacts[j].depth);
-    return deepest;
+        p.deepest = dmax(p.deepest, wd->contacts[j].depth);
+    if (stack) {
+        const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
+        p.anchor = t && handle_slot(t->a) == p.a->index ? t : NULL;
+    }
+    return p;
+}
+
+/* The speed at which c's pair closes the slop band's gap at c (0: not at all). `g` is gravity's length,
+ * `bounce` whether c bounces this substep. */
+static double closing_speed(const world *wd, const pair_solve *p, const pp_contact *c, double g, bool bounce)
+{
+    const double gap = wd->def.contact_slop - (p->exact ? p->deepest : c->depth);
+    if (!p->closes || !(gap > 0) || bounce)
+        return 0;
+    /* A corner bears weight when its normal lies within 45° of gravity. */
+    const bool bears_weight = g > 0 && fabs(c->normal.x * wd->def.gravity.x + c->normal.y * wd->def.gravity.y) >=
+                                           COS_BEARING * g;
+    if (c->pixel_count <= CORNER_PIXELS && !bears_weight)
+        return 0;
+    return wd->def.contact_erp * gap / p->h;
 }
 
 int contact_span(const world *wd, const pp_contact *c)
@@ -118,26 +124,24 @@ int contact_span(const world *wd, const pp_contact *c)
 
 void contact_joints_add(world *wd, double h)
 {
-    /* A pair's points come together: what they share is found once a pair. */
+    const double g = hypot(wd->def.gravity.x, wd->def.gravity.y);
     for (int32_t first = 0, end; first < wd->contact_count; first = end) {
         end = contact_pair_end(wd, first);
-        const pp_contact *c0 = &wd->contacts[first];
-        const int span = contact_span(wd, c0);
+        const int span = contact_span(wd, &wd->contacts[first]);
         if (span == SPAN_SKIP)
             continue;
-        const double hs = span * h; /* the time step of the contact's island */
-        const body *a = body_of(wd, c0->a), *b = body_of(wd, c0->b);
-        const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
-        const double deepest = pair_deepest(wd, first, end), e = dmax(a->restitution, b->restitution);
-        const double friction = sqrt(a->friction * b->friction), ia = inv_mass(a), ib = inv_mass(b);
+        const pair_solve p = pair_solve_of(wd, first, end, span, h);
+        const solver_body *sa = p.a->sb.body ? &p.a->sb : NULL, *sb = p.b->sb.body ? &p.b->sb : NULL;
         for (int32_t i = first; i < end; i++) {
             const pp_contact *c = &wd->contacts[i];
+            const double e = p.restitution, closing = e > 0 ? approach_speed(wd, p.a, p.b, c) : 0;
+            const bool bounce = e > 0 && closing > wd->def.bounce_threshold;
             const solver_contact sc = {
-                a->sb.body ? &a->sb : NULL, b->sb.body ? &b->sb : NULL, ia, ib,
+                sa, sb, p.inv_mass_a, p.inv_mass_b,
                 dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
-                friction, bounce_for(wd, a, b, c, e),
-                anchor_speed(wd, a, b, t, c, hs), closing_speed(wd, a, b, c, deepest, hs, e), (uint8_t)span,
-                bounces(wd, a, b, c, e),
+                p.friction, e > 0 ? bounce_for(wd, p.a, p.b, c, e, closing) : 0,
+                p.anchor ? anchor_speed(wd, p.a, p.b, p.anchor, c, p.h) : 0, closing_speed(wd, &p, c, g, bounce),
+                (uint8_t)span, bounce,
             };
             solver_add_contact(wd->solver, &sc, i);
         }
