@@ -456,10 +456,18 @@ pp_status broadphase_find_pairs(pp_broadphase *bp, const bp_proxy *proxies, int3
  * pair (bodies spawned into one spot overlap in every order) the rest goes to sort_pairs. */
 static pp_status settle_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from, int32_t to)
 {
+    if (to - from < 2)
+        return PP_OK;
     int64_t budget = 8 * (int64_t)(to - from);
+    pair_key last = key_of(px, bp->pairs[from]); /* the key of pairs[i − 1]: the largest so far */
     for (int32_t i = from + 1; i < to; i++) {
         const bp_pair p = bp->pairs[i];
         const pair_key k = key_of(px, p);
+        if (key_order(&last, &k) <= 0) { /* in order: most pairs, the boxes having moved little */
+            last = k;
+            continue;
+        }
+        /* pairs[i − 1] moves up to i and stays the largest: `last` holds */
         int32_t j = i - 1;
         for (; j >= from; j--) {
             const pair_key q = key_of(px, bp->pairs[j]);

@@ -81,9 +81,14 @@ void body_update_pose_cache(body *bd)
     const pp_raster *r = &bd->raster;
     pp_aabb box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     if (!raster_empty(r)) {
-        const double xs[2] = {r->x0, r->x1}, ys[2] = {r->y0, r->y1};
+        /* Each corner is pos + R·(corner − pivot); the four share their products, two by two. */
+        const double c = bd->cos_a, s = bd->sin_a;
+        const double dx[2] = {r->x0 - bd->pivot.x, r->x1 - bd->pivot.x}, dy[2] = {r->y0 - bd->pivot.y, r->y1 - bd->pivot.y};
+        const double cx[2] = {c * dx[0], c * dx[1]}, sx[2] = {s * dx[0], s * dx[1]};
+        const double cy[2] = {c * dy[0], c * dy[1]}, sy[2] = {s * dy[0], s * dy[1]};
         for (int k = 0; k < 4; k++) {
-            const dvec2 w = dv_add(bd->pos, dv_rot(dv_sub(dv(xs[k & 1], ys[k >> 1]), bd->pivot), bd->cos_a, bd->sin_a));
+            const int i = k & 1, j = k >> 1;
+            const dvec2 w = dv_add(bd->pos, dv(cx[i] - sy[j], sx[i] + cy[j]));
             box.x0 = dmin(box.x0, w.x), box.y0 = dmin(box.y0, w.y);
             box.x1 = dmax(box.x1, w.x), box.y1 = dmax(box.y1, w.y);
         }
