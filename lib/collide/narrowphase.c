@@ -135,27 +135,37 @@ static bool pair_grid(const np_settings *set, const np_body *a, const np_body *b
     if (!overlap_grid(p->ra, *ob, set->stride, p))
         return false;
     sampling_steps(p, mc, ms, t);
+    return true;
+}
 
-    /* A symmetric overlap has no preferred side: use the line between the bodies. */
+/* A symmetric overlap has no preferred side: the line between the bodies, for a pair that is kept. */
+static void fallback_normal(const np_body *a, const np_body *b, np_pair *p)
+{
+    const np_body *A = p->swap ? b : a, *B = p->swap ? a : b;
     dvec2 n = dv_unrot(dv_sub(B->pos, A->pos), A->c, A->s);
     if (n.x == 0 && n.y == 0)
         n = dv(0, 1);
     p->fallback_n = dv_scale(n, 1.0 / sqrt(dv_dot(n, n)));
     p->fallback_nqx = (int32_t)lround(p->fallback_n.x * NP_NORMAL_ONE);
     p->fallback_nqy = (int32_t)lround(p->fallback_n.y * NP_NORMAL_ONE);
-    return true;
 }
 
 bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
 {
     local_box ob;
-    return pair_grid(set, a, b, p, &ob);
+    if (!pair_grid(set, a, b, p, &ob))
+        return false;
+    fallback_normal(a, b, p);
+    return true;
 }
 
 bool np_pair_setup(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
 {
     local_box ob;
-    return pair_grid(set, a, b, p, &ob) && cells_can_meet(p, ob);
+    if (!pair_grid(set, a, b, p, &ob) || !cells_can_meet(p, ob))
+        return false; /* most candidates of a pile: boxes side by side */
+    fallback_normal(a, b, p);
+    return true;
 }
 
 /* round(2^14·a/√r2) for 0 ≤ a ≤ √r2 < 2^15.5, exactly: the k with (2k−1)²·r2 ≤ 2^30·a² < (2k+1)²·r2.
