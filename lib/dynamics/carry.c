@@ -12,8 +12,6 @@
  * corrects only depth past contact_slop, so it holds the bodies as the raster's thin overlap would. */
 #define CARRY_GAP_PX 1.0
 
-static uint32_t slot_of(pp_body b) { return handle_slot(b.id); }
-
 
 /* A pair is carried only while no point of one body moves more than CARRY_MOTION_PX against the other in a
  * step, px, and neither turns more than CARRY_TURN_RAD: a resting pair. Its contacts then stay within that of
@@ -146,14 +144,12 @@ pp_status carry_record(world *wd, double dt, int32_t k)
     pp_status st = contact_table_reserve_carried(wd, before + n, "pp_world_step");
     if (st)
         return st;
-    for (int32_t i = 0, end; i < n; i = end) {
+    for (int32_t u = 0; u < wd->table.run_count; u++) {
+        const contact_run run = wd->table.runs[u];
+        const int32_t i = run.first, end = run.end, at = run.record;
         const pp_contact *ct = &wd->contacts[i];
-        end = contact_pair_end(wd, i);
-        const body *a = body_of(wd, ct->a), *b = body_of(wd, ct->b);
-        const uint32_t sa = slot_of(ct->a), sb = slot_of(ct->b);
-        PP_ASSERT(sa < sb && end - i <= PP_MAX_CONTACTS_PER_PAIR); /* contacts keep the broadphase pair's order */
-        const int32_t at = contact_table_lookup(wd, sa, sb);
-        PP_ASSERT(at >= 0); /* every contact's pair was found */
+        const body *a = wd->bodies[run.a], *b = wd->bodies[run.b];
+        PP_ASSERT(end - i <= PP_MAX_CONTACTS_PER_PAIR);
         const contact_record *rec = &wd->table.records[at];
         const bool carried_before = rec->carried && rec->carried <= before;
         /* A QuickStep stack's pair that sat this substep out: bound CARRY_STACK_PX. A lone body at rest sits out

@@ -78,11 +78,10 @@ typedef struct pair_solve {
     bool exact;                   /* on an exact island: the pair closes by its deepest point */
 } pair_solve;
 
-static pair_solve pair_solve_of(const world *wd, int32_t first, int32_t end, int span, double h)
+static pair_solve pair_solve_of(const world *wd, const contact_run *u, int span, double h)
 {
-    const pp_contact *c0 = &wd->contacts[first];
-    pair_solve p = {.a = body_of(wd, c0->a), .b = body_of(wd, c0->b), .h = span * h};
-    const int kind = wd->islands.kind[(p.a->sb.body ? p.a : p.b)->index];
+    pair_solve p = {.a = wd->bodies[u->a], .b = wd->bodies[u->b], .h = span * h};
+    const int kind = wd->islands.kind[p.a->sb.body ? u->a : u->b];
     const bool stack = kind == ISLAND_QUICK_STACK || kind == ISLAND_EXACT;
     p.inv_mass_a = inv_mass(p.a), p.inv_mass_b = inv_mass(p.b);
     p.friction = sqrt(p.a->friction * p.b->friction);
@@ -91,13 +90,10 @@ static pair_solve pair_solve_of(const world *wd, int32_t first, int32_t end, int
     p.closes = stack && !(kind == ISLAND_QUICK_STACK && ia > 0 && ib > 0 &&
                           dmax(ia, ib) > CLOSING_MASS_RATIO * dmin(ia, ib));
     p.exact = kind == ISLAND_EXACT;
-    p.deepest = c0->depth;
-    for (int32_t j = first + 1; j < end; j++)
+    p.deepest = wd->contacts[u->first].depth;
+    for (int32_t j = u->first + 1; j < u->end; j++)
         p.deepest = dmax(p.deepest, wd->contacts[j].depth);
-    if (stack) {
-        const contact_record *t = contact_table_find(wd, c0->a.id, c0->b.id);
-        p.anchor = t && handle_slot(t->a) == p.a->index ? t : NULL;
-    }
+    p.anchor = stack ? &wd->table.records[u->record] : NULL; /* a is the record's a: the lower slot */
     return p;
 }
 
@@ -116,23 +112,22 @@ static double closing_speed(const world *wd, const pair_solve *p, const pp_conta
     return wd->def.contact_erp * gap / p->h;
 }
 
-int contact_span(const world *wd, const pp_contact *c)
+int contact_run_span(const world *wd, const contact_run *u)
 {
-    const body *a = body_of(wd, c->a);
-    return wd->islands.span[(a->sb.body ? a : body_of(wd, c->b))->index];
+    return wd->islands.span[wd->bodies[u->a]->sb.body ? u->a : u->b];
 }
 
 void contact_joints_add(world *wd, double h)
 {
     const double g = hypot(wd->def.gravity.x, wd->def.gravity.y);
-    for (int32_t first = 0, end; first < wd->contact_count; first = end) {
-        end = contact_pair_end(wd, first);
-        const int span = contact_span(wd, &wd->contacts[first]);
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const contact_run *u = &wd->table.runs[n];
+        const int span = contact_run_span(wd, u);
         if (span == SPAN_SKIP)
             continue;
-        const pair_solve p = pair_solve_of(wd, first, end, span, h);
+        const pair_solve p = pair_solve_of(wd, u, span, h);
         const solver_body *sa = p.a->sb.body ? &p.a->sb : NULL, *sb = p.b->sb.body ? &p.b->sb : NULL;
-        for (int32_t i = first; i < end; i++) {
+        for (int32_t i = u->first; i < u->end; i++) {
             const pp_contact *c = &wd->contacts[i];
             const double e = p.restitution, closing = e > 0 ? approach_speed(wd, p.a, p.b, c) : 0;
             const bool bounce = e > 0 && closing > wd->def.bounce_threshold;

@@ -239,6 +239,7 @@ void contact_table_begin_substep(world *wd)
         t->substep = 1;
     }
     t->found_count = 0;
+    t->run_count = 0; /* listed again once the substep's contacts are final */
 }
 
 /* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */
@@ -370,21 +371,52 @@ pp_status contact_table_end_substep(world *wd)
     return PP_OK;
 }
 
+pp_status contact_table_list_runs(world *wd)
+{
+    contact_table *t = &wd->table;
+    t->run_count = 0;
+    for (int32_t i = 0, end; i < wd->contact_count; i = end) {
+        end = contact_pair_end(wd, i);
+        if (!ARRAY_RESERVE(t->runs, t->run_capacity, t->run_count + 1))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to list %d pairs", (int)t->run_count + 1);
+        const uint32_t a = handle_slot(wd->contacts[i].a.id), b = handle_slot(wd->contacts[i].b.id);
+        const int32_t k = lookup(t, pair_key(a, b));
+        PP_ASSERT(a < b && k >= 0 && t->records[k].a == wd->contacts[i].a.id); /* every contact's pair was found */
+        t->runs[t->run_count++] = (contact_run){i, end, a, b, k};
+    }
+    return PP_OK;
+}
+
+void contact_table_validate_runs(const world *wd)
+{
+#ifdef PP_CHECKS
+    const contact_table *t = &wd->table;
+    int32_t next = 0;
+    for (int32_t n = 0; n < t->run_count; n++) {
+        const contact_run *u = &t->runs[n];
+        PP_ASSERT(u->first == next && u->end == contact_pair_end(wd, u->first));
+        PP_ASSERT(u->record >= 0 && u->record < t->count && t->records[u->record].a == wd->contacts[u->first].a.id &&
+                  t->records[u->record].b == wd->contacts[u->first].b.id && handle_slot(t->records[u->record].a) == u->a &&
+                  handle_slot(t->records[u->record].b) == u->b);
+        next = u->end;
+    }
+    PP_ASSERT(next == wd->contact_count);
+#else
+    (void)wd;
+#endif
+}
+
 void contact_table_store(world *wd)
 {
     contact_table *t = &wd->table;
-    for (int32_t i = 0, end; i < wd->contact_count; i = end) {
-        const pp_contact *c = &wd->contacts[i];
-        end = contact_pair_end(wd, i);
-        if (contact_span(wd, c) == SPAN_SKIP)
+    for (int32_t n = 0; n < t->run_count; n++) {
+        const contact_run *u = &t->runs[n];
+        if (contact_run_span(wd, u) == SPAN_SKIP)
             continue; /* it sat the substep out: its last solve stands */
-        const int32_t k = lookup(t, pair_key(handle_slot(c->a.id), handle_slot(c->b.id)));
-        PP_ASSERT(k >= 0); /* every contact's pair was found */
-        if (k < 0)
-            continue;
-        contact_record *rec = edit(t, k);
-        rec->point_count = end - i < PP_MAX_CONTACTS_PER_PAIR ? end - i : PP_MAX_CONTACTS_PER_PAIR;
-        memcpy(rec->points, c, (size_t)rec->point_count * sizeof *c);
+        contact_record *rec = edit(t, u->record);
+        rec->point_count = u->end - u->first;
+        PP_ASSERT(rec->point_count <= PP_MAX_CONTACTS_PER_PAIR);
+        memcpy(rec->points, &wd->contacts[u->first], (size_t)rec->point_count * sizeof *rec->points);
     }
 }
 
@@ -560,6 +592,7 @@ void contact_table_validate(const world *wd)
 
 void contact_table_free(contact_table *t)
 {
+    pp_free(t->runs);
     pp_free(t->records);
     pair_map_free(&t->index);
     pp_free(t->log);

@@ -64,6 +64,15 @@ typedef struct contact_record {
     pp_contact carry_points[PP_MAX_CONTACTS_PER_PAIR];
 } contact_record;
 
+/* One touching pair of the substep's contacts (wd->contacts): its points [first, end), its bodies' slots and its
+ * record. Listed once the substep's contacts are final (contact_table_list_runs); the passes after it (islands,
+ * carrying, solver rows, impulses, the step's saves) walk pairs through it, with no search. */
+typedef struct contact_run {
+    int32_t first, end;
+    uint32_t a, b;           /* body slots, a < b */
+    int32_t record;          /* its index in records */
+} contact_run;
+
 typedef struct contact_table {
     contact_record *records; /* [0, awake): a body awake at the last substep; [awake, count): resting */
     int32_t count, awake, capacity;
@@ -74,6 +83,8 @@ typedef struct contact_table {
     int32_t found_count;     /* pairs found in this one */
     bool resting_stale;      /* a body entered the awake set: resting pairs with an awake body are tested again */
     int32_t gone;            /* records marked CT_GONE, ended at the next substep */
+    contact_run *runs;       /* the substep's contacts pair by pair: valid from find_contacts to the step's end */
+    int32_t run_count, run_capacity;
     /* The step's log: the records as the step found them, each saved on its first change. */
     contact_record *log;
     int32_t *log_at;         /* the index each logged record was at */
@@ -86,6 +97,9 @@ typedef struct contact_table {
     int32_t *saved_order;    /* carry_order as the step found it */
     int32_t saved_order_count, saved_order_capacity;
 } contact_table;
+
+/* List wd->contacts pair by pair into runs, once the substep's contacts are final (PP_ERR_OUT_OF_MEMORY). */
+pp_status contact_table_list_runs(struct world *wd);
 
 /* Start a substep's search. */
 void contact_table_begin_substep(struct world *wd);
@@ -158,6 +172,8 @@ pp_status contact_table_save(struct world *wd);
 void contact_table_restore(struct world *wd);
 void contact_table_commit(struct world *wd);
 
+/* PP_CHECKS: the runs list the substep's contacts, each with its record (asserts); a no-op otherwise. */
+void contact_table_validate_runs(const struct world *wd);
 /* PP_CHECKS: the table's invariants hold (asserts); a no-op otherwise. */
 void contact_table_validate(const struct world *wd);
 

@@ -142,9 +142,9 @@ static pp_status collect_nodes(world *wd)
     is->node_count = 0;
     for (int32_t k = 0; k < wd->awake.count; k++)
         add_node(wd, wd->bodies[wd->awake.slots[k]]);
-    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
-        add_node(wd, body_of(wd, wd->contacts[k].a));
-        add_node(wd, body_of(wd, wd->contacts[k].b));
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        add_node(wd, wd->bodies[wd->table.runs[n].a]);
+        add_node(wd, wd->bodies[wd->table.runs[n].b]);
     }
     if (wd->joints.ids.live > 0)
         add_joint_nodes(wd);
@@ -184,8 +184,8 @@ static void set_spans(world *wd, substep_pairing pairing)
         if (node)
             flags[root[node->index]] |= ROOT_EVERY_SUBSTEP;
     }
-    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
-        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const body *a = wd->bodies[wd->table.runs[n].a], *b = wd->bodies[wd->table.runs[n].b];
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
             dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
             flags[root[a->index]] |= ROOT_EVERY_SUBSTEP;
@@ -318,6 +318,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
 {
     wd->islands.substep_serial++;
     *out = (solver_islands){{0}, {0}};
+    contact_table_validate_runs(wd);
     if (still && wd->islands.node_count > 0) { /* the same nodes, islands and kinds: only the spans move on */
         island_validate_still(wd);
         set_spans(wd, pairing);
@@ -355,10 +356,9 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
         wd->islands.heaviest[i] = 0;
         dynamic[i] = bd->type == PP_BODY_DYNAMIC;
     }
-    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
-        end = contact_pair_end(wd, k);
-        join_island(parent, rows, dynamic, body_of(wd, wd->contacts[k].a), body_of(wd, wd->contacts[k].b),
-                    ROWS_PER_CONTACT * (end - k));
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const contact_run *u = &wd->table.runs[n];
+        join_island(parent, rows, dynamic, wd->bodies[u->a], wd->bodies[u->b], ROWS_PER_CONTACT * (u->end - u->first));
     }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
@@ -375,11 +375,10 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         root_of[wd->islands.nodes[n]] = world_group_root(parent, wd->islands.nodes[n]);
     /* After every join: a flag put on a root that a later joint puts under another would be lost. */
-    for (int32_t k = 0, end; k < wd->contact_count; k = end) {
-        end = contact_pair_end(wd, k);
-        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
-        if (island_slanted_face(wd, k, end))
-            not_exact[root_of[(a->sb.body ? a : b)->index]] |= NOT_EXACT_SLANT;
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const contact_run *u = &wd->table.runs[n];
+        if (island_slanted_face(wd, u->first, u->end))
+            not_exact[root_of[wd->bodies[u->a]->sb.body ? u->a : u->b]] |= NOT_EXACT_SLANT;
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
@@ -469,8 +468,8 @@ bool island_sleep(world *wd, double h)
     int32_t *parent = wd->islands.sleep_group, *restless = wd->islands.sleep_group + wd->islands.sleep_group_capacity;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         parent[wd->islands.nodes[n]] = wd->islands.nodes[n], restless[wd->islands.nodes[n]] = 0;
-    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
-        const body *a = body_of(wd, wd->contacts[k].a), *b = body_of(wd, wd->contacts[k].b);
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const body *a = wd->bodies[wd->table.runs[n].a], *b = wd->bodies[wd->table.runs[n].b];
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC)
             parent[world_group_root(parent, (int32_t)a->index)] = world_group_root(parent, (int32_t)b->index);
     }

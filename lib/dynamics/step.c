@@ -233,7 +233,8 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         }
     }
     carry_strike(wd);
-    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = crowd_limit_contacts(wd)))
+    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = crowd_limit_contacts(wd)) ||
+        (st = contact_table_list_runs(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
@@ -316,12 +317,15 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
         still = solver_islands_empty(&islands);
         island_list_woken(wd);
-        for (int32_t c = 0; c < wd->contact_count; c++) {
-            pp_contact *ct = &wd->contacts[c];
-            /* Over one substep, whatever the span: force × h, as the header has it. */
-            ct->normal_impulse = contact_span(wd, ct) > 0
-                                     ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h)
-                                     : 0;
+        for (int32_t n = 0; n < wd->table.run_count; n++) {
+            const contact_run *u = &wd->table.runs[n];
+            const bool solved = contact_run_span(wd, u) > 0;
+            for (int32_t c = u->first; c < u->end; c++) {
+                pp_contact *ct = &wd->contacts[c];
+                /* Over one substep, whatever the span: force × h, as the header has it. */
+                ct->normal_impulse =
+                    solved ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h) : 0;
+            }
         }
         contact_table_store(wd);
         if ((st = sync_bodies(wd)))

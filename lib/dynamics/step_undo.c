@@ -90,9 +90,9 @@ pp_status step_save(world *wd)
 
 void step_save_contact_bodies(world *wd)
 {
-    for (int32_t k = 0; k < wd->contact_count; k = contact_pair_end(wd, k)) {
-        save_body(&wd->undo, body_of(wd, wd->contacts[k].a));
-        save_body(&wd->undo, body_of(wd, wd->contacts[k].b));
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        save_body(&wd->undo, wd->bodies[wd->table.runs[n].a]);
+        save_body(&wd->undo, wd->bodies[wd->table.runs[n].b]);
     }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
