@@ -245,14 +245,18 @@ pp_status crowd_limit_contacts(world *wd)
     if (st)
         return st;
     /* Only the slots of this substep's pairs are counted, so a large world pays for its contacts alone. */
-    for (int32_t i = 0; i < wd->contact_count; i++)
-        reset_slot(wd, slot_a(&wd->contacts[i])), reset_slot(wd, slot_b(&wd->contacts[i]));
-    for (int32_t i = 0; i < wd->contact_count; i = contact_pair_end(wd, i)) {
-        const pp_contact *ct = &wd->contacts[i];
-        crowd_slot *a = &c->slots[slot_a(ct)], *b = &c->slots[slot_b(ct)];
-        a->pairs++, b->pairs++;
-        a->overlap += ct->pixel_count, b->overlap += ct->pixel_count;
+    const contact_run *runs = wd->table.runs;
+    for (int32_t n = 0; n < wd->table.run_count; n++)
+        reset_slot(wd, runs[n].a), reset_slot(wd, runs[n].b);
+    int32_t many = 0; /* bodies with more than PP_CROWDED_CONTACT_PAIRS pairs: with none, none is crowded */
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const int32_t overlap = wd->contacts[runs[n].first].pixel_count;
+        crowd_slot *a = &c->slots[runs[n].a], *b = &c->slots[runs[n].b];
+        many += (++a->pairs == PP_CROWDED_CONTACT_PAIRS + 1) + (++b->pairs == PP_CROWDED_CONTACT_PAIRS + 1);
+        a->overlap += overlap, b->overlap += overlap;
     }
+    if (many == 0)
+        return PP_OK;
     int32_t lists = 0;
     for (int32_t i = 0; i < wd->contact_count; i = contact_pair_end(wd, i))
         lists += both_crowded(wd, i);
@@ -279,8 +283,10 @@ pp_status crowd_limit_contacts(world *wd)
         for (int32_t j = i; j < end; j++)
             wd->contacts[n++] = wd->contacts[j];
     }
+    if (n == wd->contact_count)
+        return PP_OK;
     wd->contact_count = n;
-    return PP_OK;
+    return contact_table_list_runs(wd);
 }
 
 void crowd_free(crowd *c)

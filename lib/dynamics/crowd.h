@@ -60,7 +60,7 @@ void crowd_prove(struct world *wd, int32_t n);
  * [first, n), as indices into wd->pairs. */
 pp_status crowd_order(struct world *wd, int32_t first, int32_t n, const int32_t **order);
 
-/* Drop from wd->contacts the pairs of two crowded bodies that are among neither body's
+/* Drop from wd->contacts (and its runs, listed again) the pairs of two crowded bodies that are among neither body's
  * PP_CROWDED_CONTACT_PAIRS deepest; the order of the rest is kept. */
 pp_status crowd_limit_contacts(struct world *wd);
 

@@ -233,8 +233,8 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         }
     }
     carry_strike(wd);
-    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = crowd_limit_contacts(wd)) ||
-        (st = contact_table_list_runs(wd)))
+    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = contact_table_list_runs(wd)) ||
+        (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
