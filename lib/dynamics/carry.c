@@ -39,17 +39,25 @@
 #define CARRY_MOVING_PX 2.0
 
 /* A body's velocity, px/s, and how fast its turning may move its points, px/s; false if it turns more than
- * CARRY_TURN_RAD in dt s. */
+ * CARRY_TURN_RAD in dt s (the step's: the same for every call of a step). Found once a substep (still_held
+ * and carry_record ask for each of a body's pairs). */
 static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, double *turn_speed)
 {
     *v = dv(0, 0), *turn_speed = 0;
     if (!bd->sb.body)
         return true;
-    double w;
-    solver_body_get_velocity(wd->solver, &bd->sb, v, &w);
-    const double diagonal = hypot(bd->aabb.x1 - bd->aabb.x0, bd->aabb.y1 - bd->aabb.y0);
-    *turn_speed = fabs(w) * diagonal;
-    return fabs(w) * dt <= CARRY_TURN_RAD;
+    carry_motion *m = &wd->carry.motion[bd->index];
+    PP_ASSERT((int32_t)bd->index < wd->carry.motion_capacity);
+    if (m->serial != wd->carry.serial) {
+        double w;
+        solver_body_get_velocity(wd->solver, &bd->sb, &m->v, &w);
+        const double diagonal = hypot(bd->aabb.x1 - bd->aabb.x0, bd->aabb.y1 - bd->aabb.y0);
+        m->turn_speed = fabs(w) * diagonal;
+        m->slow = fabs(w) * dt <= CARRY_TURN_RAD;
+        m->serial = wd->carry.serial;
+    }
+    *v = m->v, *turn_speed = m->turn_speed;
+    return m->slow;
 }
 
 /* How far a point of one body may move against the other in a step of dt s, px; INFINITY if either turns more
@@ -117,12 +125,14 @@ static bool carried_into(const world *wd, const contact_record *r, const void *k
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    const int32_t had = c->struck_capacity, had_collided = c->collided_capacity;
-    pp_status st =
-        world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, "the carried pairs");
-    if (st || (st = world_slot_array(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided,
-                                     "the carried pairs")))
+    const int32_t had = c->struck_capacity, had_collided = c->collided_capacity, had_motion = c->motion_capacity;
+    static const char *what = "the carried pairs";
+    pp_status st = world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, what);
+    if (st || (st = world_slot_array(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided, what)) ||
+        (st = world_slot_array(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion, what)))
         return st;
+    if (c->motion_capacity > had_motion)
+        memset(c->motion + had_motion, 0, (size_t)(c->motion_capacity - had_motion) * sizeof *c->motion);
     if (c->struck_capacity > had)
         memset(c->struck + had, 0, (size_t)(c->struck_capacity - had) * sizeof *c->struck);
     if (c->collided_capacity > had_collided)
@@ -324,6 +334,11 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
 {
     carry *c = &wd->carry;
     c->substep = k;
+    if (++c->serial == 0) { /* wrapped: no body's motion may look current */
+        if (c->motion)
+            memset(c->motion, 0, (size_t)c->motion_capacity * sizeof *c->motion);
+        c->serial = 1;
+    }
     if (k == 0 && wd->def.substeps > 1) { /* one substep carries nothing and holds nothing */
         pp_status st = start_step(wd);
         if (st)
@@ -390,4 +405,5 @@ void carry_free(carry *c)
 {
     pp_free(c->struck);
     pp_free(c->collided);
+    pp_free(c->motion);
 }

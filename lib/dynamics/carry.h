@@ -27,11 +27,22 @@ struct world;
 
 /* The carried pairs themselves are contact records (contact_table.h: carry_* fields, and the table's carry
  * order); what is left here is the step's own state. */
+/* A body's motion for the carry decisions (carry.c: slow_turn), found once a substep. */
+typedef struct carry_motion {
+    dvec2 v;                     /* px/s */
+    double turn_speed;           /* px/s its turning may move its points */
+    uint32_t serial;             /* carry.serial when found */
+    bool slow;                   /* it turns under CARRY_TURN_RAD in the step */
+} carry_motion;
+
 typedef struct carry {
     uint32_t *struck;            /* by slot: the last step in which a collided pair touched the body */
     int32_t struck_capacity;
     uint32_t *collided;          /* by slot: the last step in which the narrowphase found one of its pairs touching */
     int32_t collided_capacity;
+    carry_motion *motion;        /* by slot, current where serial matches */
+    int32_t motion_capacity;
+    uint32_t serial;             /* counts carry_begin's calls: the bodies have not moved within one */
     uint32_t step;               /* counts the steps carry_begin started, from 1 */
     int32_t substep;             /* the substep now, 0 = the step's first */
     bool active;                 /* a later substep: carried pairs are not collided */
