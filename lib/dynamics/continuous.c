@@ -128,12 +128,20 @@ static bool stops(const world *wd, const body *bd, const body *o, dvec2 dcom)
     return dv_dot(dcom, d) < 0 && !contact_table_find(wd, bd->handle.id, o->handle.id);
 }
 
+/* The turn from angle a0 to a1 in (−π, π], rad: remainder's, without its call for a substep's turn (under π,
+ * where remainder returns its argument exactly). */
+static double turn_of(double a0, double a1)
+{
+    const double d = a1 - a0;
+    return fabs(d) <= PP_PI ? d : remainder(d, 2 * PP_PI);
+}
+
 /* Sweep one body from its recorded pose to where the substep left it; stop it at its first hit. */
 static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
 {
     const pp_raster *r = &bd->raster;
-    sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle,
-                remainder(bd->angle - from->angle, 2 * PP_PI), body_com_local(bd)};
+    sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle, turn_of(from->angle, bd->angle),
+                body_com_local(bd)};
     /* The farthest any solid pixel lies from the centre of mass bounds how far a point moves. */
     double reach2 = 0;
     for (int k = 0; k < 4; k++) {
