@@ -29,25 +29,38 @@
 #define SIN_PERP 0.17364817766693033 /* sin 10°: a deep pair's faces may lean this far back from perpendicular */
 #define DEEP_AXES 9     /* the narrowphase's normal and both bodies' four axes */
 
-/* A body's pixel centres within CORNER_RADIUS of the contact, as offsets from it in the body's bitmap frame. */
+/* A body's pixel centres within CORNER_RADIUS of the contact, as offsets from it in the body's bitmap frame: of
+ * each row, only its first and last such pixel. A projection on a direction is monotone along a row in floating
+ * point too (each rounded product and sum is), so a row's extreme projection is at one of its two ends. */
 #define PATCH_REACH ((int32_t)CORNER_RADIUS)
 typedef struct patch {
     const body *bd;
-    int32_t n;
-    double dx[(2 * PATCH_REACH + 1) * (2 * PATCH_REACH + 1)], dy[(2 * PATCH_REACH + 1) * (2 * PATCH_REACH + 1)];
+    int32_t n;                                   /* rows with a pixel */
+    double dy[2 * PATCH_REACH + 1], dx0[2 * PATCH_REACH + 1], dx1[2 * PATCH_REACH + 1];
 } patch;
+
+static bool patch_pixel(const body *bd, dvec2 l, int32_t x, int32_t y)
+{
+    const double dx = x + 0.5 - l.x, dy = y + 0.5 - l.y;
+    return dx * dx + dy * dy <= CORNER_RADIUS * CORNER_RADIUS && raster_solid_clamped(&bd->raster, x, y);
+}
 
 static void patch_gather(const body *bd, dvec2 p, patch *out)
 {
     const dvec2 l = dv_add(bd->pivot, dv_unrot(dv_sub(p, bd->pos), bd->cos_a, bd->sin_a));
     const int32_t cx = (int32_t)floor(l.x), cy = (int32_t)floor(l.y);
     out->bd = bd, out->n = 0;
-    for (int32_t y = cy - PATCH_REACH; y <= cy + PATCH_REACH; y++)
-        for (int32_t x = cx - PATCH_REACH; x <= cx + PATCH_REACH; x++) {
-            const double dx = x + 0.5 - l.x, dy = y + 0.5 - l.y;
-            if (dx * dx + dy * dy <= CORNER_RADIUS * CORNER_RADIUS && raster_solid_clamped(&bd->raster, x, y))
-                out->dx[out->n] = dx, out->dy[out->n++] = dy;
-        }
+    for (int32_t y = cy - PATCH_REACH; y <= cy + PATCH_REACH; y++) {
+        int32_t x0 = cx - PATCH_REACH, x1 = cx + PATCH_REACH;
+        while (x0 <= x1 && !patch_pixel(bd, l, x0, y))
+            x0++;
+        while (x1 > x0 && !patch_pixel(bd, l, x1, y))
+            x1--;
+        if (x0 > x1)
+            continue;
+        out->dy[out->n] = y + 0.5 - l.y;
+        out->dx0[out->n] = x0 + 0.5 - l.x, out->dx1[out->n++] = x1 + 0.5 - l.x;
+    }
 }
 
 /* The extreme projection on world direction n (max, or min when !up) of the patch's pixels, each a disc of
@@ -57,8 +70,9 @@ static double patch_extent(const patch *pa, dvec2 n, bool up)
     const dvec2 u = dv_unrot(n, pa->bd->cos_a, pa->bd->sin_a);
     double best = up ? -INFINITY : INFINITY;
     for (int32_t i = 0; i < pa->n; i++) {
-        const double q = pa->dx[i] * u.x + pa->dy[i] * u.y + (up ? 0.5 : -0.5);
-        best = up ? dmax(best, q) : dmin(best, q);
+        const double q0 = pa->dx0[i] * u.x + pa->dy[i] * u.y + (up ? 0.5 : -0.5);
+        const double q1 = pa->dx1[i] * u.x + pa->dy[i] * u.y + (up ? 0.5 : -0.5);
+        best = up ? dmax(best, dmax(q0, q1)) : dmin(best, dmin(q0, q1));
     }
     return best;
 }
