@@ -8,6 +8,15 @@
 
 static int64_t bounds_area(const pp_raster *r) { return (int64_t)(r->x1 - r->x0) * (r->y1 - r->y0); }
 
+/* llround(x), without its call for the set-up's fixed-point steps: x − trunc(x) is exact below 2^52. */
+static int64_t round_away(double x)
+{
+    if (!(fabs(x) < 0x1p52))
+        return llround(x);
+    const int64_t i = (int64_t)x;
+    const double f = x - (double)i;
+    return i + (f >= 0.5) - (f <= -0.5);
+}
 
 /* A box in reference-local coordinates, px. */
 typedef struct local_box {
@@ -22,8 +31,8 @@ static local_box other_box(const pp_raster *rb, double mc, double ms, dvec2 t)
     const double cx[2] = {rb->x0, rb->x1}, cy[2] = {rb->y0, rb->y1};
     for (int k = 0; k < 4; k++) {
         const dvec2 l = dv_unrot(dv_sub(dv(cx[k & 1], cy[k >> 1]), t), mc, ms);
-        b.lo_x = fmin(b.lo_x, l.x), b.hi_x = fmax(b.hi_x, l.x);
-        b.lo_y = fmin(b.lo_y, l.y), b.hi_y = fmax(b.hi_y, l.y);
+        b.lo_x = dmin(b.lo_x, l.x), b.hi_x = dmax(b.hi_x, l.x);
+        b.lo_y = dmin(b.lo_y, l.y), b.hi_y = dmax(b.hi_y, l.y);
     }
     return b;
 }
@@ -45,10 +54,10 @@ static bool overlap_grid(const pp_raster *ra, local_box ob, int32_t stride, np_p
     const double margin = stride + 1;
     /* Clamped on both sides: a pair far apart (pp_world_collide takes any pair) gives bounds past int64
      * (UBSan, found by fuzz_api). */
-    const int64_t X0 = (int64_t)fmin(fmax(ra->x0, floor(lo_x - margin)), ra->x1),
-                  X1 = (int64_t)fmax(fmin(ra->x1, ceil(hi_x + margin)), ra->x0);
-    const int64_t Y0 = (int64_t)fmin(fmax(ra->y0, floor(lo_y - margin)), ra->y1),
-                  Y1 = (int64_t)fmax(fmin(ra->y1, ceil(hi_y + margin)), ra->y0);
+    const int64_t X0 = (int64_t)dmin(dmax(ra->x0, floor(lo_x - margin)), ra->x1),
+                  X1 = (int64_t)dmax(dmin(ra->x1, ceil(hi_x + margin)), ra->x0);
+    const int64_t Y0 = (int64_t)dmin(dmax(ra->y0, floor(lo_y - margin)), ra->y1),
+                  Y1 = (int64_t)dmax(dmin(ra->y1, ceil(hi_y + margin)), ra->y0);
     if (X0 >= X1 || Y0 >= Y1)
         return false;
     p->s = stride;
@@ -69,9 +78,9 @@ static void sampling_steps(np_pair *p, double mc, double ms, dvec2 t)
     const double one = (double)(1 << NP_FIX_BITS);
     const dvec2 l0 = np_grid_to_local(p, -NP_RING, -NP_RING);
     const dvec2 q0 = dv_add(dv_rot(l0, mc, ms), t);
-    p->qx0 = llround(q0.x * one), p->qy0 = llround(q0.y * one);
-    p->dix = llround(mc * p->s * one), p->diy = llround(ms * p->s * one);
-    p->djx = llround(-ms * p->s * one), p->djy = llround(mc * p->s * one);
+    p->qx0 = round_away(q0.x * one), p->qy0 = round_away(q0.y * one);
+    p->dix = round_away(mc * p->s * one), p->diy = round_away(ms * p->s * one);
+    p->djx = round_away(-ms * p->s * one), p->djy = round_away(mc * p->s * one);
     /* The plane's corners bound every sample point (the map is affine). With bitmaps of at most
      * 16384 px the points stay within about ±20000 px, so this guard for the GPU's 32-bit 16.16
      * (headroom for q − ½ pixel) does not trip; a pair that tripped it would run on the CPU. */
@@ -146,8 +155,8 @@ static void fallback_normal(const np_body *a, const np_body *b, np_pair *p)
     if (n.x == 0 && n.y == 0)
         n = dv(0, 1);
     p->fallback_n = dv_scale(n, 1.0 / sqrt(dv_dot(n, n)));
-    p->fallback_nqx = (int32_t)lround(p->fallback_n.x * NP_NORMAL_ONE);
-    p->fallback_nqy = (int32_t)lround(p->fallback_n.y * NP_NORMAL_ONE);
+    p->fallback_nqx = (int32_t)round_away(p->fallback_n.x * NP_NORMAL_ONE);
+    p->fallback_nqy = (int32_t)round_away(p->fallback_n.y * NP_NORMAL_ONE);
 }
 
 bool np_pair_grid(const np_settings *set, const np_body *a, const np_body *b, np_pair *p)
