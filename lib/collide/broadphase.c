@@ -494,7 +494,8 @@ static pp_status pairs_from_candidates(pp_broadphase *bp, const bp_proxy *px)
         if (aabb_overlap(&px[bp->cand[k].a].box, &px[bp->cand[k].b].box))
             bp->pairs[n++] = bp->cand[k];
     const int32_t first = n;
-    for (int32_t k = 0; k < first; k++) {
+    const bool sleepers = bp->cand_first < bp->cand_count; /* static pairs of sleepers a pair may rouse */
+    for (int32_t k = 0; sleepers && k < first; k++) {
         const uint32_t s = sleeper_of(px, bp->pairs[k]);
         if (s != UINT32_MAX)
             bp->roused[s] = 1;
@@ -504,7 +505,7 @@ static pp_status pairs_from_candidates(pp_broadphase *bp, const bp_proxy *px)
         if (bp->roused[px[p.a].movable ? p.a : p.b]) /* the other is static */
             bp->pairs[n++] = p;
     }
-    for (int32_t k = 0; k < first; k++) {
+    for (int32_t k = 0; sleepers && k < first; k++) {
         const uint32_t s = sleeper_of(px, bp->pairs[k]);
         if (s != UINT32_MAX)
             bp->roused[s] = 0;
