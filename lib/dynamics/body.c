@@ -83,7 +83,8 @@ void body_update_pose_cache(body *bd)
     if (!raster_empty(r)) {
         /* Each corner is pos + R·(corner − pivot); the four share their products, two by two. */
         const double c = bd->cos_a, s = bd->sin_a;
-        const double dx[2] = {r->x0 - bd->pivot.x, r->x1 - bd->pivot.x}, dy[2] = {r->y0 - bd->pivot.y, r->y1 - bd->pivot.y};
+        const double dx[2] = {r->x0 - bd->pivot.x, r->x1 - bd->pivot.x};
+        const double dy[2] = {r->y0 - bd->pivot.y, r->y1 - bd->pivot.y};
         const double cx[2] = {c * dx[0], c * dx[1]}, sx[2] = {s * dx[0], s * dx[1]};
         const double cy[2] = {c * dy[0], c * dy[1]}, sy[2] = {s * dy[0], s * dy[1]};
         for (int k = 0; k < 4; k++) {

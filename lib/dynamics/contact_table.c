@@ -395,9 +395,10 @@ void contact_table_validate_runs(const world *wd)
     for (int32_t n = 0; n < t->run_count; n++) {
         const contact_run *u = &t->runs[n];
         PP_ASSERT(u->first == next && u->end == contact_pair_end(wd, u->first));
-        PP_ASSERT(u->record >= 0 && u->record < t->count && t->records[u->record].a == wd->contacts[u->first].a.id &&
-                  t->records[u->record].b == wd->contacts[u->first].b.id && handle_slot(t->records[u->record].a) == u->a &&
-                  handle_slot(t->records[u->record].b) == u->b);
+        PP_ASSERT(u->record >= 0 && u->record < t->count);
+        const contact_record *rec = &t->records[u->record];
+        PP_ASSERT(rec->a == wd->contacts[u->first].a.id && rec->b == wd->contacts[u->first].b.id &&
+                  handle_slot(rec->a) == u->a && handle_slot(rec->b) == u->b);
         next = u->end;
     }
     PP_ASSERT(next == wd->contact_count);
