@@ -12,8 +12,10 @@
 #define PP_ASSERT(cond)                                                                                \
     ((cond) ? (void)0                                                                                  \
             : (fprintf(stderr, "%s:%d: PP_ASSERT(%s) failed\n", __FILE__, __LINE__, #cond), abort()))
+#define PP_CHECKS_ON 1
 #else
 #define PP_ASSERT(cond) ((void)0)
+#define PP_CHECKS_ON 0 /* a cache finds its value again and checks it only where this is 1 */
 #endif
 
 #endif

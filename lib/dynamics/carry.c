@@ -38,9 +38,20 @@
  * verdict stayed the same at 2, 4 and 8 px; at 8 the wall shots moved. */
 #define CARRY_MOVING_PX 2.0
 
+/* Forget every body's motion: velocities may have changed since (a solve, damping). Called before each pass over
+ * the pairs, within which none changes. */
+static void motion_stale(carry *c)
+{
+    if (++c->serial == 0) { /* wrapped: no body's motion may look current */
+        if (c->motion)
+            memset(c->motion, 0, (size_t)c->motion_capacity * sizeof *c->motion);
+        c->serial = 1;
+    }
+}
+
 /* A body's velocity, px/s, and how fast its turning may move its points, px/s; false if it turns more than
- * CARRY_TURN_RAD in dt s (the step's: the same for every call of a step). Found once a substep (still_held
- * and carry_record ask for each of a body's pairs). */
+ * CARRY_TURN_RAD in dt s (the step's: the same for every call of a step). Found once a pass (still_held and
+ * carry_record ask for each of a body's pairs). */
 static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, double *turn_speed)
 {
     *v = dv(0, 0), *turn_speed = 0;
@@ -48,13 +59,16 @@ static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, doub
         return true;
     carry_motion *m = &wd->carry.motion[bd->index];
     PP_ASSERT((int32_t)bd->index < wd->carry.motion_capacity);
-    if (m->serial != wd->carry.serial) {
+    if (m->serial != wd->carry.serial || PP_CHECKS_ON) {
         double w;
-        solver_body_get_velocity(wd->solver, &bd->sb, &m->v, &w);
+        dvec2 vel;
+        solver_body_get_velocity(wd->solver, &bd->sb, &vel, &w);
         const double diagonal = hypot(bd->aabb.x1 - bd->aabb.x0, bd->aabb.y1 - bd->aabb.y0);
-        m->turn_speed = fabs(w) * diagonal;
-        m->slow = fabs(w) * dt <= CARRY_TURN_RAD;
-        m->serial = wd->carry.serial;
+        const carry_motion now = {vel, fabs(w) * diagonal, wd->carry.serial, fabs(w) * dt <= CARRY_TURN_RAD};
+        /* PP_CHECKS: a motion found earlier in the pass is the body's motion now */
+        PP_ASSERT(m->serial != wd->carry.serial || (m->v.x == now.v.x && m->v.y == now.v.y &&
+                                                    m->turn_speed == now.turn_speed && m->slow == now.slow));
+        *m = now;
     }
     *v = m->v, *turn_speed = m->turn_speed;
     return m->slow;
@@ -147,6 +161,7 @@ static pp_status start_step(world *wd)
 
 pp_status carry_record(world *wd, double dt, int32_t k)
 {
+    motion_stale(&wd->carry);
     contact_table_keep_carried(wd, carried_into, &k);
     const int32_t n = wd->contact_count, before = wd->table.carry_count;
     if (n == 0)
@@ -334,15 +349,11 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
 {
     carry *c = &wd->carry;
     c->substep = k;
-    if (++c->serial == 0) { /* wrapped: no body's motion may look current */
-        if (c->motion)
-            memset(c->motion, 0, (size_t)c->motion_capacity * sizeof *c->motion);
-        c->serial = 1;
-    }
     if (k == 0 && wd->def.substeps > 1) { /* one substep carries nothing and holds nothing */
         pp_status st = start_step(wd);
         if (st)
             return st;
+        motion_stale(c);
         contact_table_keep_carried(wd, still_held, &dt);
         c->active = wd->table.carry_count > 0;
     }

@@ -27,7 +27,7 @@ struct world;
 
 /* The carried pairs themselves are contact records (contact_table.h: carry_* fields, and the table's carry
  * order); what is left here is the step's own state. */
-/* A body's motion for the carry decisions (carry.c: slow_turn), found once a substep. */
+/* A body's motion for the carry decisions (carry.c: slow_turn), found once a pass over the pairs. */
 typedef struct carry_motion {
     dvec2 v;                     /* px/s */
     double turn_speed;           /* px/s its turning may move its points */
@@ -42,7 +42,7 @@ typedef struct carry {
     int32_t collided_capacity;
     carry_motion *motion;        /* by slot, current where serial matches */
     int32_t motion_capacity;
-    uint32_t serial;             /* counts carry_begin's calls: the bodies have not moved within one */
+    uint32_t serial;             /* counts the passes over carried pairs: no velocity changes within one */
     uint32_t step;               /* counts the steps carry_begin started, from 1 */
     int32_t substep;             /* the substep now, 0 = the step's first */
     bool active;                 /* a later substep: carried pairs are not collided */
