@@ -169,12 +169,13 @@ static void join_island(int32_t *parent, int32_t *rows, int32_t *dynamic, const 
  * one whose awake bodies all sat out solves twice the time step. A lone body, cheap to solve, keeps every
  * substep's accuracy (a free fall, a rolling disc, a bounce). An island that bodies at both times joined
  * (rare: a merge in between) solves one substep, and its late bodies stay one substep late. */
-static void set_spans(world *wd, substep_pairing pairing)
+static void set_spans(world *wd, int32_t k, substep_pairing pairing)
 {
     const int32_t *root = wd->islands.root;
     int32_t *flags = wd->islands.group + 2 * wd->islands.group_capacity;
-    /* At a step's first substep the pairs that will strike are not yet collided: nothing is at rest then. */
-    const bool at_rest_known = wd->carry.substep > 0;
+    /* At a step's first substep the pairs that will strike are not yet collided: nothing is at rest then. From the
+     * second on, a still substep's too (it looked for no pairs, but the substeps before it did). */
+    const bool at_rest_known = k > 0;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         flags[wd->islands.nodes[n]] = 0;
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
@@ -314,14 +315,14 @@ static void island_validate_still(const world *wd)
 #endif
 }
 
-pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_islands *out)
+pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still, solver_islands *out)
 {
     wd->islands.substep_serial++;
     *out = (solver_islands){{0}, {0}};
     contact_table_validate_runs(wd);
     if (still && wd->islands.node_count > 0) { /* the same nodes, islands and kinds: only the spans move on */
         island_validate_still(wd);
-        set_spans(wd, pairing);
+        set_spans(wd, k, pairing);
         list_islands(wd, out);
         return PP_OK;
     }
@@ -420,7 +421,7 @@ pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_isl
 #ifdef PP_CHECKS
     wd->islands.planned = plan_digest(wd);
 #endif
-    set_spans(wd, pairing);
+    set_spans(wd, k, pairing);
     list_islands(wd, out);
     return PP_OK;
 }

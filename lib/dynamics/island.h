@@ -22,10 +22,10 @@ static inline substep_pairing island_pairing(int32_t k, int32_t substeps)
     return PAIR_LAST;
 }
 
-/* Collect the substep's nodes and sort the awake islands into `out` (arrays owned by the world) for
- * solver_step, each body's span (SPAN_*) in wd->island_span. `still`: nothing moved, woke or slept since the
- * last call (the contacts are the same), so its islands stand and only the spans are made anew. */
-pp_status island_plan(world *wd, substep_pairing pairing, bool still, solver_islands *out);
+/* Collect substep k's nodes (k counts a step's substeps from 0) and sort the awake islands into `out` (arrays owned
+ * by the world) for solver_step, each body's span (SPAN_*) in wd->island_span. `still`: nothing moved, woke or slept
+ * since the last call (the contacts are the same), so its islands stand and only the spans are made anew. */
+pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still, solver_islands *out);
 
 /* After solver_step: list in the awake set every node ODE woke through a contact. */
 void island_list_woken(world *wd);

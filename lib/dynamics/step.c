@@ -303,7 +303,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return st;
         solver_islands islands; /* before the joints: a failure must leave ODE none */
         const substep_pairing pairing = island_pairing(k, wd->def.substeps);
-        if ((st = island_plan(wd, pairing, still, &islands)) ||
+        if ((st = island_plan(wd, k, pairing, still, &islands)) ||
             ((k == 0 || pairing == PAIR_FIRST) && wd->def.substeps > 1 && (st = carry_record(wd, dt, k))) ||
             (st = continuous_begin(wd)))
             return st;
@@ -361,7 +361,7 @@ static pp_status quiet_substeps(world *wd, float dt)
             wd->stats.backend = choose_backend(wd, 0, 0);
         }
         solver_islands islands;
-        if ((st = island_plan(wd, PAIR_NONE, false, &islands)) || !solver_step(wd->solver, 0, &islands))
+        if ((st = island_plan(wd, k, PAIR_NONE, false, &islands)) || !solver_step(wd->solver, 0, &islands))
             return st ? st : pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
     }
     carry_end_step(wd);

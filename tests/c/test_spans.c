@@ -206,3 +206,46 @@ Test(spans, a_lone_crate_landing_and_coming_to_rest_continues_exactly_from_a_sna
     pp_world_destroy(w);
     pp_world_destroy(back);
 }
+
+#ifdef PP_TEST_PRIVATE
+#include "island.h"
+#include "world.h" /* the islands' plan, and the carry's strikes */
+
+/* The stepped lists of a plan of substep k, as a still substep (its contacts stand) plans them. */
+static solver_islands plan_still(world *wd, int32_t k)
+{
+    solver_islands out;
+    cr_assert_eq(island_plan(wd, k, island_pairing(k, wd->def.substeps), true, &out), PP_OK);
+    return out;
+}
+
+/* A QuickStep pile that a collided pair touched in this step solves its pair of substeps with every iteration, not
+ * with the half that a pile at rest gets, also where the second substep looks for no pairs (its contacts stand from
+ * the first, where a landing crate struck the pile): island_plan is told which substep it plans, rather than reading
+ * it from the last substep that looked for pairs. */
+Test(spans, a_struck_quickstep_pile_keeps_its_iterations_in_a_substep_that_looks_for_no_pairs)
+{
+    pp_world w = quick_world(4);
+    pp_body b[3];
+    add_column(w, b, 3);
+    step_n(w, DT, 60);
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    wd->carry.substep = 0; /* the step's first substep was the last to look for pairs */
+
+    solver_islands first = plan_still(wd, 0), second = plan_still(wd, 1);
+    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 0 out");
+    cr_assert_eq(second.count[SOLVE_QUICK_TWO_REST], 3, "untouched, it is at rest: %d of 3 bodies",
+                 second.count[SOLVE_QUICK_TWO_REST]);
+
+    /* Now a collided pair touched the top box in this step. */
+    const uint32_t top = handle_slot(b[2].id);
+    cr_assert_lt((int32_t)top, wd->carry.struck_capacity);
+    wd->carry.struck[top] = wd->carry.step;
+    first = plan_still(wd, 2), second = plan_still(wd, 3);
+    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 2 out");
+    cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "struck, it keeps every iteration: %d of 3 bodies (%d at rest)",
+                 second.count[SOLVE_QUICK_TWO], second.count[SOLVE_QUICK_TWO_REST]);
+    pp_world_destroy(w);
+}
+#endif
