@@ -2,7 +2,6 @@
  * order its joints are handed to ODE in. */
 #include "contact_solve.h"
 #include "corner.h"
-#include "handle.h"
 #include "world.h"
 
 #include <math.h>
