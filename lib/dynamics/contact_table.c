@@ -375,10 +375,11 @@ pp_status contact_table_list_runs(world *wd)
 {
     contact_table *t = &wd->table;
     t->run_count = 0;
+    if (!ARRAY_RESERVE(t->runs, t->run_capacity, wd->contact_count)) /* a pair a contact at most */
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to list %d contacts' pairs",
+                       (int)wd->contact_count);
     for (int32_t i = 0, end; i < wd->contact_count; i = end) {
         end = contact_pair_end(wd, i);
-        if (!ARRAY_RESERVE(t->runs, t->run_capacity, t->run_count + 1))
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to list %d pairs", (int)t->run_count + 1);
         const uint32_t a = handle_slot(wd->contacts[i].a.id), b = handle_slot(wd->contacts[i].b.id);
         const int32_t k = lookup(t, pair_key(a, b));
         PP_ASSERT(a < b && k >= 0 && t->records[k].a == wd->contacts[i].a.id); /* every contact's pair was found */
