@@ -95,6 +95,7 @@ void body_update_pose_cache(body *bd)
         }
     }
     bd->aabb = box;
+    body_update_com(bd);
 }
 
 dvec2 body_com_local(const body *bd)
@@ -102,9 +103,18 @@ dvec2 body_com_local(const body *bd)
     return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
 }
 
-dvec2 body_com_world(const body *bd)
+static dvec2 com_world(const body *bd)
 {
     return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
+}
+
+void body_update_com(body *bd) { bd->com = com_world(bd); }
+
+/* Read by every pass over pairs (carrying, anchors, sweeps) for each pair a body is in: kept, not found again. */
+dvec2 body_com_world(const body *bd)
+{
+    PP_ASSERT(bd->com.x == com_world(bd).x && bd->com.y == com_world(bd).y);
+    return bd->com;
 }
 
 /* A body is round when its inertia is within ROUND_INERTIA of a disc's of the same area (a pixel disc of
@@ -330,6 +340,7 @@ void body_remake_solver(world *wd, body *bd, pp_body_type type, bool fixed_rotat
     bd->fixed_rotation = fixed_rotation;
     bd->mass = type == PP_BODY_STATIC ? (pp_mass){0}
                                       : mass_from_sums(&bd->sums, bd->raster.width, bd->raster.height, bd->density);
+    body_update_com(bd);
     if (type != PP_BODY_DYNAMIC) {
         forces_forget(wd, bd);
         bd->force = dv(0, 0), bd->torque = 0, bd->gravity_scale = 1;

@@ -118,6 +118,7 @@ void step_restore(world *wd)
         solver_body_restore(&bd->sb, &sv->ode);
         bd->pos = sv->pos, bd->angle = sv->angle, bd->cos_a = sv->cos_a, bd->sin_a = sv->sin_a;
         bd->slow_time = sv->slow_time, bd->aabb = sv->aabb;
+        body_update_com(bd);
     }
     if (u->contact_count > 0)
         memcpy(wd->contacts, u->contacts, (size_t)u->contact_count * sizeof *wd->contacts);

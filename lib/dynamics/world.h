@@ -39,6 +39,7 @@ typedef struct body {
     dvec2 pivot;             /* bitmap coordinates, px */
     dvec2 pos;               /* world position of the pivot, px */
     double angle, cos_a, sin_a;
+    dvec2 com;               /* world centre of mass, px: body_com_world's, kept with the pose (body_update_com) */
     solver_body sb;          /* the ODE body; empty for static bodies */
     pp_aabb aabb;            /* world bounds of the solid pixels */
     uint64_t user_data;
@@ -349,8 +350,10 @@ pp_status body_check_surface(const char *fn, double friction, double restitution
                              double angular_damping);
 pp_status body_check_speed(const char *fn, const char *linear_name, dvec2 v, const char *angular_name, double w);
 
-/* Refresh cached trig and world bounds after a pose change. */
+/* Refresh the cached world bounds and centre of mass after a pose change (cos_a, sin_a set already). */
 void body_update_pose_cache(body *bd);
+/* Refresh the cached world centre of mass alone: after a change of mass with the pose kept. */
+void body_update_com(body *bd);
 
 /* The narrowphase's view of a body at its current pose. */
 static inline np_settings world_np_settings(const world *wd)

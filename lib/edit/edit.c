@@ -38,6 +38,7 @@ void edit_update_solver_body(world *wd, body *bd)
     solver_body_state s;
     solver_body_get_state(wd->solver, &bd->sb, &s);
     bd->mass = mass_from_sums(&bd->sums, bd->raster.width, bd->raster.height, bd->density);
+    body_update_com(bd);
     const dvec2 com = body_com_world(bd), r = dv_sub(com, s.com_world);
     const dvec2 v = dv_add(s.velocity, dv(-s.angular_velocity * r.y, s.angular_velocity * r.x));
     solver_body_set_mass(wd->solver, &bd->sb, bd->mass.mass, bd->mass.inertia);

@@ -649,6 +649,7 @@ static void set_body(world *wd, body *bd, const body_view *v, uint32_t tag)
     r->version = live.raster.version;
     bd->sprite = live.sprite;
     bd->sb.body = live.sb.body, bd->sb.plane = live.sb.plane;
+    body_update_com(bd); /* from the saved pose and mass, not the saved bytes */
     bd->awake_at = live.awake_at, bd->changed_at = live.changed_at;
     bd->stamp_version = live.stamp_version;
     r->changed_bands = live.raster.changed_bands;
