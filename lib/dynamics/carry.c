@@ -224,7 +224,7 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
     /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
      * bodies were pushed nowhere. */
     if (p && p->carry_last >= c->substep && (still || !(struck(c, a) || struck(c, b)))) {
-        contact_table_edit(wd, at)->carry_flags |= CARRY_CLAIMED;
+        contact_table_edit(wd, at)->claimed = wd->table.substep;
         return true;
     }
     if (p && p->carry_last >= c->substep)
@@ -291,7 +291,7 @@ pp_status carry_push(world *wd)
     /* contact_table_found finds every carried record where it is: none is made or ended meanwhile. */
     for (int32_t k = 0; k < t->carry_count; k++) {
         const int32_t i = t->carry_order[k];
-        if (i < 0 || !(t->records[i].carry_flags & CARRY_CLAIMED))
+        if (i < 0 || t->records[i].claimed != t->substep)
             continue; /* ended, or the broadphase no longer pairs them: apart */
         np_result r;
         move_pair(wd, &t->records[i], &r);
@@ -357,10 +357,6 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
         contact_table_keep_carried(wd, still_held, &dt);
         c->active = wd->table.carry_count > 0;
     }
-    const contact_table *t = &wd->table;
-    for (int32_t i = 0; i < t->carry_count; i++)
-        if (t->carry_order[i] >= 0 && (t->records[t->carry_order[i]].carry_flags & CARRY_CLAIMED))
-            contact_table_edit(wd, t->carry_order[i])->carry_flags &= (uint8_t)~CARRY_CLAIMED;
     return PP_OK;
 }
 
@@ -368,7 +364,7 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
 static bool to_hold(const world *wd, const contact_record *p, const void *unused)
 {
     (void)unused;
-    return (p->carry_flags & (CARRY_HELD | CARRY_CLAIMED | CARRY_MISSED)) == (CARRY_HELD | CARRY_CLAIMED) &&
+    return (p->carry_flags & (CARRY_HELD | CARRY_MISSED)) == CARRY_HELD && p->claimed == wd->table.substep &&
            p->carry_last == wd->def.substeps - 1;
 }
 

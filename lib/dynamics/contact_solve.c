@@ -130,14 +130,13 @@ void contact_joints_add(world *wd, double h)
             const pp_contact *c = &wd->contacts[i];
             const double e = p.restitution, closing = e > 0 ? approach_speed(wd, p.a, p.b, c) : 0;
             const bool bounce = e > 0 && closing > wd->def.bounce_threshold;
-            const solver_contact sc = {
+            *solver_add_contact(wd->solver, i) = (solver_contact){
                 sa, sb, p.inv_mass_a, p.inv_mass_b,
                 dv(c->point.x, c->point.y), dv(c->normal.x, c->normal.y), c->depth,
                 p.friction, e > 0 ? bounce_for(wd, p.a, p.b, c, e, closing) : 0,
                 p.anchor ? anchor_speed(wd, p.a, p.b, p.anchor, c, p.h) : 0, closing_speed(wd, &p, c, g, bounce),
                 (uint8_t)span, bounce,
             };
-            solver_add_contact(wd->solver, &sc, i);
         }
     }
 }

@@ -235,7 +235,7 @@ void contact_table_begin_substep(world *wd)
     contact_table *t = &wd->table;
     if (++t->substep == 0) { /* wrapped: no record's stamp may look current */
         for (int32_t i = 0; i < t->count; i++)
-            edit(t, i)->found = 0;
+            edit(t, i)->found = 0, t->records[i].claimed = 0;
         t->substep = 1;
     }
     t->found_count = 0;

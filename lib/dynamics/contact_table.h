@@ -34,7 +34,6 @@ enum {
 
 /* A carried pair's flags (carry.c): what its substeps have done with it. */
 enum {
-    CARRY_CLAIMED = 1, /* the substep's broadphase still pairs them: its contacts are moved, not collided */
     CARRY_MISSED = 2,  /* collided at a substep it was carried into */
     CARRY_HELD = 4,    /* resting at the substep that found it: may be held into later steps */
     CARRY_STACK = 8,   /* its bodies sat that substep out: bound CARRY_STACK_PX, else CARRY_MOTION_PX */
@@ -51,6 +50,7 @@ typedef struct contact_record {
     uint64_t a, b;         /* body handle ids */
     uint32_t flags;        /* CT_* */
     uint32_t found;        /* the substep (contact_table.substep) the narrowphase last found the pair in */
+    uint32_t claimed;      /* the substep whose broadphase last paired it carried: its contacts moved, not collided */
     double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
     double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it */
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */

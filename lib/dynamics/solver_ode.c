@@ -275,10 +275,12 @@ double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, doubl
     return fabs(f[0] * normal.x + f[1] * normal.y) * h * s->ppm;
 }
 
-void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k)
+solver_contact *solver_add_contact(pp_solver *s, int32_t k)
 {
     PP_ASSERT(k >= 0 && k < s->feedback_capacity && s->pending_count < s->pending_capacity); /* reserved first */
-    s->pending[s->pending_count++] = (pending_contact){*c, k};
+    pending_contact *p = &s->pending[s->pending_count++];
+    p->k = k;
+    return &p->c;
 }
 
 static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)

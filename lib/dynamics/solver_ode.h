@@ -153,8 +153,9 @@ void solver_joint_reaction(const pp_solver *s, const solver_joint *sj, dvec2 *fo
 
 /* Room for n contacts in the next step and their impulses, zeroed; call before adding them. */
 pp_status solver_reserve_contacts(pp_solver *s, int32_t n);
-/* A contact for the next step, its impulse read back as contact k. The solver orders its rows itself. */
-void solver_add_contact(pp_solver *s, const solver_contact *c, int32_t k);
+/* Room for a contact of the next step, to be filled in place, its impulse read back as contact k. The solver
+ * orders its rows itself. */
+solver_contact *solver_add_contact(pp_solver *s, int32_t k);
 /* Impulse the last step of h s applied at contact k along the unit normal, mass·px/s (≥ 0). */
 double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h);
 

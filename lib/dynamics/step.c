@@ -189,6 +189,8 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     static const char *fn = "pp_world_step";
     const double t0 = now_ms();
     pp_status st = carry_begin(wd, substep, dt);
+    if (!st) /* before the claims, which carry.c stamps with the substep */
+        contact_table_begin_substep(wd);
     if (st || (st = awake_refresh(wd)))
         return st ? pp_fail_in(fn, st) : st;
     /* Every pair needs an awake body: with none, the sweep over every box would find nothing. */
@@ -210,7 +212,6 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
         return st;
     wd->contact_count = 0;
-    contact_table_begin_substep(wd);
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
         const body *a = wd->bodies[wd->batch.bodies[2 * k]], *b = wd->bodies[wd->batch.bodies[2 * k + 1]];
