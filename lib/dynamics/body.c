@@ -103,17 +103,17 @@ dvec2 body_com_local(const body *bd)
     return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
 }
 
-static dvec2 com_world(const body *bd)
+dvec2 body_com_of_pose(const body *bd)
 {
     return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
 }
 
-void body_update_com(body *bd) { bd->com = com_world(bd); }
+void body_update_com(body *bd) { bd->com = body_com_of_pose(bd); }
 
 /* Read by every pass over pairs (carrying, anchors, sweeps) for each pair a body is in: kept, not found again. */
 dvec2 body_com_world(const body *bd)
 {
-    PP_ASSERT(bd->com.x == com_world(bd).x && bd->com.y == com_world(bd).y);
+    PP_ASSERT(bd->com.x == body_com_of_pose(bd).x && bd->com.y == body_com_of_pose(bd).y);
     return bd->com;
 }
 

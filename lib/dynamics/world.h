@@ -324,6 +324,8 @@ dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
 /* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
 dvec2 body_com_local(const body *bd);
 dvec2 body_com_world(const body *bd);
+/* The world centre of mass found from the pose and mass, px: for a body's saved bytes, whose cache is unchecked. */
+dvec2 body_com_of_pose(const body *bd);
 /* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
 double body_round_radius(const body *bd);
 

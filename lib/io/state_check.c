@@ -159,7 +159,7 @@ static bool ode_within_reach(const body *b, const solver_exact_state *ode, doubl
 {
     if (b->type == PP_BODY_STATIC)
         return true;
-    const dvec2 com = body_com_world(b), off = dv_sub(dv(ode->px * ppm, ode->py * ppm), com);
+    const dvec2 com = body_com_of_pose(b), off = dv_sub(dv(ode->px * ppm, ode->py * ppm), com);
     const double reach = 1.0 + (double)b->raster.width + (double)b->raster.height;
     return dv_dot(off, off) <= reach * reach;
 }
