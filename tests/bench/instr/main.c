@@ -2,13 +2,16 @@
  * measured steps (CALLGRIND_START/STOP_INSTRUMENTATION around them, collection toggled on inside), and prints
  * what report.py divides the instructions by. Outside valgrind the macros do nothing and it just runs.
  *
- *   bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N]
+ *   bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K]
  *
  * stdout, one line: `instr scene=NAME steps=N awake_sum=A contacts_sum=C`, the sums over the measured steps of
- * pp_step_stats.awake_bodies and .contacts (contact points of the last substep).
+ * pp_step_stats.awake_bodies and .contacts (contact points of the last substep). With --motion, before it, every
+ * K measured steps of a stack scene: `motion step=S over_10=N rms=V deepest=D`, the bodies faster than 10 px/s,
+ * their rms speed (px/s) and the deepest contact (px): how calm a pile stays at what a change saves.
  */
 #include "../cost/cost.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +19,7 @@
 
 typedef struct measure {
     long long awake, contacts;
+    int motion_every; /* --motion: 0, none */
 } measure;
 
 static void check(pp_status st, const char *what)
@@ -74,6 +78,33 @@ static void step(pp_world w, measure *m)
     }
 }
 
+/* The --motion line after measured step k of the bodies (read with collection off: not the step's work). */
+static void print_motion(pp_world w, const pp_body *bodies, int count, int k)
+{
+    CALLGRIND_TOGGLE_COLLECT;
+    int over = 0, n = 0;
+    double v2 = 0, deepest = 0;
+    for (int i = 0; i < count; i++) {
+        pp_vec2 v;
+        float av;
+        if (pp_body_get_velocity(w, bodies[i], &v, &av) != PP_OK)
+            continue; /* a static body */
+        const double s2 = (double)v.x * v.x + (double)v.y * v.y;
+        v2 += s2, n++, over += s2 > 100.0;
+    }
+    int32_t total = 0;
+    check(pp_world_get_contacts(w, NULL, 0, &total), "pp_world_get_contacts");
+    pp_contact *c = malloc((size_t)(total > 0 ? total : 1) * sizeof *c);
+    if (!c)
+        die("out of memory");
+    check(pp_world_get_contacts(w, c, total, &total), "pp_world_get_contacts");
+    for (int32_t i = 0; i < total; i++)
+        deepest = c[i].depth > deepest ? c[i].depth : deepest;
+    free(c);
+    printf("motion step=%d over_10=%d rms=%.2f deepest=%.3f\n", k, over, n ? sqrt(v2 / n) : 0.0, deepest);
+    CALLGRIND_TOGGLE_COLLECT;
+}
+
 /* A stability-style scene (pyramid, rain, sleeping crates): settle steps uncounted, then `steps` counted. */
 static void run_stab(const stab_scene *s, int sleep, int settle, int steps, measure *m)
 {
@@ -87,8 +118,11 @@ static void run_stab(const stab_scene *s, int sleep, int settle, int steps, meas
     if (sleep && stats(w).awake_bodies != 0)
         die("the crates did not all fall asleep while settling");
     region_begin();
-    for (int k = 0; k < steps; k++)
+    for (int k = 0; k < steps; k++) {
         step(w, m);
+        if (m->motion_every && (k + 1) % m->motion_every == 0)
+            print_motion(w, bodies, s->count, k + 1);
+    }
     region_end();
     check(pp_world_destroy(w), "pp_world_destroy");
     free(bodies);
@@ -152,23 +186,25 @@ static int sleep_scene_build(stab_scene *out)
 int main(int argc, char **argv)
 {
     const char *scene = NULL;
-    int steps = 0; /* 0: the scene's own count */
+    int steps = 0, motion = 0; /* 0: the scene's own count; no motion lines */
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc)
             scene = argv[++i];
         else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc && atoi(argv[i + 1]) > 0)
             steps = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--motion") == 0 && i + 1 < argc && atoi(argv[i + 1]) > 0)
+            motion = atoi(argv[++i]);
         else
             scene = NULL, i = argc;
     }
     if (!scene) {
-        fprintf(stderr, "usage: bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N]\n"
+        fprintf(stderr, "usage: bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K]\n"
                         "  run under valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no\n"
                         "  (tests/bench/instr/report.py does)\n");
         return 2;
     }
 
-    measure m = {0};
+    measure m = {.motion_every = motion};
     stab_scene s;
     if (strcmp(scene, "pyramid20") == 0) {
         steps = steps ? steps : 60;
