@@ -26,8 +26,17 @@
 /* The bound for a pair of a QuickStep stack that solves every other substep (island.h), px a step: it is
  * collided once a step while it moves under it against itself. Not the heavy chain above (it solves every
  * substep). In the first 300 steps of 500 raining crates (one pile), the third substep collided 700–820
- * pairs against the first's 820–890 at 0.25 px; at 1 px, 216 against 800 on average: pairs not yet touching. */
-#define CARRY_STACK_PX 1.0
+ * pairs against the first's 820–890 at 0.25 px; at 1 px, 216 against 800 on average: pairs not yet touching.
+ * At 1.5 px the pile's narrowphase costs 0.84 M instructions a step against 2.01 M at 1 px (bench_instr), with
+ * every bench_stability verdict kept; at 2 px 0.77 M, where Box2D v3's arch drifted as far. */
+#define CARRY_STACK_PX 1.5
+
+/* A QuickStep stack is at rest, and solves at half its iterations (island.c), while no collided pair struck it and
+ * none of its pairs moves faster than CARRY_REST_PX a step against itself (carry_restless), held or not. At rest
+ * by the first alone, the raining crates' pile never settled at half: 50–90 of its 500 moved over 10 px/s with
+ * pairs held to 1.5 px, 15–20 with pairs held to 1 px; 8 with this rule, 1 at full iterations always
+ * (bench_instr --motion, steps 151–900). */
+#define CARRY_REST_PX 1.0
 
 /* A pair touching at a step's first substep that moves faster than a resting one, but under CARRY_MOVING_PX a
  * step against itself (120 px/s at 60 Hz), is collided once in the step too: its contacts are carried through the
@@ -63,7 +72,8 @@ static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, doub
         double w;
         dvec2 vel;
         solver_body_get_velocity(wd->solver, &bd->sb, &vel, &w);
-        const double diagonal = hypot(bd->aabb.x1 - bd->aabb.x0, bd->aabb.y1 - bd->aabb.y0);
+        const double dx = bd->aabb.x1 - bd->aabb.x0, dy = bd->aabb.y1 - bd->aabb.y0; /* floats: no overflow squared */
+        const double diagonal = sqrt(dx * dx + dy * dy);
         const carry_motion now = {vel, fabs(w) * diagonal, wd->carry.serial, fabs(w) * dt <= CARRY_TURN_RAD};
         /* PP_CHECKS: a motion found earlier in the pass is the body's motion now */
         PP_ASSERT(m->serial != wd->carry.serial || (m->v.x == now.v.x && m->v.y == now.v.y &&
@@ -82,7 +92,21 @@ static double pair_motion(const world *wd, const body *a, const body *b, double 
     double ta, tb;
     if (!slow_turn(wd, a, dt, &va, &ta) || !slow_turn(wd, b, dt, &vb, &tb))
         return INFINITY;
-    return (dv_norm(dv_sub(vb, va)) + ta + tb) * dt;
+    const dvec2 d = dv_sub(vb, va); /* under PP_MAX_SPEED: no overflow squared */
+    return (sqrt(dv_dot(d, d)) + ta + tb) * dt;
+}
+
+/* Whether a point of one body may move more than `bound` px against the other in a step of dt s (pair_motion's
+ * measure, without its square root): a turn past CARRY_TURN_RAD does. */
+static bool moves_past(const world *wd, const body *a, const body *b, double dt, double bound)
+{
+    dvec2 va, vb;
+    double ta, tb;
+    if (!slow_turn(wd, a, dt, &va, &ta) || !slow_turn(wd, b, dt, &vb, &tb))
+        return true;
+    const double room = bound / dt - ta - tb; /* px/s the linear motion may take */
+    const dvec2 d = dv_sub(vb, va);
+    return room < 0 || dv_dot(d, d) > room * room;
 }
 
 static void strike(carry *c, const body *bd)
@@ -93,11 +117,29 @@ static void strike(carry *c, const body *bd)
 
 static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
 
+static void mark_restless(carry *c, const body *bd)
+{
+    if (bd->sb.body)
+        c->restless[bd->index] = c->step;
+}
+
+/* Marked restless in this step already, or static (a body that never moves needs no mark). */
+static bool marked_restless(const carry *c, const body *bd)
+{
+    return !bd->sb.body || c->restless[bd->index] == c->step;
+}
+
 void carry_collided(world *wd, uint32_t a, uint32_t b)
 {
     carry *c = &wd->carry;
     if ((int32_t)b < c->collided_capacity) /* a < b; one substep makes no room: nothing pairs then */
         c->collided[a] = c->collided[b] = c->step;
+}
+
+bool carry_restless(const world *wd, uint32_t slot)
+{
+    const carry *c = &wd->carry;
+    return (int32_t)slot < c->restless_capacity && c->restless[slot] == c->step;
 }
 
 bool carry_was_collided(const world *wd, uint32_t slot)
@@ -140,11 +182,15 @@ static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
     const int32_t had = c->struck_capacity, had_collided = c->collided_capacity, had_motion = c->motion_capacity;
+    const int32_t had_restless = c->restless_capacity;
     static const char *what = "the carried pairs";
     pp_status st = world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, what);
     if (st || (st = world_slot_array(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided, what)) ||
-        (st = world_slot_array(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion, what)))
+        (st = world_slot_array(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion, what)) ||
+        (st = world_slot_array(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless, what)))
         return st;
+    if (c->restless_capacity > had_restless)
+        memset(c->restless + had_restless, 0, (size_t)(c->restless_capacity - had_restless) * sizeof *c->restless);
     if (c->motion_capacity > had_motion)
         memset(c->motion + had_motion, 0, (size_t)(c->motion_capacity - had_motion) * sizeof *c->motion);
     if (c->struck_capacity > had)
@@ -154,6 +200,7 @@ static pp_status start_step(world *wd)
     if (++c->step == 0) { /* wrapped: no stale stamp may match */
         memset(c->struck, 0, (size_t)c->struck_capacity * sizeof *c->struck);
         memset(c->collided, 0, (size_t)c->collided_capacity * sizeof *c->collided);
+        memset(c->restless, 0, (size_t)c->restless_capacity * sizeof *c->restless);
         c->step = 1;
     }
     return PP_OK;
@@ -161,7 +208,8 @@ static pp_status start_step(world *wd)
 
 pp_status carry_record(world *wd, double dt, int32_t k)
 {
-    motion_stale(&wd->carry);
+    if (k > 0) /* at the step's first substep nothing has changed a velocity since carry_begin read them */
+        motion_stale(&wd->carry);
     contact_table_keep_carried(wd, carried_into, &k);
     const int32_t n = wd->contact_count, before = wd->table.carry_count;
     if (n == 0)
@@ -181,6 +229,9 @@ pp_status carry_record(world *wd, double dt, int32_t k)
          * too, but keeps a resting pair's bound. */
         const bool stack = sits_out(wd, a) && sits_out(wd, b) &&
                            wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_QUICK_STACK;
+        if (stack && !(marked_restless(&wd->carry, a) && marked_restless(&wd->carry, b)) &&
+            moves_past(wd, a, b, dt, CARRY_REST_PX))
+            mark_restless(&wd->carry, a), mark_restless(&wd->carry, b);
         if (k == 0 && carried_before) { /* held from the steps before: no longer a stack's, it is collided from
                                            the next substep */
             if ((rec->carry_flags & CARRY_STACK) && !stack)
@@ -413,4 +464,5 @@ void carry_free(carry *c)
     pp_free(c->struck);
     pp_free(c->collided);
     pp_free(c->motion);
+    pp_free(c->restless);
 }

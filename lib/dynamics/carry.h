@@ -40,6 +40,8 @@ typedef struct carry {
     int32_t struck_capacity;
     uint32_t *collided;          /* by slot: the last step in which the narrowphase found one of its pairs touching */
     int32_t collided_capacity;
+    uint32_t *restless;          /* by slot: the last step in which a QuickStep stack's pair of it moved past CARRY_REST_PX */
+    int32_t restless_capacity;
     carry_motion *motion;        /* by slot, current where serial matches */
     int32_t motion_capacity;
     uint32_t serial;             /* counts the passes over carried pairs: no velocity changes within one */
@@ -61,6 +63,9 @@ void carry_strike(struct world *wd);
 /* Whether a pair the narrowphase collided touched the body in this slot in this step (so far): something
  * landed on it, or it moved too fast against another body for its pair to be carried. */
 bool carry_struck(const struct world *wd, uint32_t slot);
+/* Whether a QuickStep stack's pair of the body in this slot moved faster than a pile at rest in this step (so far):
+ * its island needs its full iterations, carried or not. */
+bool carry_restless(const struct world *wd, uint32_t slot);
 /* The narrowphase found a pair of these two bodies touching (at any substep). */
 void carry_collided(struct world *wd, uint32_t a, uint32_t b);
 /* Whether the narrowphase found a pair of the body in this slot touching in this step (so far): none of its

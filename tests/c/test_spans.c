@@ -248,4 +248,35 @@ Test(spans, a_struck_quickstep_pile_keeps_its_iterations_in_a_substep_that_looks
                  second.count[SOLVE_QUICK_TWO], second.count[SOLVE_QUICK_TWO_REST]);
     pp_world_destroy(w);
 }
+
+/* A QuickStep pile whose pairs move faster than CARRY_REST_PX (1 px a step) against themselves is not at rest, though
+ * its pairs stay held (under CARRY_STACK_PX, 1.5 px) and no collided pair strikes it: it keeps every iteration. Solved
+ * at half, such a pile of 500 raining crates boiled (tests/bench/README.md). */
+Test(spans, a_quickstep_pile_moving_past_rest_keeps_its_iterations_while_its_pairs_are_held)
+{
+    pp_world w = quick_world(4);
+    pp_body b[3];
+    add_column(w, b, 3);
+    step_n(w, DT, 60);
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    const uint32_t top = handle_slot(b[2].id), middle = handle_slot(b[1].id), bottom = handle_slot(b[0].id);
+    /* 66 px/s sideways: 1.1 px a step against the box under it */
+    pp_vec2 v;
+    float av = 0;
+    PP_OK_OR_FAIL(pp_body_get_velocity(w, b[2], &v, &av));
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, b[2], (pp_vec2){v.x + 66.0f, v.y}, av));
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    cr_assert(!carry_was_collided(wd, top) && !carry_struck(wd, top) && !carry_struck(wd, middle),
+              "its pairs stay held and nothing strikes it: collided %d, struck %d %d", carry_was_collided(wd, top),
+              carry_struck(wd, top), carry_struck(wd, middle));
+    cr_assert(carry_restless(wd, top) && carry_restless(wd, middle) && !carry_restless(wd, bottom),
+              "the sliding pair's bodies are restless (top %d, middle %d), the pair under them not (bottom %d)",
+              carry_restless(wd, top), carry_restless(wd, middle), carry_restless(wd, bottom));
+    const solver_islands first = plan_still(wd, 2), second = plan_still(wd, 3);
+    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 2 out");
+    cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "it keeps every iteration: %d of 3 bodies (%d at rest)",
+                 second.count[SOLVE_QUICK_TWO], second.count[SOLVE_QUICK_TWO_REST]);
+    pp_world_destroy(w);
+}
 #endif

@@ -6,8 +6,9 @@
  *
  * stdout, one line: `instr scene=NAME steps=N awake_sum=A contacts_sum=C`, the sums over the measured steps of
  * pp_step_stats.awake_bodies and .contacts (contact points of the last substep). With --motion, before it, every
- * K measured steps of a stack scene: `motion step=S over_10=N rms=V deepest=D`, the bodies faster than 10 px/s,
- * their rms speed (px/s) and the deepest contact (px): how calm a pile stays at what a change saves.
+ * K measured steps of a stack scene: `motion steps=A-B over_10=N rms=V deepest=D`, over those K steps the mean
+ * count of bodies faster than 10 px/s, their rms speed (px/s) and the deepest contact (px): how calm a pile stays
+ * at what a change saves.
  */
 #include "../cost/cost.h"
 
@@ -20,6 +21,7 @@
 typedef struct measure {
     long long awake, contacts;
     int motion_every; /* --motion: 0, none */
+    double over, v2, deepest; /* --motion: sums over the window's steps, its deepest contact */
 } measure;
 
 static void check(pp_status st, const char *what)
@@ -78,8 +80,9 @@ static void step(pp_world w, measure *m)
     }
 }
 
-/* The --motion line after measured step k of the bodies (read with collection off: not the step's work). */
-static void print_motion(pp_world w, const pp_body *bodies, int count, int k)
+/* Add measured step k's motion to the window, and print the window every motion_every steps (read with
+ * collection off: not the step's work). */
+static void add_motion(pp_world w, const pp_body *bodies, int count, int k, measure *m)
 {
     CALLGRIND_TOGGLE_COLLECT;
     int over = 0, n = 0;
@@ -101,7 +104,13 @@ static void print_motion(pp_world w, const pp_body *bodies, int count, int k)
     for (int32_t i = 0; i < total; i++)
         deepest = c[i].depth > deepest ? c[i].depth : deepest;
     free(c);
-    printf("motion step=%d over_10=%d rms=%.2f deepest=%.3f\n", k, over, n ? sqrt(v2 / n) : 0.0, deepest);
+    m->over += over, m->v2 += n ? v2 / n : 0, m->deepest = deepest > m->deepest ? deepest : m->deepest;
+    if (k % m->motion_every == 0) {
+        const int e = m->motion_every;
+        printf("motion steps=%d-%d over_10=%.1f rms=%.2f deepest=%.3f\n", k - e + 1, k, m->over / e, sqrt(m->v2 / e),
+               m->deepest);
+        m->over = m->v2 = m->deepest = 0;
+    }
     CALLGRIND_TOGGLE_COLLECT;
 }
 
@@ -120,8 +129,8 @@ static void run_stab(const stab_scene *s, int sleep, int settle, int steps, meas
     region_begin();
     for (int k = 0; k < steps; k++) {
         step(w, m);
-        if (m->motion_every && (k + 1) % m->motion_every == 0)
-            print_motion(w, bodies, s->count, k + 1);
+        if (m->motion_every)
+            add_motion(w, bodies, s->count, k + 1, m);
     }
     region_end();
     check(pp_world_destroy(w), "pp_world_destroy");
