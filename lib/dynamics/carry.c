@@ -350,7 +350,8 @@ pp_status carry_push(world *wd)
             continue;
         const body *a = wd->bodies[handle_slot(t->records[i].a)], *b = wd->bodies[handle_slot(t->records[i].b)];
         bool keep = true;
-        pp_status st = contact_table_found(wd, a, b, &r, i, &keep);
+        int32_t at = i;
+        pp_status st = contact_table_found(wd, a, b, &r, &at, &keep);
         if (st)
             return st;
         if (!keep)
@@ -358,8 +359,11 @@ pp_status carry_push(world *wd)
         if (!ARRAY_RESERVE(wd->contacts, wd->contact_capacity, wd->contact_count + r.count))
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d contacts",
                            (int)(wd->contact_count + r.count));
+        const int32_t from = wd->contact_count;
         for (int32_t m = 0; m < r.count; m++)
             wd->contacts[wd->contact_count++] = r.contacts[m];
+        if ((st = contact_table_add_run(wd, from, wd->contact_count, a->index, b->index, at)))
+            return st;
     }
     return PP_OK;
 }

@@ -53,7 +53,7 @@ static contact_record *edit(contact_table *t, int32_t i)
     return &t->records[i];
 }
 
-/* The record now at i: the hash and the carry order find it there. */
+/* The record now at i: the hash, the carry order and the substep's runs find it there. */
 static void placed(contact_table *t, int32_t i)
 {
     const contact_record *r = &t->records[i];
@@ -61,6 +61,9 @@ static void placed(contact_table *t, int32_t i)
         pair_map_set(&t->index, key_of(r), i);
     if (r->carried)
         t->carry_order[r->carried - 1] = i;
+    if (r->found == t->substep && r->run >= 0 && r->run < t->run_count && t->runs[r->run].a == handle_slot(r->a) &&
+        t->runs[r->run].b == handle_slot(r->b))
+        t->runs[r->run].record = i;
 }
 
 static void move(contact_table *t, int32_t from, int32_t to)
@@ -265,7 +268,7 @@ static bool one_way_passes(const body *a, const body *b, const np_result *r)
     return dv_dot(n, d) < ONE_WAY_COS;
 }
 
-pp_status contact_table_found(world *wd, const body *a, const body *b, const np_result *r, int32_t at, bool *keep)
+pp_status contact_table_found(world *wd, const body *a, const body *b, const np_result *r, int32_t *at, bool *keep)
 {
     static const char *fn = "pp_world_step";
     *keep = true;
@@ -274,7 +277,7 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
         return PP_OK;
     }
     contact_table *t = &wd->table;
-    int32_t i = at >= 0 ? at : lookup(t, pair_key(a->index, b->index));
+    int32_t i = *at >= 0 ? *at : lookup(t, pair_key(a->index, b->index));
     PP_ASSERT(i == lookup(t, pair_key(a->index, b->index)));
     PP_ASSERT(i < 0 || (t->records[i].a == a->handle.id && t->records[i].b == b->handle.id));
     /* Room for the record and its event first: a failure changes nothing. */
@@ -297,6 +300,7 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
             rec->flags |= CT_PASSING;
     }
     rec->found = t->substep;
+    rec->run = -1; /* until its contacts are added (contact_table_add_run) */
     *keep = !(rec->flags & (CT_SENSOR | CT_PASSING));
     if (!*keep)
         rec->point_count = 0;
@@ -313,8 +317,7 @@ pp_status contact_table_found(world *wd, const body *a, const body *b, const np_
             rec->flags |= CT_BEGUN;
         }
     }
-    if (i < 0)
-        insert_record(t, rec);
+    *at = i >= 0 ? i : insert_record(t, rec);
     return PP_OK;
 }
 
@@ -383,8 +386,20 @@ pp_status contact_table_list_runs(world *wd)
         const uint32_t a = handle_slot(wd->contacts[i].a.id), b = handle_slot(wd->contacts[i].b.id);
         const int32_t k = lookup(t, pair_key(a, b));
         PP_ASSERT(a < b && k >= 0 && t->records[k].a == wd->contacts[i].a.id); /* every contact's pair was found */
+        t->records[k].run = t->run_count; /* not logged: read only while found is this substep */
         t->runs[t->run_count++] = (contact_run){i, end, a, b, k};
     }
+    return PP_OK;
+}
+
+pp_status contact_table_add_run(world *wd, int32_t first, int32_t end, uint32_t a, uint32_t b, int32_t record)
+{
+    contact_table *t = &wd->table;
+    if (!ARRAY_RESERVE(t->runs, t->run_capacity, t->run_count + 1))
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to list %d contacts' pairs", (int)end);
+    PP_ASSERT(a < b && record >= 0 && record < t->count && t->records[record].found == t->substep);
+    t->records[record].run = t->run_count; /* not logged: read only while found is this substep */
+    t->runs[t->run_count++] = (contact_run){first, end, a, b, record};
     return PP_OK;
 }
 

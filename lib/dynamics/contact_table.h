@@ -51,6 +51,7 @@ typedef struct contact_record {
     uint32_t flags;        /* CT_* */
     uint32_t found;        /* the substep (contact_table.substep) the narrowphase last found the pair in */
     uint32_t claimed;      /* the substep whose broadphase last paired it carried: its contacts moved, not collided */
+    int32_t run;           /* its place in the table's runs, while found is the substep now and it has contacts */
     double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
     double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it */
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
@@ -65,8 +66,9 @@ typedef struct contact_record {
 } contact_record;
 
 /* One touching pair of the substep's contacts (wd->contacts): its points [first, end), its bodies' slots and its
- * record. Listed once the substep's contacts are final (contact_table_list_runs); the passes after it (islands,
- * carrying, solver rows, impulses, the step's saves) walk pairs through it, with no search. */
+ * record. Added as a pair's contacts are (contact_table_add_run), its record kept where the record moves to; the
+ * passes after the substep's search (islands, carrying, solver rows, impulses, the step's saves) walk pairs
+ * through it, with no search. */
 typedef struct contact_run {
     int32_t first, end;
     uint32_t a, b;           /* body slots, a < b */
@@ -98,17 +100,21 @@ typedef struct contact_table {
     int32_t saved_order_count, saved_order_capacity;
 } contact_table;
 
-/* List wd->contacts pair by pair into runs, once the substep's contacts are final (PP_ERR_OUT_OF_MEMORY). */
+/* List wd->contacts pair by pair into runs again, after they were compacted (PP_ERR_OUT_OF_MEMORY). */
 pp_status contact_table_list_runs(struct world *wd);
+
+/* The contacts [first, end) of wd->contacts just added are the pair of the record at index `record`, the bodies in
+ * slots a < b (PP_ERR_OUT_OF_MEMORY). */
+pp_status contact_table_add_run(struct world *wd, int32_t first, int32_t end, uint32_t a, uint32_t b, int32_t record);
 
 /* Start a substep's search. */
 void contact_table_begin_substep(struct world *wd);
 
-/* A pair the narrowphase found touching (r->count > 0): find or make its record (at: its index when the caller
- * holds it, as a carried pair's does, else -1), queue its BEGIN event if it is new, and say whether its contacts
- * go to the solver (not for sensors or a passing one-way pair). */
+/* A pair the narrowphase found touching (r->count > 0): find or make its record (*at: its index when the caller
+ * holds it, as a carried pair's does, else -1; then where the record is now), queue its BEGIN event if it is new,
+ * and say whether its contacts go to the solver (not for sensors or a passing one-way pair). */
 pp_status contact_table_found(struct world *wd, const struct body *a, const struct body *b, const np_result *r,
-                              int32_t at, bool *keep);
+                              int32_t *at, bool *keep);
 
 /* After every pair: end each awake pair not found (its END event queued), put to rest those neither of whose
  * bodies was awake to be tested (a sleeping stack still touches), and take back the resting pairs a woken body

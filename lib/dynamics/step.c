@@ -222,20 +222,23 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
         if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
             touch_round(wd, a, b, &r);
         bool keep = true;
-        if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, -1, &keep)))
+        int32_t at = -1;
+        if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, &at, &keep)))
             return st;
         if (r.count > 0)
             carry_collided(wd, a->index, b->index);
+        const int32_t from = wd->contact_count;
         for (int32_t c = 0; keep && c < r.count; c++) {
             r.contacts[c].a = a->handle;
             r.contacts[c].b = b->handle;
             if ((st = push_contact(wd, &r.contacts[c])))
                 return st;
         }
+        if (keep && r.count > 0 && (st = contact_table_add_run(wd, from, wd->contact_count, a->index, b->index, at)))
+            return st;
     }
     carry_strike(wd);
-    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = contact_table_list_runs(wd)) ||
-        (st = crowd_limit_contacts(wd)))
+    if ((st = carry_push(wd)) || (st = contact_table_end_substep(wd)) || (st = crowd_limit_contacts(wd)))
         return st;
     wd->stats.pixels_tested += cells;
     wd->stats.pairs = wd->broad.pair_count;
