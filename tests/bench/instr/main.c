@@ -2,13 +2,14 @@
  * measured steps (CALLGRIND_START/STOP_INSTRUMENTATION around them, collection toggled on inside), and prints
  * what report.py divides the instructions by. Outside valgrind the macros do nothing and it just runs.
  *
- *   bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K]
+ *   bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K] [--sleep]
  *
  * stdout, one line: `instr scene=NAME steps=N awake_sum=A contacts_sum=C`, the sums over the measured steps of
  * pp_step_stats.awake_bodies and .contacts (contact points of the last substep). With --motion, before it, every
- * K measured steps of a stack scene: `motion steps=A-B over_10=N rms=V deepest=D`, over those K steps the mean
- * count of bodies faster than 10 px/s, their rms speed (px/s) and the deepest contact (px): how calm a pile stays
- * at what a change saves.
+ * K measured steps of a stack scene: `motion steps=A-B over_10=N rms=V deepest=D awake=W`, over those K steps the
+ * mean count of bodies faster than 10 px/s, their rms speed (px/s), the deepest contact (px) and the mean count of
+ * awake bodies: how calm a pile stays at what a change saves. --sleep lets the rain's crates fall asleep (its
+ * measured steps then count only what stays awake).
  */
 #include "../cost/cost.h"
 
@@ -21,7 +22,7 @@
 typedef struct measure {
     long long awake, contacts;
     int motion_every; /* --motion: 0, none */
-    double over, v2, deepest; /* --motion: sums over the window's steps, its deepest contact */
+    double over, v2, deepest, awake_bodies; /* --motion: sums over the window's steps, its deepest contact */
 } measure;
 
 static void check(pp_status st, const char *what)
@@ -105,11 +106,12 @@ static void add_motion(pp_world w, const pp_body *bodies, int count, int k, meas
         deepest = c[i].depth > deepest ? c[i].depth : deepest;
     free(c);
     m->over += over, m->v2 += n ? v2 / n : 0, m->deepest = deepest > m->deepest ? deepest : m->deepest;
+    m->awake_bodies += stats(w).awake_bodies;
     if (k % m->motion_every == 0) {
         const int e = m->motion_every;
-        printf("motion steps=%d-%d over_10=%.1f rms=%.2f deepest=%.3f\n", k - e + 1, k, m->over / e, sqrt(m->v2 / e),
-               m->deepest);
-        m->over = m->v2 = m->deepest = 0;
+        printf("motion steps=%d-%d over_10=%.1f rms=%.2f deepest=%.3f awake=%.1f\n", k - e + 1, k, m->over / e,
+               sqrt(m->v2 / e), m->deepest, m->awake_bodies / e);
+        m->over = m->v2 = m->deepest = m->awake_bodies = 0;
     }
     CALLGRIND_TOGGLE_COLLECT;
 }
@@ -124,7 +126,7 @@ static void run_stab(const stab_scene *s, int sleep, int settle, int steps, meas
     /* With sleep on, settling ends when everything sleeps (settle is then a ceiling). */
     for (int k = 0; k < settle && !(sleep && k > 0 && stats(w).awake_bodies == 0); k++)
         step(w, NULL);
-    if (sleep && stats(w).awake_bodies != 0)
+    if (sleep && settle > 0 && stats(w).awake_bodies != 0)
         die("the crates did not all fall asleep while settling");
     region_begin();
     for (int k = 0; k < steps; k++) {
@@ -195,7 +197,7 @@ static int sleep_scene_build(stab_scene *out)
 int main(int argc, char **argv)
 {
     const char *scene = NULL;
-    int steps = 0, motion = 0; /* 0: the scene's own count; no motion lines */
+    int steps = 0, motion = 0, sleep_on = 0; /* 0: the scene's own count; no motion lines; the scene's sleep */
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc)
             scene = argv[++i];
@@ -203,11 +205,13 @@ int main(int argc, char **argv)
             steps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--motion") == 0 && i + 1 < argc && atoi(argv[i + 1]) > 0)
             motion = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--sleep") == 0)
+            sleep_on = 1;
         else
             scene = NULL, i = argc;
     }
     if (!scene) {
-        fprintf(stderr, "usage: bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K]\n"
+        fprintf(stderr, "usage: bench_instr --scene pyramid20|rain500|destruction|sleep1000 [--steps N] [--motion K] [--sleep]\n"
                         "  run under valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no\n"
                         "  (tests/bench/instr/report.py does)\n");
         return 2;
@@ -225,7 +229,7 @@ int main(int argc, char **argv)
         steps = steps ? steps : 300; /* from the drop, as bench_cost: falling, landing, piling up */
         if (cost_rain_build(500, &s) != 0)
             die("could not build rain500");
-        run_stab(&s, 0, 0, steps, &m);
+        run_stab(&s, sleep_on, 0, steps, &m);
         stab_scene_free(&s);
     } else if (strcmp(scene, "destruction") == 0) {
         steps = steps ? steps : 120;
