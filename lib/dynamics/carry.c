@@ -136,23 +136,6 @@ void carry_collided(world *wd, uint32_t a, uint32_t b)
         c->collided[a] = c->collided[b] = c->step;
 }
 
-bool carry_restless(const world *wd, uint32_t slot)
-{
-    const carry *c = &wd->carry;
-    return (int32_t)slot < c->restless_capacity && c->restless[slot] == c->step;
-}
-
-bool carry_was_collided(const world *wd, uint32_t slot)
-{
-    const carry *c = &wd->carry;
-    return (int32_t)slot < c->collided_capacity && c->collided[slot] == c->step;
-}
-
-bool carry_struck(const world *wd, uint32_t slot)
-{
-    const carry *c = &wd->carry;
-    return (int32_t)slot < c->struck_capacity && struck(c, slot);
-}
 
 /* The body sits the substep out (after island_plan; before the next one's, it sat the last one out), or never
  * moves. A sensor's or a one-way platform's pairs are always collided: their touch state lives on pairs that

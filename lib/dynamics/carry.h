@@ -50,6 +50,25 @@ typedef struct carry {
     bool active;                 /* a later substep: carried pairs are not collided */
 } carry;
 
+/* Whether a pair the narrowphase collided touched the body in this slot in this step (so far): something
+ * landed on it, or it moved too fast against another body for its pair to be carried. */
+static inline bool carry_struck(const carry *c, uint32_t slot)
+{
+    return (int32_t)slot < c->struck_capacity && c->struck[slot] == c->step;
+}
+/* Whether a QuickStep stack's pair of the body in this slot moved faster than a pile at rest in this step (so far):
+ * its island needs its full iterations, carried or not. */
+static inline bool carry_restless(const carry *c, uint32_t slot)
+{
+    return (int32_t)slot < c->restless_capacity && c->restless[slot] == c->step;
+}
+/* Whether the narrowphase found a pair of the body in this slot touching in this step (so far): none of its
+ * contacts is carried or held, at rest. */
+static inline bool carry_was_collided(const carry *c, uint32_t slot)
+{
+    return (int32_t)slot < c->collided_capacity && c->collided[slot] == c->step;
+}
+
 /* At substep k of a step of dt s, after its contacts and islands: at the first (k = 0), record the pairs to
  * carry; at any, the pairs whose bodies sit it out. */
 pp_status carry_record(struct world *wd, double dt, int32_t k);
@@ -60,17 +79,11 @@ pp_status carry_record(struct world *wd, double dt, int32_t k);
 bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 /* At a later substep, after the collided pairs' contacts are pushed: mark their bodies struck. */
 void carry_strike(struct world *wd);
-/* Whether a pair the narrowphase collided touched the body in this slot in this step (so far): something
- * landed on it, or it moved too fast against another body for its pair to be carried. */
-bool carry_struck(const struct world *wd, uint32_t slot);
-/* Whether a QuickStep stack's pair of the body in this slot moved faster than a pile at rest in this step (so far):
- * its island needs its full iterations, carried or not. */
-bool carry_restless(const struct world *wd, uint32_t slot);
+
+
 /* The narrowphase found a pair of these two bodies touching (at any substep). */
 void carry_collided(struct world *wd, uint32_t a, uint32_t b);
-/* Whether the narrowphase found a pair of the body in this slot touching in this step (so far): none of its
- * contacts is carried or held, at rest. */
-bool carry_was_collided(const struct world *wd, uint32_t slot);
+
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through contact_table_found. */
 pp_status carry_push(struct world *wd);
 /* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that

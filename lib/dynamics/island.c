@@ -179,38 +179,26 @@ static void set_spans(world *wd, int32_t k, substep_pairing pairing)
     const bool at_rest_known = k > 0;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         flags[wd->islands.nodes[n]] = 0;
-    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
-        const joint *jt = wd->joints.items[i];
-        const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
-        const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
-        if (node)
-            flags[root[node->index]] |= ROOT_EVERY_SUBSTEP;
-    }
-    for (int32_t n = 0; n < wd->table.run_count; n++) {
-        const body *a = wd->bodies[wd->table.runs[n].a], *b = wd->bodies[wd->table.runs[n].b];
-        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
-            dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
-            flags[root[a->index]] |= ROOT_EVERY_SUBSTEP;
-    }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const body *bd = wd->bodies[wd->islands.nodes[n]];
         int32_t *f = &flags[root[wd->islands.nodes[n]]];
+        *f |= wd->islands.every[root[wd->islands.nodes[n]]] ? ROOT_EVERY_SUBSTEP : 0;
         if (awake_mover(bd)) {
             const bool behind = bd->sat_out + 1 == wd->islands.substep_serial;
             *f |= behind ? ROOT_BEHIND : ROOT_CURRENT;
             *f |= behind && bd->behind < 3 ? ROOT_SHORT : 0;
         }
         if (pairing == PAIR_MID || pairing == PAIR_LAST)
-            *f |= carry_struck(wd, bd->index) ? ROOT_HIT : 0;
+            *f |= carry_struck(&wd->carry, bd->index) ? ROOT_HIT : 0;
         if (bd->type == PP_BODY_KINEMATIC)
             *f |= ROOT_EVERY_SUBSTEP;
-        if (at_rest_known && (carry_struck(wd, bd->index) || carry_restless(wd, bd->index)))
+        if (at_rest_known && (carry_struck(&wd->carry, bd->index) || carry_restless(&wd->carry, bd->index)))
             *f |= ROOT_STRUCK;
         if (wd->islands.kind[bd->index] == ISLAND_EXACT_ALONE) {
             /* Its island's rows, but a fixed rotation's, are its contacts' (a joint's island is not alone). */
             const int32_t rows = wd->islands.group[wd->islands.group_capacity + root[bd->index]];
             *f |= (rows & INT32_MAX) > (bd->fixed_rotation ? ROWS_PER_FIXED_ROTATION : 0) ? ROOT_TOUCHING : 0;
-            *f |= carry_was_collided(wd, bd->index) ? ROOT_COLLIDED : 0;
+            *f |= carry_was_collided(&wd->carry, bd->index) ? ROOT_COLLIDED : 0;
         }
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
@@ -339,6 +327,7 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         (st = world_slot_array(wd, (void **)&isl->span, &isl->span_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->list, &isl->list_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->heaviest, &isl->heaviest_capacity, sizeof *isl->heaviest, what)) ||
+        (st = world_slot_array(wd, (void **)&isl->every, &isl->every_capacity, 1, what)) ||
         (st = world_slot_array(wd, (void **)&isl->sleep_group, &isl->sleep_group_capacity, 2 * sizeof *isl->sleep_group,
                                what)) ||
         (st = collect_nodes(wd)))
@@ -376,6 +365,24 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
     int32_t *root_of = isl->root;
     for (int32_t n = 0; n < wd->islands.node_count; n++)
         root_of[wd->islands.nodes[n]] = world_group_root(parent, wd->islands.nodes[n]);
+    /* What has an island solve every substep, for this plan and the still ones after it: a joint, or a body pressing
+     * on one over HARD_MASS_RATIO times lighter. */
+    uint8_t *every = isl->every;
+    for (int32_t n = 0; n < wd->islands.node_count; n++)
+        every[wd->islands.nodes[n]] = 0;
+    for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
+        const joint *jt = wd->joints.items[i];
+        const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
+        const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
+        if (node)
+            every[root_of[node->index]] = 1;
+    }
+    for (int32_t n = 0; n < wd->table.run_count; n++) {
+        const body *a = wd->bodies[wd->table.runs[n].a], *b = wd->bodies[wd->table.runs[n].b];
+        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
+            dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
+            every[root_of[a->index]] = 1;
+    }
     /* After every join: a flag put on a root that a later joint puts under another would be lost. */
     for (int32_t n = 0; n < wd->table.run_count; n++) {
         const contact_run *u = &wd->table.runs[n];
@@ -511,6 +518,7 @@ void island_free(island_set *is)
     pp_free(is->span);
     pp_free(is->list);
     pp_free(is->heaviest);
+    pp_free(is->every);
     pp_free(is->sleep_group);
     *is = (island_set){0};
 }

@@ -267,12 +267,13 @@ Test(spans, a_quickstep_pile_moving_past_rest_keeps_its_iterations_while_its_pai
     PP_OK_OR_FAIL(pp_body_get_velocity(w, b[2], &v, &av));
     PP_OK_OR_FAIL(pp_body_set_velocity(w, b[2], (pp_vec2){v.x + 66.0f, v.y}, av));
     PP_OK_OR_FAIL(pp_world_step(w, DT));
-    cr_assert(!carry_was_collided(wd, top) && !carry_struck(wd, top) && !carry_struck(wd, middle),
-              "its pairs stay held and nothing strikes it: collided %d, struck %d %d", carry_was_collided(wd, top),
-              carry_struck(wd, top), carry_struck(wd, middle));
-    cr_assert(carry_restless(wd, top) && carry_restless(wd, middle) && !carry_restless(wd, bottom),
+    const carry *c = &wd->carry;
+    cr_assert(!carry_was_collided(c, top) && !carry_struck(c, top) && !carry_struck(c, middle),
+              "its pairs stay held and nothing strikes it: collided %d, struck %d %d", carry_was_collided(c, top),
+              carry_struck(c, top), carry_struck(c, middle));
+    cr_assert(carry_restless(c, top) && carry_restless(c, middle) && !carry_restless(c, bottom),
               "the sliding pair's bodies are restless (top %d, middle %d), the pair under them not (bottom %d)",
-              carry_restless(wd, top), carry_restless(wd, middle), carry_restless(wd, bottom));
+              carry_restless(c, top), carry_restless(c, middle), carry_restless(c, bottom));
     const solver_islands first = plan_still(wd, 2), second = plan_still(wd, 3);
     cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 2 out");
     cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "it keeps every iteration: %d of 3 bodies (%d at rest)",
