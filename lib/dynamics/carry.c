@@ -58,54 +58,55 @@ static void motion_stale(carry *c)
     }
 }
 
-/* A body's velocity, px/s, and how fast its turning may move its points, px/s; false if it turns more than
- * CARRY_TURN_RAD in dt s (the step's: the same for every call of a step). Found once a pass (still_held and
- * carry_record ask for each of a body's pairs). */
-static bool slow_turn(const world *wd, const body *bd, double dt, dvec2 *v, double *turn_speed)
+/* A body's motion now into *m (the step's dt s: the same for every call of a step). */
+static void find_motion(const world *wd, const body *bd, double dt, carry_motion *m)
 {
-    *v = dv(0, 0), *turn_speed = 0;
+    double w;
+    dvec2 vel;
+    solver_body_get_velocity(wd->solver, &bd->sb, &vel, &w);
+    const double dx = bd->aabb.x1 - bd->aabb.x0, dy = bd->aabb.y1 - bd->aabb.y0; /* floats: no overflow squared */
+    const double diagonal = sqrt(dx * dx + dy * dy);
+    const carry_motion now = {vel, fabs(w) * diagonal, wd->carry.serial, fabs(w) * dt <= CARRY_TURN_RAD};
+    /* PP_CHECKS: a motion found earlier in the pass is the body's motion now */
+    PP_ASSERT(m->serial != wd->carry.serial || (m->v.x == now.v.x && m->v.y == now.v.y &&
+                                                m->turn_speed == now.turn_speed && m->slow == now.slow));
+    *m = now;
+}
+
+/* A body's motion: its velocity, how fast its turning may move its points, and whether it turns under
+ * CARRY_TURN_RAD in dt s. Found once a pass (still_held and carry_record ask for each of a body's pairs). */
+static inline const carry_motion *motion_of(const world *wd, const body *bd, double dt)
+{
+    static const carry_motion still = {{0, 0}, 0, 0, true}; /* a static body */
     if (!bd->sb.body)
-        return true;
-    carry_motion *m = &wd->carry.motion[bd->index];
+        return &still;
     PP_ASSERT((int32_t)bd->index < wd->carry.motion_capacity);
-    if (m->serial != wd->carry.serial || PP_CHECKS_ON) {
-        double w;
-        dvec2 vel;
-        solver_body_get_velocity(wd->solver, &bd->sb, &vel, &w);
-        const double dx = bd->aabb.x1 - bd->aabb.x0, dy = bd->aabb.y1 - bd->aabb.y0; /* floats: no overflow squared */
-        const double diagonal = sqrt(dx * dx + dy * dy);
-        const carry_motion now = {vel, fabs(w) * diagonal, wd->carry.serial, fabs(w) * dt <= CARRY_TURN_RAD};
-        /* PP_CHECKS: a motion found earlier in the pass is the body's motion now */
-        PP_ASSERT(m->serial != wd->carry.serial || (m->v.x == now.v.x && m->v.y == now.v.y &&
-                                                    m->turn_speed == now.turn_speed && m->slow == now.slow));
-        *m = now;
-    }
-    *v = m->v, *turn_speed = m->turn_speed;
-    return m->slow;
+    carry_motion *m = &wd->carry.motion[bd->index];
+    if (m->serial != wd->carry.serial || PP_CHECKS_ON)
+        find_motion(wd, bd, dt, m);
+    return m;
 }
 
 /* How far a point of one body may move against the other in a step of dt s, px; INFINITY if either turns more
  * than CARRY_TURN_RAD. Bodies falling together move nothing against each other: it is their relative motion. */
 static double pair_motion(const world *wd, const body *a, const body *b, double dt)
 {
-    dvec2 va, vb;
-    double ta, tb;
-    if (!slow_turn(wd, a, dt, &va, &ta) || !slow_turn(wd, b, dt, &vb, &tb))
+    const carry_motion *ma = motion_of(wd, a, dt), *mb = motion_of(wd, b, dt);
+    if (!ma->slow || !mb->slow)
         return INFINITY;
-    const dvec2 d = dv_sub(vb, va); /* under PP_MAX_SPEED: no overflow squared */
-    return (sqrt(dv_dot(d, d)) + ta + tb) * dt;
+    const dvec2 d = dv_sub(mb->v, ma->v); /* under PP_MAX_SPEED: no overflow squared */
+    return (sqrt(dv_dot(d, d)) + ma->turn_speed + mb->turn_speed) * dt;
 }
 
 /* Whether a point of one body may move more than `bound` px against the other in a step of dt s (pair_motion's
  * measure, without its square root): a turn past CARRY_TURN_RAD does. */
 static bool moves_past(const world *wd, const body *a, const body *b, double dt, double bound)
 {
-    dvec2 va, vb;
-    double ta, tb;
-    if (!slow_turn(wd, a, dt, &va, &ta) || !slow_turn(wd, b, dt, &vb, &tb))
+    const carry_motion *ma = motion_of(wd, a, dt), *mb = motion_of(wd, b, dt);
+    if (!ma->slow || !mb->slow)
         return true;
-    const double room = bound / dt - ta - tb; /* px/s the linear motion may take */
-    const dvec2 d = dv_sub(vb, va);
+    const double room = bound / dt - ma->turn_speed - mb->turn_speed; /* px/s the linear motion may take */
+    const dvec2 d = dv_sub(mb->v, ma->v);
     return room < 0 || dv_dot(d, d) > room * room;
 }
 

@@ -27,7 +27,7 @@ struct world;
 
 /* The carried pairs themselves are contact records (contact_table.h: carry_* fields, and the table's carry
  * order); what is left here is the step's own state. */
-/* A body's motion for the carry decisions (carry.c: slow_turn), found once a pass over the pairs. */
+/* A body's motion for the carry decisions (carry.c: motion_of), found once a pass over the pairs. */
 typedef struct carry_motion {
     dvec2 v;                     /* px/s */
     double turn_speed;           /* px/s its turning may move its points */
