@@ -248,11 +248,14 @@ pp_status crowd_limit_contacts(world *wd)
     const contact_run *runs = wd->table.runs;
     for (int32_t n = 0; n < wd->table.run_count; n++)
         reset_slot(wd, runs[n].a), reset_slot(wd, runs[n].b);
-    int32_t many = 0; /* bodies with more than PP_CROWDED_CONTACT_PAIRS pairs: with none, none is crowded */
+    /* Bodies the budget may limit with more than PP_CROWDED_CONTACT_PAIRS pairs: with none, none is crowded (a
+     * ground under a row of crates has more, and is never crowded). */
+    int32_t many = 0;
     for (int32_t n = 0; n < wd->table.run_count; n++) {
         const int32_t overlap = wd->contacts[runs[n].first].pixel_count;
         crowd_slot *a = &c->slots[runs[n].a], *b = &c->slots[runs[n].b];
-        many += (++a->pairs == PP_CROWDED_CONTACT_PAIRS + 1) + (++b->pairs == PP_CROWDED_CONTACT_PAIRS + 1);
+        many += (++a->pairs == PP_CROWDED_CONTACT_PAIRS + 1 && eligible(wd, runs[n].a)) +
+                (++b->pairs == PP_CROWDED_CONTACT_PAIRS + 1 && eligible(wd, runs[n].b));
         a->overlap += overlap, b->overlap += overlap;
     }
     if (many == 0)
