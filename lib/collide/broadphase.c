@@ -261,9 +261,8 @@ typedef struct pair_key {
     uint32_t first, second;
 } pair_key;
 
-static int key_order(const void *x, const void *y)
+static inline int key_compare(const pair_key *p, const pair_key *q)
 {
-    const pair_key *p = x, *q = y;
     if (p->x_first != q->x_first)
         return p->x_first < q->x_first ? -1 : 1;
     if (p->first != q->first)
@@ -273,7 +272,9 @@ static int key_order(const void *x, const void *y)
     return (p->second > q->second) - (p->second < q->second);
 }
 
-static pair_key key_of(const bp_proxy *px, bp_pair p)
+static int key_order(const void *x, const void *y) { return key_compare(x, y); } /* qsort's */
+
+static inline pair_key key_of(const bp_proxy *px, bp_pair p)
 {
     const uint32_t first = before(px, p.a, p.b) ? p.a : p.b, second = first == p.a ? p.b : p.a;
     return (pair_key){px[first].box.x0, px[second].box.x0, first, second};
@@ -301,7 +302,7 @@ static pp_status sort_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t from,
         keys[k - from] = key_of(px, bp->pairs[k]);
     int32_t i = 0, j = mid - from, out = from;
     while (i < mid - from && j < n)
-        bp->pairs[out++] = key_order(&keys[i], &keys[j]) <= 0 ? pair_of(&keys[i++]) : pair_of(&keys[j++]);
+        bp->pairs[out++] = key_compare(&keys[i], &keys[j]) <= 0 ? pair_of(&keys[i++]) : pair_of(&keys[j++]);
     while (i < mid - from)
         bp->pairs[out++] = pair_of(&keys[i++]);
     while (j < n)
@@ -463,7 +464,7 @@ static pp_status settle_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t fro
     for (int32_t i = from + 1; i < to; i++) {
         const bp_pair p = bp->pairs[i];
         const pair_key k = key_of(px, p);
-        if (key_order(&last, &k) <= 0) { /* in order: most pairs, the boxes having moved little */
+        if (key_compare(&last, &k) <= 0) { /* in order: most pairs, the boxes having moved little */
             last = k;
             continue;
         }
@@ -471,7 +472,7 @@ static pp_status settle_pairs(pp_broadphase *bp, const bp_proxy *px, int32_t fro
         int32_t j = i - 1;
         for (; j >= from; j--) {
             const pair_key q = key_of(px, bp->pairs[j]);
-            if (key_order(&q, &k) <= 0)
+            if (key_compare(&q, &k) <= 0)
                 break;
             bp->pairs[j + 1] = bp->pairs[j];
             budget--;

@@ -110,12 +110,6 @@ dvec2 body_com_of_pose(const body *bd)
 
 void body_update_com(body *bd) { bd->com = body_com_of_pose(bd); }
 
-/* Read by every pass over pairs (carrying, anchors, sweeps) for each pair a body is in: kept, not found again. */
-dvec2 body_com_world(const body *bd)
-{
-    PP_ASSERT(bd->com.x == body_com_of_pose(bd).x && bd->com.y == body_com_of_pose(bd).y);
-    return bd->com;
-}
 
 /* A body is round when its inertia is within ROUND_INERTIA of a disc's of the same area (a pixel disc of
  * radius 3 px is 1.0145 of it, one of 16 px 1.0009, a square 1.047, an ellipse of aspect 1.2 1.017). */

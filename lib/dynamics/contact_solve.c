@@ -111,11 +111,6 @@ static double closing_speed(const world *wd, const pair_solve *p, const pp_conta
     return wd->def.contact_erp * gap / p->h;
 }
 
-int contact_run_span(const world *wd, const contact_run *u)
-{
-    return wd->islands.span[wd->bodies[u->a]->sb.body ? u->a : u->b];
-}
-
 void contact_joints_add(world *wd, double h)
 {
     const double g = hypot(wd->def.gravity.x, wd->def.gravity.y);

@@ -10,7 +10,5 @@ typedef struct world world;
 /* Hand the solver the substep's contacts, h seconds a substep, in the world's contact order: each whose island
  * advances this substep (island.c), with its bounce and target speeds for its island's time step. */
 void contact_joints_add(world *wd, double h);
-/* The substeps of time a touching pair's island advances in this one (SPAN_*, world.h). */
-int contact_run_span(const world *wd, const contact_run *u);
 
 #endif

@@ -45,17 +45,22 @@ static uint64_t fingerprint(const world *wd)
 }
 #endif
 
-/* Save a movable body's part of the step, once a step. */
-static void save_body(step_undo *u, const body *bd)
+/* Save a movable body's part of the step (the first time). */
+static void save_body_now(step_undo *u, const body *bd, step_saved_body *sv)
 {
-    PP_ASSERT(bd->index < (uint32_t)u->body_capacity);
-    step_saved_body *sv = &u->bodies[bd->index];
-    if (!bd->sb.body || sv->step == u->step)
-        return;
     sv->step = u->step;
     solver_body_save(&bd->sb, &sv->ode);
     sv->pos = bd->pos, sv->angle = bd->angle, sv->cos_a = bd->cos_a, sv->sin_a = bd->sin_a;
     sv->slow_time = bd->slow_time, sv->aabb = bd->aabb;
+}
+
+/* Save a movable body's part of the step, once a step: most calls find it saved. */
+static inline void save_body(step_undo *u, const body *bd)
+{
+    PP_ASSERT(bd->index < (uint32_t)u->body_capacity);
+    step_saved_body *sv = &u->bodies[bd->index];
+    if (bd->sb.body && sv->step != u->step)
+        save_body_now(u, bd, sv);
 }
 
 pp_status step_save(world *wd)

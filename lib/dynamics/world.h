@@ -323,11 +323,22 @@ void body_velocity_after_impulse(const world *wd, const body *bd, dvec2 impulse,
 /* Velocity of a body's material point at a world point, px/s; static bodies do not move. */
 dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
 
-/* Centre of mass (the pivot for massless bodies): in bitmap coordinates and in the world, px. */
+/* Centre of mass (the pivot for massless bodies): in bitmap coordinates, px. */
 dvec2 body_com_local(const body *bd);
-dvec2 body_com_world(const body *bd);
 /* The world centre of mass found from the pose and mass, px: for a body's saved bytes, whose cache is unchecked. */
 dvec2 body_com_of_pose(const body *bd);
+/* The world centre of mass, px: kept with the pose (body_update_com), read by every pass over pairs. */
+static inline dvec2 body_com_world(const body *bd)
+{
+    PP_ASSERT(bd->com.x == body_com_of_pose(bd).x && bd->com.y == body_com_of_pose(bd).y);
+    return bd->com;
+}
+
+/* The substeps of time a touching pair's island advances in this one (SPAN_*). */
+static inline int contact_run_span(const world *wd, const contact_run *u)
+{
+    return wd->islands.span[wd->bodies[u->a]->sb.body ? u->a : u->b];
+}
 /* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
 double body_round_radius(const body *bd);
 
