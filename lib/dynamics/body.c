@@ -98,16 +98,6 @@ void body_update_pose_cache(body *bd)
     body_update_com(bd);
 }
 
-dvec2 body_com_local(const body *bd)
-{
-    return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
-}
-
-dvec2 body_com_of_pose(const body *bd)
-{
-    return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
-}
-
 void body_update_com(body *bd) { bd->com = body_com_of_pose(bd); }
 
 

@@ -249,22 +249,29 @@ pp_status carry_record(world *wd, double dt, int32_t k)
     return PP_OK;
 }
 
+/* Neither body of the pair moved since the substep before: both sat it out (or never move). At a step's first
+ * substep none did: nothing sat the substep before out. */
+static bool still_pair(const world *wd, uint32_t a, uint32_t b)
+{
+    return wd->carry.substep > 0 && sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
+}
+
 bool carry_claim(world *wd, uint32_t a, uint32_t b)
 {
     carry *c = &wd->carry;
-    /* At a step's first substep only held pairs are carried: nothing sat the substep before out. */
-    const bool still = c->substep > 0 && sits_out(wd, wd->bodies[a]) && sits_out(wd, wd->bodies[b]);
     int32_t at = -1;
     const contact_record *p = c->active ? carried_pair(wd, a, b, &at) : NULL;
-    /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
-     * bodies were pushed nowhere. */
-    if (p && p->carry_last >= c->substep && (still || !(struck(c, a) || struck(c, b)))) {
-        contact_table_edit(wd, at)->claimed = wd->table.substep;
-        return true;
-    }
-    if (p && p->carry_last >= c->substep)
+    if (p && p->carry_last >= c->substep) {
+        /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
+         * bodies were pushed nowhere. */
+        if (!(struck(c, a) || struck(c, b)) || still_pair(wd, a, b)) {
+            contact_table_edit(wd, at)->claimed = wd->table.substep;
+            return true;
+        }
         contact_table_edit(wd, at)->carry_flags |= CARRY_MISSED;
-    return still; /* then it made no contact last substep, and nothing has moved since */
+        return false;
+    }
+    return still_pair(wd, a, b); /* then it made no contact last substep, and nothing has moved since */
 }
 
 /* How far the material point of a body that was at p when the contact was found has moved, px; com is the

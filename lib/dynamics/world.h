@@ -324,9 +324,15 @@ void body_velocity_after_impulse(const world *wd, const body *bd, dvec2 impulse,
 dvec2 body_point_velocity(const world *wd, const body *bd, dvec2 p);
 
 /* Centre of mass (the pivot for massless bodies): in bitmap coordinates, px. */
-dvec2 body_com_local(const body *bd);
+static inline dvec2 body_com_local(const body *bd)
+{
+    return bd->mass.mass > 0 ? dv(bd->mass.cx, bd->mass.cy) : bd->pivot;
+}
 /* The world centre of mass found from the pose and mass, px: for a body's saved bytes, whose cache is unchecked. */
-dvec2 body_com_of_pose(const body *bd);
+static inline dvec2 body_com_of_pose(const body *bd)
+{
+    return dv_add(bd->pos, dv_rot(dv_sub(body_com_local(bd), bd->pivot), bd->cos_a, bd->sin_a));
+}
 /* The world centre of mass, px: kept with the pose (body_update_com), read by every pass over pairs. */
 static inline dvec2 body_com_world(const body *bd)
 {
