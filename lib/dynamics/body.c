@@ -100,7 +100,6 @@ void body_update_pose_cache(body *bd)
 
 void body_update_com(body *bd) { bd->com = body_com_of_pose(bd); }
 
-
 /* A body is round when its inertia is within ROUND_INERTIA of a disc's of the same area (a pixel disc of
  * radius 3 px is 1.0145 of it, one of 16 px 1.0009, a square 1.047, an ellipse of aspect 1.2 1.017). */
 #define ROUND_INERTIA 1.015

@@ -28,12 +28,12 @@
  * substep). In the first 300 steps of 500 raining crates (one pile), the third substep collided 700–820
  * pairs against the first's 820–890 at 0.25 px; at 1 px, 216 against 800 on average: pairs not yet touching.
  * At 1.5 px the pile's narrowphase costs 0.84 M instructions a step against 2.01 M at 1 px (bench_instr), with
- * every bench_stability verdict kept; at 2 px 0.77 M, where Box2D v3's arch drifted as far. */
+ * every bench_stability verdict kept; at 2 px 0.77 M. */
 #define CARRY_STACK_PX 1.5
 
 /* A QuickStep stack is at rest, and solves at half its iterations (island.c), while no collided pair struck it and
  * none of its pairs moves faster than CARRY_REST_PX a step against itself (carry_restless), held or not. At rest
- * by the first alone, the raining crates' pile never settled at half: 50–90 of its 500 moved over 10 px/s with
+ * by the first alone, the raining crates' pile never settled at half: 47–86 of its 500 moved over 10 px/s with
  * pairs held to 1.5 px, 15–20 with pairs held to 1 px; 8 with this rule, 1 at full iterations always
  * (bench_instr --motion, steps 151–900). */
 #define CARRY_REST_PX 1.0
@@ -116,8 +116,6 @@ static void strike(carry *c, const body *bd)
         c->struck[bd->index] = c->step;
 }
 
-static bool struck(const carry *c, uint32_t slot) { return c->struck[slot] == c->step; }
-
 static void mark_restless(carry *c, const body *bd)
 {
     if (bd->sb.body)
@@ -136,7 +134,6 @@ void carry_collided(world *wd, uint32_t a, uint32_t b)
     if ((int32_t)b < c->collided_capacity) /* a < b; one substep makes no room: nothing pairs then */
         c->collided[a] = c->collided[b] = c->step;
 }
-
 
 /* The body sits the substep out (after island_plan; before the next one's, it sat the last one out), or never
  * moves. A sensor's or a one-way platform's pairs are always collided: their touch state lives on pairs that
@@ -264,7 +261,7 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
     if (p && p->carry_last >= c->substep) {
         /* A struck body may have been pushed onto features its carried pairs did not touch; a still pair's
          * bodies were pushed nowhere. */
-        if (!(struck(c, a) || struck(c, b)) || still_pair(wd, a, b)) {
+        if (!(carry_struck(c, a) || carry_struck(c, b)) || still_pair(wd, a, b)) {
             contact_table_edit(wd, at)->claimed = wd->table.substep;
             return true;
         }

@@ -40,7 +40,7 @@ typedef struct carry {
     int32_t struck_capacity;
     uint32_t *collided;          /* by slot: the last step in which the narrowphase found one of its pairs touching */
     int32_t collided_capacity;
-    uint32_t *restless;          /* by slot: the last step in which a QuickStep stack's pair of it moved past CARRY_REST_PX */
+    uint32_t *restless;          /* by slot: the last step a QuickStep stack's pair of it moved past CARRY_REST_PX */
     int32_t restless_capacity;
     carry_motion *motion;        /* by slot, current where serial matches */
     int32_t motion_capacity;
@@ -79,11 +79,8 @@ pp_status carry_record(struct world *wd, double dt, int32_t k);
 bool carry_claim(struct world *wd, uint32_t a, uint32_t b);
 /* At a later substep, after the collided pairs' contacts are pushed: mark their bodies struck. */
 void carry_strike(struct world *wd);
-
-
 /* The narrowphase found a pair of these two bodies touching (at any substep). */
 void carry_collided(struct world *wd, uint32_t a, uint32_t b);
-
 /* At a later substep, after carry_strike: the claimed pairs' moved contacts, through contact_table_found. */
 pp_status carry_push(struct world *wd);
 /* At substep k's start, of a step of dt s: no pair is claimed yet; at the step's first, the held pairs that

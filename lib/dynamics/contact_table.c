@@ -242,7 +242,7 @@ void contact_table_begin_substep(world *wd)
         t->substep = 1;
     }
     t->found_count = 0;
-    t->run_count = 0; /* listed again once the substep's contacts are final */
+    t->run_count = 0; /* added again with the substep's contacts (contact_table_add_run) */
 }
 
 /* A BEGIN event from `from` to `to` at the pair's first contact (its normal points from a to b). */

@@ -22,8 +22,8 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * prescribed motion: a frame turning at 25°/s round 50 tumbling boxes strayed 0.53 rad in 10 s), all solved
  * every substep; an awake body that sat the last substep out, and one that did not; a body a collided pair
  * touched this step, or whose stack pair moved past a pile at rest (carry_struck, carry_restless: the island is
- * not at rest); a contact; a pair the narrowphase found
- * touching this step (carry_was_collided: a lone body with contacts and none collided is at rest); past the
+ * not at rest); a contact; a pair the narrowphase found touching this step (carry_was_collided: a lone body with
+ * contacts and none collided is at rest); past the
  * step's first substep, carry_struck whatever the substep knows (ROOT_HIT: a resting lone body keeps sitting
  * out); an awake body that sat out fewer than the three substeps before (ROOT_SHORT: no span of four). */
 enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8, ROOT_TOUCHING = 16,
@@ -234,9 +234,9 @@ static void set_spans(world *wd, int32_t k, substep_pairing pairing)
 
 /* Which of solver_step's lists (SOLVE_*) a node goes in, or -1: asleep, or a QuickStep island's sleeper (ODE
  * wakes it through its contact). A stack over 2·h that no collided pair touched this step, and whose pairs move
- * slower than CARRY_REST_PX, is at rest (set_spans's ROOT_STRUCK, left in the group array's last third). A lone body at rest keeps every iteration: at half, a
- * 1 px grain slid 0.012 px as it settled (test_extremes) and ramp20's slide moved 0.5 %, for 8 % of the
- * destruction scene's step. */
+ * slower than CARRY_REST_PX, is at rest (set_spans's ROOT_STRUCK, left in the group array's last third). A lone
+ * body at rest keeps every iteration: at half, a 1 px grain slid 0.012 px as it settled (test_extremes) and
+ * ramp20's slide moved 0.5 %, for 8 % of the destruction scene's step. */
 static int list_of(world *wd, int32_t i)
 {
     const body *bd = wd->bodies[i];
