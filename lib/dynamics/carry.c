@@ -289,11 +289,13 @@ static void moved_pair(const contact_record *r, const body *a, const body *b, dv
 }
 
 /* A carried pair's contacts at the bodies' poses now: each point at the midpoint of where its two material
- * points went, its depth less their separation along the normal. Points pulled apart are dropped. */
-static void move_pair(const world *wd, const contact_record *p, np_result *r)
+ * points went, its depth less their separation along the normal. Points pulled apart are dropped. *drift: the
+ * farthest any point's two material points moved apart, squared, px². */
+static void move_points(const world *wd, const contact_record *p, np_result *r, double *drift)
 {
     r->count = 0;
     r->samples = 0;
+    *drift = 0;
     const body *a = wd->bodies[handle_slot(p->a)], *b = wd->bodies[handle_slot(p->b)];
     const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
     for (int32_t k = 0; k < p->carry_count; k++) {
@@ -302,6 +304,7 @@ static void move_pair(const world *wd, const contact_record *p, np_result *r)
         const dvec2 p0 = dv(cc->point.x, cc->point.y), n = dv(cc->normal.x, cc->normal.y);
         dvec2 ua, ub;
         moved_pair(p, a, b, com_a, com_b, p0, &ua, &ub);
+        *drift = dmax(*drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
         const double depth = cc->depth - dv_dot(dv_sub(ub, ua), n);
         if (!(depth >= -CARRY_GAP_PX))
             continue;
@@ -311,6 +314,32 @@ static void move_pair(const world *wd, const contact_record *p, np_result *r)
         out->point = (pp_vec2){(float)at.x, (float)at.y};
         out->depth = (float)dmax(depth, 0.0); /* a contact reports overlap, never a gap */
     }
+}
+
+/* A held pair's contacts as still_held moved them at the step's first substep, for carry_push there: no body
+ * moves in between. */
+typedef struct carry_moved {
+    uint64_t a, b;  /* the record's pair: records do not move before carry_push, but a stale entry must not match */
+    uint32_t step;  /* carry.step when moved */
+    np_result r;
+} carry_moved;
+
+static void move_pair(const world *wd, int32_t i, np_result *r)
+{
+    const contact_record *p = &wd->table.records[i];
+    const carry *c = &wd->carry;
+    const carry_moved *m = c->substep == 0 && i < c->moved_capacity ? &c->moved[i] : NULL;
+    double drift;
+    if (m && m->step == c->step && m->a == p->a && m->b == p->b) {
+        *r = m->r;
+#ifdef PP_CHECKS
+        np_result again;
+        move_points(wd, p, &again, &drift);
+        PP_ASSERT(again.count == r->count && !memcmp(again.contacts, r->contacts, (size_t)r->count * sizeof *r->contacts));
+#endif
+        return;
+    }
+    move_points(wd, p, r, &drift);
 }
 
 void carry_strike(world *wd)
@@ -333,7 +362,7 @@ pp_status carry_push(world *wd)
         if (i < 0 || t->records[i].claimed != t->substep)
             continue; /* ended, or the broadphase no longer pairs them: apart */
         np_result r;
-        move_pair(wd, &t->records[i], &r);
+        move_pair(wd, i, &r);
         if (r.count == 0)
             continue;
         const body *a = wd->bodies[handle_slot(t->records[i].a)], *b = wd->bodies[handle_slot(t->records[i].b)];
@@ -363,12 +392,18 @@ static bool turned_little(const body *bd, double c0, double s0)
     return cos_turn > 0 && fabs(sin_turn) <= sin(CARRY_TURN_RAD);
 }
 
+/* What still_held reads and where it leaves each held pair's moved contacts (by record). */
+typedef struct held_pass {
+    double dt;          /* the step, s */
+    carry_moved *moved; /* by record, room for every record */
+} held_pass;
+
 /* Whether a held pair stays within its bound through a step of dt s: its points' motion against each other
  * since the raster found them, plus what the bodies' velocities add this step; neither body turned past
- * CARRY_TURN_RAD since. */
-static bool still_held(const world *wd, const contact_record *p, const void *step_dt)
+ * CARRY_TURN_RAD since. Its contacts, moved, are kept for carry_push. */
+static bool still_held(const world *wd, const contact_record *p, const void *arg)
 {
-    const double dt = *(const double *)step_dt;
+    const held_pass *pass = arg;
     const double bound = (p->carry_flags & CARRY_STACK) ? CARRY_STACK_PX : CARRY_MOTION_PX;
     const carried_pose *q = &p->carry_pose;
     const body *a = body_find(wd, (pp_body){p->a}), *b = body_find(wd, (pp_body){p->b});
@@ -376,16 +411,14 @@ static bool still_held(const world *wd, const contact_record *p, const void *ste
         return false;
     if (!turned_little(a, q->cos_a, q->sin_a) || !turned_little(b, q->cos_b, q->sin_b))
         return false;
-    double drift = 0;
-    const dvec2 com_a = body_com_world(a), com_b = body_com_world(b);
-    for (int32_t k = 0; k < p->carry_count; k++) {
-        const dvec2 p0 = dv(p->carry_points[k].point.x, p->carry_points[k].point.y);
-        dvec2 ua, ub;
-        moved_pair(p, a, b, com_a, com_b, p0, &ua, &ub);
-        drift = dmax(drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
-    }
+    carry_moved *m = &pass->moved[p - wd->table.records];
+    double drift;
+    move_points(wd, p, &m->r, &drift);
     drift = sqrt(drift);
-    return drift <= bound && pair_motion(wd, a, b, dt) <= bound - drift;
+    if (!(drift <= bound && pair_motion(wd, a, b, pass->dt) <= bound - drift))
+        return false;
+    m->a = p->a, m->b = p->b, m->step = wd->carry.step;
+    return true;
 }
 
 pp_status carry_begin(world *wd, int32_t k, double dt)
@@ -397,7 +430,9 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
         if (st)
             return st;
         motion_stale(c);
-        contact_table_keep_carried(wd, still_held, &dt);
+        if (!ARRAY_RESERVE(c->moved, c->moved_capacity, wd->table.count))
+            return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory for %d held pairs", (int)wd->table.count);
+        contact_table_keep_carried(wd, still_held, &(held_pass){dt, c->moved});
         c->active = wd->table.carry_count > 0;
     }
     return PP_OK;
@@ -457,4 +492,5 @@ void carry_free(carry *c)
     pp_free(c->collided);
     pp_free(c->motion);
     pp_free(c->restless);
+    pp_free(c->moved);
 }

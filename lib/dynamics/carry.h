@@ -44,6 +44,8 @@ typedef struct carry {
     int32_t restless_capacity;
     carry_motion *motion;        /* by slot, current where serial matches */
     int32_t motion_capacity;
+    struct carry_moved *moved;   /* by record: a held pair's contacts moved to the first substep's poses */
+    int32_t moved_capacity;
     uint32_t serial;             /* counts the passes over carried pairs: no velocity changes within one */
     uint32_t step;               /* counts the steps carry_begin started, from 1 */
     int32_t substep;             /* the substep now, 0 = the step's first */

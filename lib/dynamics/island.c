@@ -362,14 +362,15 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
     }
     /* The islands are whole: each node's root, found once here, is what every later pass (set_spans and list_of
      * at this substep and the still ones after it) reads. */
-    int32_t *root_of = isl->root;
-    for (int32_t n = 0; n < wd->islands.node_count; n++)
-        root_of[wd->islands.nodes[n]] = world_group_root(parent, wd->islands.nodes[n]);
     /* What has an island solve every substep, for this plan and the still ones after it: a joint, or a body pressing
      * on one over HARD_MASS_RATIO times lighter. */
+    int32_t *root_of = isl->root;
     uint8_t *every = isl->every;
-    for (int32_t n = 0; n < wd->islands.node_count; n++)
-        every[wd->islands.nodes[n]] = 0;
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const int32_t i = wd->islands.nodes[n];
+        root_of[i] = world_group_root(parent, i);
+        every[i] = 0;
+    }
     for (int32_t i = 0; wd->joints.ids.live > 0 && i < wd->joints.ids.capacity; i++) {
         const joint *jt = wd->joints.items[i];
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
@@ -377,32 +378,32 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         if (node)
             every[root_of[node->index]] = 1;
     }
-    for (int32_t n = 0; n < wd->table.run_count; n++) {
-        const body *a = wd->bodies[wd->table.runs[n].a], *b = wd->bodies[wd->table.runs[n].b];
-        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
-            dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
-            every[root_of[a->index]] = 1;
-    }
     /* After every join: a flag put on a root that a later joint puts under another would be lost. */
     for (int32_t n = 0; n < wd->table.run_count; n++) {
         const contact_run *u = &wd->table.runs[n];
+        const body *a = wd->bodies[u->a], *b = wd->bodies[u->b];
+        if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
+            dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
+            every[root_of[a->index]] = 1;
         if (island_slanted_face(wd, u->first, u->end))
-            not_exact[root_of[wd->bodies[u->a]->sb.body ? u->a : u->b]] |= NOT_EXACT_SLANT;
+            not_exact[root_of[a->sb.body ? u->a : u->b]] |= NOT_EXACT_SLANT;
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's
      * abort in dNormalize4, where QuickStep's non-finite result is caught and the step undone. */
-    for (int32_t n = 0; n < wd->islands.node_count; n++)
-        if (!within_reach(wd, wd->bodies[wd->islands.nodes[n]])) {
-            const int32_t root = root_of[wd->islands.nodes[n]];
+    /* An island is stepped if any of its bodies is awake (ODE wakes the rest): its rows carry the mark. */
+    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+        const body *bd = wd->bodies[wd->islands.nodes[n]];
+        const int32_t root = root_of[wd->islands.nodes[n]];
+        if (!within_reach(wd, bd)) {
             dynamic[root] = INT32_MIN / 2; /* solved as a lone body: every substep */
             not_exact[root] |= NOT_EXACT;
         }
-    for (int32_t n = 0; n < wd->islands.node_count; n++) {
-        const body *bd = wd->bodies[wd->islands.nodes[n]];
-        double *heaviest = &wd->islands.heaviest[root_of[wd->islands.nodes[n]]];
+        double *heaviest = &wd->islands.heaviest[root];
         if (bd->type == PP_BODY_DYNAMIC && bd->mass.mass > *heaviest)
             *heaviest = bd->mass.mass;
+        if (awake_mover(bd))
+            rows[root] |= INT32_MIN;
     }
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int32_t i = wd->islands.nodes[n], root = root_of[i];
@@ -413,10 +414,6 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         if (dynamic[root] != 1 || bd->raster.width < 2 || bd->raster.height < 2)
             not_exact[root] |= NOT_EXACT_ALONE;
     }
-    /* An island is stepped if any of its bodies is awake (ODE wakes the rest); mark those roots. */
-    for (int32_t n = 0; n < wd->islands.node_count; n++)
-        if (awake_mover(wd->bodies[wd->islands.nodes[n]]))
-            rows[root_of[wd->islands.nodes[n]]] |= INT32_MIN;
     const int32_t limit = wd->def.exact_island_rows;
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const int32_t i = wd->islands.nodes[n], root = root_of[i], r = rows[root];

@@ -30,6 +30,7 @@ struct pp_solver {
     int32_t feedback_capacity;
     pending_contact *pending;     /* the next step's contacts, in the world's order */
     int32_t pending_count, pending_capacity;
+    dContact ct;                  /* each contact's row, written here for ODE to copy; what it leaves stays 0 */
     int32_t attached;             /* contact joints in the group, emptied after each step */
     int iterations, rest_iterations; /* QuickStep's, and those of the stacks at rest it solves over 2·h */
     solver_exact_state *exact_from; /* the exact islands' bodies before dWorldStep, should it give up */
@@ -285,39 +286,34 @@ solver_contact *solver_add_contact(pp_solver *s, int32_t k)
 
 static void attach_contact(pp_solver *s, const solver_contact *c, int32_t k)
 {
-    dContact ct = {0};
+    dContact *ct = &s->ct; /* every field written below, each time: the rest stay as calloc left them */
     /* One friction row, along the in-plane tangent: ODE's second direction would be z, where nothing moves. */
-    ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM | dContactMu2 | dContactFDir1;
-    ct.surface.mu = c->friction;
-    ct.surface.mu2 = 0;
-    ct.fdir1[0] = -c->normal.y;
-    ct.fdir1[1] = c->normal.x;
-    if (c->tangent_speed != 0) {
-        ct.surface.mode |= dContactMotion1;
-        /* Attached as (0, b), ODE swaps the bodies and flips the normal but not fdir1: the row then reads b past a. */
-        ct.surface.motion1 = (c->a ? c->tangent_speed : -c->tangent_speed) * s->inv_ppm;
-    }
-    if (c->closing_speed > 0) { /* the row's target: separate at −closing_speed, i.e. approach at most that */
-        ct.surface.mode |= dContactMotionN;
-        ct.surface.motionN = -c->closing_speed * s->inv_ppm;
-    }
-    if (c->restitution > 0) {
-        ct.surface.mode |= dContactBounce;
-        ct.surface.bounce = c->restitution;
-        ct.surface.bounce_vel = s->bounce_vel;
-    }
+    int mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM | dContactMu2 | dContactFDir1;
+    ct->surface.mu = c->friction;
+    ct->fdir1[0] = -c->normal.y;
+    ct->fdir1[1] = c->normal.x;
+    /* Attached as (0, b), ODE swaps the bodies and flips the normal but not fdir1: the row then reads b past a. */
+    ct->surface.motion1 = c->tangent_speed != 0 ? (c->a ? c->tangent_speed : -c->tangent_speed) * s->inv_ppm : 0;
+    mode |= c->tangent_speed != 0 ? dContactMotion1 : 0;
+    /* the row's target: separate at −closing_speed, i.e. approach at most that */
+    ct->surface.motionN = c->closing_speed > 0 ? -c->closing_speed * s->inv_ppm : 0;
+    mode |= c->closing_speed > 0 ? dContactMotionN : 0;
+    ct->surface.bounce = c->restitution > 0 ? c->restitution : 0;
+    ct->surface.bounce_vel = c->restitution > 0 ? s->bounce_vel : 0;
+    mode |= c->restitution > 0 ? dContactBounce : 0;
+    ct->surface.mode = mode;
     /* cfm is relative to the pair's reduced mass, so softness does not depend on body size. A bounce is hard:
      * the softness kept back 0.5 % of an elastic ball's speed at each bounce (5 % of its height in 10). */
     const double inv_m = c->inv_mass_a + c->inv_mass_b;
-    ct.surface.soft_erp = s->erp;
-    ct.surface.soft_cfm = c->bounce ? 0.0 : s->cfm * (inv_m > 0 ? inv_m : 1.0);
+    ct->surface.soft_erp = s->erp;
+    ct->surface.soft_cfm = c->bounce ? 0.0 : s->cfm * (inv_m > 0 ? inv_m : 1.0);
     /* ODE pushes body 1 along the normal to separate: our normal points from a to b, so negate. */
-    ct.geom.pos[0] = c->point.x * s->inv_ppm;
-    ct.geom.pos[1] = c->point.y * s->inv_ppm;
-    ct.geom.normal[0] = -c->normal.x;
-    ct.geom.normal[1] = -c->normal.y;
-    ct.geom.depth = c->depth * s->inv_ppm;
-    dJointID j = dJointCreateContact(s->world, s->contacts, &ct);
+    ct->geom.pos[0] = c->point.x * s->inv_ppm;
+    ct->geom.pos[1] = c->point.y * s->inv_ppm;
+    ct->geom.normal[0] = -c->normal.x;
+    ct->geom.normal[1] = -c->normal.y;
+    ct->geom.depth = c->depth * s->inv_ppm;
+    dJointID j = dJointCreateContact(s->world, s->contacts, ct);
     s->attached++;
     dJointAttach(j, c->a ? (dBodyID)c->a->body : 0, c->b ? (dBodyID)c->b->body : 0);
     /* A joint ODE leaves out of its step (all its bodies asleep) writes no feedback: it applied nothing. Only f1
@@ -785,6 +781,7 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
     bool stepped[3] = {false, false, false}; /* by span: h, 2·h, 4·h */
     for (int i = 0; i < SOLVE_IDLE; i++)
         stepped[span_order(SOLVE_SPAN[i])] |= is->count[i] > 0;
+    const int32_t had = s->attached;
     for (int o = 0; o < 3; o++) {
         const bool reversed = (s->steps >> o & 1) != 0;
         for (int32_t n = 0; stepped[o] && n < s->pending_count; n++) {
@@ -793,8 +790,8 @@ static void attach_contacts(pp_solver *s, const solver_islands *is)
                 attach_contact(s, &p->c, p->k);
         }
     }
-    for (int32_t n = 0; n < s->pending_count; n++) /* not attached: it applied nothing */
-        if (!stepped[span_order(s->pending[n].c.span)])
+    for (int32_t n = 0; s->attached - had < s->pending_count && n < s->pending_count; n++)
+        if (!stepped[span_order(s->pending[n].c.span)]) /* not attached: it applied nothing */
             memset(s->feedback[s->pending[n].k].f1, 0, sizeof s->feedback[s->pending[n].k].f1);
     s->pending_count = 0;
 }
