@@ -241,6 +241,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         r->carry_flags = (slow ? CARRY_HELD : 0) | (stack ? CARRY_STACK : 0);
         r->carry_pose = (carried_pose){body_com_world(a), body_com_world(b), a->cos_a, a->sin_a, b->cos_a, b->sin_a};
         memcpy(r->carry_points, ct, (size_t)(end - i) * sizeof *ct);
+        contact_table_locate_carried(r);
     }
     wd->carry.active = wd->table.carry_count > 0;
     return PP_OK;
@@ -271,21 +272,13 @@ bool carry_claim(world *wd, uint32_t a, uint32_t b)
     return still_pair(wd, a, b); /* then it made no contact last substep, and nothing has moved since */
 }
 
-/* How far the material point of a body that was at p when the contact was found has moved, px; com is the
- * body's centre of mass now (body_com_world, found once for all of a pair's points). */
-static dvec2 moved(const body *bd, dvec2 com, dvec2 com0, double c0, double s0, dvec2 p)
+/* How far carried point k has moved with each body since the raster found it at p0: *ua with a, *ub with b, px;
+ * com_a and com_b are the bodies' centres of mass now (body_com_world, found once for all of a pair's points). */
+static void moved_pair(const contact_record *r, int32_t k, const body *a, const body *b, dvec2 com_a, dvec2 com_b,
+                       dvec2 p0, dvec2 *ua, dvec2 *ub)
 {
-    const dvec2 local = dv_unrot(dv_sub(p, com0), c0, s0);
-    return dv_sub(dv_add(com, dv_rot(local, bd->cos_a, bd->sin_a)), p);
-}
-
-/* How far a carried point p0 has moved with each body: *ua with a, *ub with b, px. */
-static void moved_pair(const contact_record *r, const body *a, const body *b, dvec2 com_a, dvec2 com_b, dvec2 p0,
-                       dvec2 *ua, dvec2 *ub)
-{
-    const carried_pose *q = &r->carry_pose;
-    *ua = moved(a, com_a, q->com_a, q->cos_a, q->sin_a, p0);
-    *ub = moved(b, com_b, q->com_b, q->cos_b, q->sin_b, p0);
+    *ua = dv_sub(dv_add(com_a, dv_rot(r->carry_local[k][0], a->cos_a, a->sin_a)), p0);
+    *ub = dv_sub(dv_add(com_b, dv_rot(r->carry_local[k][1], b->cos_a, b->sin_a)), p0);
 }
 
 /* A carried pair's contacts at the bodies' poses now: each point at the midpoint of where its two material
@@ -303,7 +296,7 @@ static void move_points(const world *wd, const contact_record *p, np_result *r, 
         PP_ASSERT(cc->a.id == a->handle.id && cc->b.id == b->handle.id);
         const dvec2 p0 = dv(cc->point.x, cc->point.y), n = dv(cc->normal.x, cc->normal.y);
         dvec2 ua, ub;
-        moved_pair(p, a, b, com_a, com_b, p0, &ua, &ub);
+        moved_pair(p, k, a, b, com_a, com_b, p0, &ua, &ub);
         *drift = dmax(*drift, dv_dot(dv_sub(ub, ua), dv_sub(ub, ua)));
         const double depth = cc->depth - dv_dot(dv_sub(ub, ua), n);
         if (!(depth >= -CARRY_GAP_PX))

@@ -204,6 +204,16 @@ dvec2 contact_anchor_slip(const contact_record *t, const body *a, const body *b,
     return dv_sub(p, dv_add(a->pos, dv_rot(then, a->cos_a, a->sin_a)));
 }
 
+void contact_table_locate_carried(contact_record *r)
+{
+    const carried_pose *q = &r->carry_pose;
+    for (int32_t k = 0; k < r->carry_count; k++) {
+        const dvec2 p = dv(r->carry_points[k].point.x, r->carry_points[k].point.y);
+        r->carry_local[k][0] = dv_unrot(dv_sub(p, q->com_a), q->cos_a, q->sin_a);
+        r->carry_local[k][1] = dv_unrot(dv_sub(p, q->com_b), q->cos_b, q->sin_b);
+    }
+}
+
 static void anchor_turn(contact_record *t)
 {
     t->anchor_cos = cos(t->anchor[2]);
@@ -506,6 +516,9 @@ void contact_table_set_state(world *wd, const contact_table_counts *n, const con
         memcpy(t->carry_order, carry_order, (size_t)n->carry_count * sizeof *carry_order);
     t->count = n->count, t->awake = n->awake, t->gone = n->gone, t->carry_count = n->carry_count;
     t->substep = n->substep, t->found_count = n->found_count, t->resting_stale = n->resting_stale;
+    for (int32_t i = 0; i < t->count; i++)
+        if (t->records[i].carried)
+            contact_table_locate_carried(&t->records[i]);
     index_rebuild(t); /* room reserved: the keys are the records' */
 }
 
@@ -597,6 +610,9 @@ void contact_table_validate(const world *wd)
         const contact_record *r = &t->records[i];
         PP_ASSERT(r->carried == k + 1 && !(r->flags & (CT_GONE | CT_SENSOR | CT_PASSING)));
         PP_ASSERT(r->carry_count >= 1 && r->carry_count <= PP_MAX_CONTACTS_PER_PAIR);
+        contact_record located = *r;
+        contact_table_locate_carried(&located);
+        PP_ASSERT(!memcmp(located.carry_local, r->carry_local, (size_t)r->carry_count * sizeof *r->carry_local));
         carried++;
     }
     for (int32_t i = 0; i < t->count; i++)

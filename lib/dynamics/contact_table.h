@@ -63,6 +63,8 @@ typedef struct contact_record {
     uint8_t carry_flags;   /* CARRY_* */
     carried_pose carry_pose;
     pp_contact carry_points[PP_MAX_CONTACTS_PER_PAIR];
+    dvec2 carry_local[PP_MAX_CONTACTS_PER_PAIR][2]; /* each carried point in a's and b's frame at carry_pose, px:
+                                                     * derived (contact_table_locate_carried), never read from bytes */
 } contact_record;
 
 /* One touching pair of the substep's contacts (wd->contacts): its points [first, end), its bodies' slots and its
@@ -148,6 +150,9 @@ const contact_record *contact_table_find(const struct world *wd, uint64_t x, uin
 /* How far b's material point at world point p has moved relative to a since the pair's anchor, px:
  * the slip that static friction has let through and the solver should undo. */
 dvec2 contact_anchor_slip(const contact_record *t, const struct body *a, const struct body *b, dvec2 p);
+
+/* Set carry_local from carry_pose and carry_points, whenever either is written. */
+void contact_table_locate_carried(contact_record *r);
 
 /* A body is being removed: its pairs end at the next substep. Cannot fail. */
 void contact_table_body_removed(struct world *wd, uint64_t id);

@@ -403,6 +403,7 @@ static pp_status restore_held_contacts(const json_ctx *c, const cJSON *arr, cons
         r->carry_points[k] = saved_contact((pp_body){r->a}, (pp_body){r->b}, v);
     }
     r->carry_count = (int8_t)k;
+    contact_table_locate_carried(r);
     return PP_OK;
 }
 
