@@ -15,6 +15,8 @@
 
 /* Overlap tests refine the hit pose until the travel left to resolve is below this, px. */
 #define SWEEP_RESOLUTION 0.5
+/* px: a body whose travel's cheap bound is this far under the spacing is under it however the two round. */
+#define SWEEP_BOUND_SLACK 1e-6
 
 /* A pose by its centre of mass, as ODE moves a body: the centre along a line, the angle evenly. */
 typedef struct sweep {
@@ -142,15 +144,21 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
     const pp_raster *r = &bd->raster;
     sweep sw = {bd, from->com, dv_sub(body_com_world(bd), from->com), from->angle, turn_of(from->angle, bd->angle),
                 body_com_local(bd)};
+    const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
+    const double spacing = dmax(1.0, 0.5 * thin), move = sqrt(dv_dot(sw.dcom, sw.dcom));
+    /* Most bodies move well under the spacing: the reach's bound by its axes (no root, never under it, and kept
+     * clear of the test below by far more than rounding) answers without the corners. */
+    const double rx = dmax(fabs(r->x0 - sw.com_local.x), fabs(r->x1 - sw.com_local.x));
+    const double ry = dmax(fabs(r->y0 - sw.com_local.y), fabs(r->y1 - sw.com_local.y));
+    if (move + fabs(sw.dangle) * (rx + ry) < spacing - SWEEP_BOUND_SLACK)
+        return PP_OK;
     /* The farthest any solid pixel lies from the centre of mass bounds how far a point moves. */
     double reach2 = 0;
     for (int k = 0; k < 4; k++) {
         const dvec2 d = dv_sub(dv(k & 1 ? r->x1 : r->x0, k & 2 ? r->y1 : r->y0), sw.com_local);
         reach2 = dmax(reach2, dv_dot(d, d));
     }
-    const double reach = sqrt(reach2), travel = sqrt(dv_dot(sw.dcom, sw.dcom)) + fabs(sw.dangle) * reach;
-    const int32_t thin = (r->x1 - r->x0) < (r->y1 - r->y0) ? r->x1 - r->x0 : r->y1 - r->y0; /* ≥ 1: not empty */
-    const double spacing = dmax(1.0, 0.5 * thin);
+    const double reach = sqrt(reach2), travel = move + fabs(sw.dangle) * reach;
     if (travel <= spacing)
         return PP_OK;
     const dvec2 end = dv_add(sw.com0, sw.dcom);
