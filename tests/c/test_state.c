@@ -376,6 +376,62 @@ Test(state, a_big_terrains_state_loads_while_its_world_exists, .timeout = 60)
     free(st3);
 }
 
+#ifdef PP_TEST_PRIVATE
+#include "world.h" /* the contact table's records: a held pair's carried frames */
+
+#include <string.h>
+
+/* Where n bytes equal to what first appear in the buffer, or NULL. */
+static uint8_t *find_bytes(uint8_t *buf, size_t size, const void *what, size_t n)
+{
+    for (size_t i = 0; i + n <= size; i++)
+        if (!memcmp(buf + i, what, n))
+            return buf + i;
+    return NULL;
+}
+
+/* Loaded bytes give a held pair's carried contacts and poses; each point's place in the bodies' frames is derived
+ * from them again (contact_table_locate_carried), never taken from the bytes, which hold it too. */
+Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .timeout = 60)
+{
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    d.gravity = v2(0, 980);
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
+    add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 484, 0), 32, 32);
+    step_n(w, DT, 60); /* settled: its pair with the ground is held from step to step */
+    const world *wd = world_lookup(w, "test");
+    const contact_record *held = NULL;
+    for (int32_t i = 0; i < wd->table.count && !held; i++)
+        held = wd->table.records[i].carried ? &wd->table.records[i] : NULL;
+    cr_assert_not_null(held, "no pair is held after a second at rest");
+    int64_t size = 0;
+    uint8_t *st = save(w, &size);
+    const size_t n = (size_t)held->carry_count * sizeof held->carry_local[0];
+    uint8_t *at = find_bytes(st, (size_t)size, held->carry_local, n);
+    cr_assert_not_null(at, "the state holds the pair's carried frames as the world does");
+    pp_world clean = {0}, changed = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &clean));
+    for (size_t k = 0; k < n; k += sizeof(double)) { /* each coordinate 5 px off */
+        double x;
+        memcpy(&x, at + k, sizeof x);
+        x += 5;
+        memcpy(at + k, &x, sizeof x);
+    }
+    const uint64_t sum = hash_bytes(HASH_START, st + 24, (size_t)size - 24);
+    memcpy(st + 8, &sum, 8);
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &changed));
+    step_n(clean, DT, 30);
+    step_n(changed, DT, 30);
+    cr_assert_eq(hash_of(changed), hash_of(clean), "frames taken from the bytes moved the held pair's contacts");
+    free(st);
+    pp_world_destroy(clean);
+    pp_world_destroy(changed);
+    pp_world_destroy(w);
+}
+#endif
+
 Test(state, the_hash_sees_any_impulse, .timeout = 30)
 {
     busy s = busy_scene(PP_BACKEND_CPU);
