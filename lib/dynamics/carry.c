@@ -431,12 +431,13 @@ pp_status carry_begin(world *wd, int32_t k, double dt)
     return PP_OK;
 }
 
-/* Carried through the whole step and never collided: the raster's contacts, moved. */
+/* Carried through the whole step and never collided: the raster's contacts, moved. The step's last search for
+ * pairs claimed it, or found it (the step's only one, when every island sat the later substeps out). */
 static bool to_hold(const world *wd, const contact_record *p, const void *unused)
 {
     (void)unused;
-    return (p->carry_flags & (CARRY_HELD | CARRY_MISSED)) == CARRY_HELD && p->claimed == wd->table.substep &&
-           p->carry_last == wd->def.substeps - 1;
+    return (p->carry_flags & (CARRY_HELD | CARRY_MISSED)) == CARRY_HELD &&
+           (p->claimed == wd->table.substep || p->found == wd->table.substep) && p->carry_last == wd->def.substeps - 1;
 }
 
 void carry_end_step(world *wd)

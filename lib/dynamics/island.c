@@ -27,10 +27,13 @@ enum { ROWS_PER_CONTACT = 2, ROWS_PER_FIXED_ROTATION = 4, ROWS_PER_JOINT = 6 };
  * step's first substep, carry_struck whatever the substep knows (ROOT_HIT: a resting lone body keeps sitting
  * out); an awake body that sat out fewer than the three substeps before (ROOT_SHORT: no span of four). */
 enum { ROOT_EVERY_SUBSTEP = 1, ROOT_BEHIND = 2, ROOT_CURRENT = 4, ROOT_STRUCK = 8, ROOT_TOUCHING = 16,
-       ROOT_COLLIDED = 32, ROOT_HIT = 64, ROOT_SHORT = 128 };
-/* The span ROOT_* flags decide; ROOT_STRUCK only chooses the iterations. */
+       ROOT_COLLIDED = 32, ROOT_HIT = 64, ROOT_SHORT = 128, ROOT_SLANT = 256 };
+/* The span ROOT_* flags decide; ROOT_STRUCK also chooses the iterations. A slanted face (ROOT_SLANT, see
+ * island_slanted_face) keeps a stack off a span of four. */
 #define ROOT_SPAN_FLAGS (ROOT_EVERY_SUBSTEP | ROOT_BEHIND | ROOT_CURRENT)
 enum { HARD_MASS_RATIO = 4 };
+/* island_set.every's bits. */
+enum { EVERY_SUBSTEP = 1, EVERY_SLANT = 2 };
 
 /* Past this mass ratio between two bodies of an island, the exact solver's factorisation loses its pivots and
  * ODE aborts the process (dxLDLTRemove's or dxNormalize4's assertion: a 16 px crate of density 1e-13 under
@@ -182,7 +185,8 @@ static void set_spans(world *wd, int32_t k, substep_pairing pairing)
     for (int32_t n = 0; n < wd->islands.node_count; n++) {
         const body *bd = wd->bodies[wd->islands.nodes[n]];
         int32_t *f = &flags[root[wd->islands.nodes[n]]];
-        *f |= wd->islands.every[root[wd->islands.nodes[n]]] ? ROOT_EVERY_SUBSTEP : 0;
+        const uint8_t every = wd->islands.every[root[wd->islands.nodes[n]]];
+        *f |= (every & EVERY_SUBSTEP ? ROOT_EVERY_SUBSTEP : 0) | (every & EVERY_SLANT ? ROOT_SLANT : 0);
         if (awake_mover(bd)) {
             const bool behind = bd->sat_out + 1 == wd->islands.substep_serial;
             *f |= behind ? ROOT_BEHIND : ROOT_CURRENT;
@@ -215,9 +219,13 @@ static void set_spans(world *wd, int32_t k, substep_pairing pairing)
             if (pairing == PAIR_FIRST && !(f & ROOT_EVERY_SUBSTEP))
                 span = SPAN_SKIP;
             else if (second && (f & ROOT_SPAN_FLAGS) == ROOT_BEHIND) {
-                /* A lone exact body at rest, struck by no collided pair this step, sits the first pair of four
-                 * out too and solves the four at once; list_of reads ROOT_STRUCK from the flags left behind. */
-                if (pairing == PAIR_MID && kind == ISLAND_EXACT_ALONE && at_rest && !(f & ROOT_HIT))
+                /* A lone exact body at rest and a QuickStep stack at rest (ROOT_STRUCK clear), struck by no
+                 * collided pair this step, sit the first pair of four out too and solve the four at once; list_of
+                 * reads ROOT_STRUCK from the flags left behind. A stack with a slanted face stays at 2·h: at 4·h,
+                 * Box2D v3's arch fell at 11 s (bench_stability). */
+                if (pairing == PAIR_MID && !(f & ROOT_HIT) &&
+                    ((kind == ISLAND_EXACT_ALONE && at_rest) ||
+                     (kind == ISLAND_QUICK_STACK && !(f & (ROOT_STRUCK | ROOT_SLANT)))))
                     span = SPAN_SKIP;
                 else
                     span = pairing == PAIR_LAST && !(f & ROOT_SHORT) ? SPAN_FOUR : SPAN_TWO;
@@ -234,7 +242,8 @@ static void set_spans(world *wd, int32_t k, substep_pairing pairing)
 
 /* Which of solver_step's lists (SOLVE_*) a node goes in, or -1: asleep, or a QuickStep island's sleeper (ODE
  * wakes it through its contact). A stack over 2·h that no collided pair touched this step, and whose pairs move
- * slower than CARRY_REST_PX, is at rest (set_spans's ROOT_STRUCK, left in the group array's last third). A lone
+ * slower than CARRY_REST_PX, is at rest (set_spans's ROOT_STRUCK, left in the group array's last third). A stack
+ * over 4·h keeps every iteration: at half, the 20-row pyramid drifted 3.4 px in bench_stability, not 0.6. A lone
  * body at rest keeps every iteration: at half, a 1 px grain slid 0.012 px as it settled (test_extremes) and
  * ramp20's slide moved 0.5 %, for 8 % of the destruction scene's step. */
 static int list_of(world *wd, int32_t i)
@@ -255,6 +264,7 @@ static int list_of(world *wd, int32_t i)
     const int32_t f = wd->islands.group[2 * wd->islands.group_capacity + root];
     const bool struck = (f & ROOT_STRUCK) != 0;
     switch (wd->islands.span[i]) {
+    case SPAN_FOUR: return SOLVE_QUICK_FOUR;
     case SPAN_TWO: return struck ? SOLVE_QUICK_TWO : SOLVE_QUICK_TWO_REST;
     case SPAN_ONE: return SOLVE_QUICK;
     default: return SOLVE_IDLE;
@@ -376,7 +386,7 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         const body *a = jt ? joint_body_a(wd, jt) : NULL, *b = jt ? joint_body_b(wd, jt) : NULL;
         const body *node = is_node(wd, a) ? a : is_node(wd, b) ? b : NULL;
         if (node)
-            every[root_of[node->index]] = 1;
+            every[root_of[node->index]] |= EVERY_SUBSTEP;
     }
     /* After every join: a flag put on a root that a later joint puts under another would be lost. */
     for (int32_t n = 0; n < wd->table.run_count; n++) {
@@ -384,9 +394,11 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         const body *a = wd->bodies[u->a], *b = wd->bodies[u->b];
         if (a->type == PP_BODY_DYNAMIC && b->type == PP_BODY_DYNAMIC &&
             dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
-            every[root_of[a->index]] = 1;
-        if (island_slanted_face(wd, u->first, u->end))
+            every[root_of[a->index]] |= EVERY_SUBSTEP;
+        if (island_slanted_face(wd, u->first, u->end)) {
             not_exact[root_of[a->sb.body ? u->a : u->b]] |= NOT_EXACT_SLANT;
+            every[root_of[a->sb.body ? u->a : u->b]] |= EVERY_SLANT;
+        }
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,
      * fuzz_snapshot: 9e17 m) stays on QuickStep: the exact solver's lever arms would end in NaN and ODE's

@@ -176,12 +176,13 @@ void solver_set_steps(pp_solver *s, uint64_t steps);
 /* How a substep's awake islands are solved, in the order solver_step runs them: ODE's exact dWorldStep (every
  * body of its islands, sleepers included) over h, over 2·h and over 4·h (a lone body at rest that sat the one or
  * three substeps before out: island.c), QuickStep over h, over 2·h (the stacks that sat the substep before
- * out), over 2·h at rest (no pair of the stack collided this step: island.c), with fewer iterations, and not at
- * all (islands sitting this substep out). */
-enum { SOLVE_EXACT, SOLVE_EXACT_TWO, SOLVE_EXACT_FOUR, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST, SOLVE_IDLE,
-       SOLVE_LISTS };
+ * out), over 2·h at rest (no pair of the stack collided this step: island.c), with fewer iterations, over 4·h
+ * (a stack at rest that sat the three substeps before out), with every iteration, and not at all (islands
+ * sitting this substep out). */
+enum { SOLVE_EXACT, SOLVE_EXACT_TWO, SOLVE_EXACT_FOUR, SOLVE_QUICK, SOLVE_QUICK_TWO, SOLVE_QUICK_TWO_REST,
+       SOLVE_QUICK_FOUR, SOLVE_IDLE, SOLVE_LISTS };
 /* The substeps of time each list (SOLVE_*) advances. */
-static const uint8_t SOLVE_SPAN[SOLVE_LISTS] = {1, 2, 4, 1, 2, 2, 0};
+static const uint8_t SOLVE_SPAN[SOLVE_LISTS] = {1, 2, 4, 1, 2, 2, 4, 0};
 
 /* The bodies of one substep's awake islands, by how they are solved (SOLVE_*). */
 typedef struct solver_islands {

@@ -150,7 +150,8 @@ typedef struct island_set {
     int32_t list_capacity;
     double *heaviest;        /* by root: its heaviest dynamic body's mass (island_plan's scratch) */
     int32_t heaviest_capacity;
-    uint8_t *every;          /* by root: a joint or a hard mass ratio has it solve every substep (found once a plan) */
+    uint8_t *every;          /* by root, found once a plan: a joint or a hard mass ratio has it solve every substep
+                              * (EVERY_SUBSTEP); a slanted face keeps it off a span of four (EVERY_SLANT) */
     int32_t every_capacity;
     int32_t *sleep_group;    /* two per slot: island_sleep's union-find parents and restless flags, apart from
                               * `group` so that a still substep's islands stand */

@@ -219,11 +219,21 @@ static solver_islands plan_still(world *wd, int32_t k)
     return out;
 }
 
-/* A QuickStep pile that a collided pair touched in this step solves its pair of substeps with every iteration, not
- * with the half that a pile at rest gets, also where the second substep looks for no pairs (its contacts stand from
- * the first, where a landing crate struck the pile): island_plan is told which substep it plans, rather than reading
- * it from the last substep that looked for pairs. */
-Test(spans, a_struck_quickstep_pile_keeps_its_iterations_in_a_substep_that_looks_for_no_pairs)
+/* The bodies a plan steps, over every list. */
+static int32_t stepped(const solver_islands *is)
+{
+    int32_t n = 0;
+    for (int i = 0; i < SOLVE_IDLE; i++)
+        n += is->count[i];
+    return n;
+}
+
+/* A QuickStep pile at rest sits the first three of four substeps out and solves the fourth over 4·h with every
+ * iteration. One that a collided pair touched in this step solves each pair of substeps with every iteration, not
+ * with the half that a pile at rest gets over 2·h, also where the second substep looks for no pairs (its contacts
+ * stand from the first, where a landing crate struck the pile): island_plan is told which substep it plans, rather
+ * than reading it from the last substep that looked for pairs. */
+Test(spans, a_quickstep_pile_at_rest_solves_once_a_step_and_a_struck_one_keeps_its_iterations)
 {
     pp_world w = quick_world(4);
     pp_body b[3];
@@ -233,19 +243,26 @@ Test(spans, a_struck_quickstep_pile_keeps_its_iterations_in_a_substep_that_looks
     cr_assert_not_null(wd);
     wd->carry.substep = 0; /* the step's first substep was the last to look for pairs */
 
-    solver_islands first = plan_still(wd, 0), second = plan_still(wd, 1);
-    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 0 out");
-    cr_assert_eq(second.count[SOLVE_QUICK_TWO_REST], 3, "untouched, it is at rest: %d of 3 bodies",
-                 second.count[SOLVE_QUICK_TWO_REST]);
+    for (int32_t k = 0; k < 3; k++) {
+        const solver_islands out = plan_still(wd, k);
+        cr_assert_eq(stepped(&out), 0, "at rest, the pile sits substep %d out: %d bodies stepped", k, stepped(&out));
+    }
+    solver_islands last = plan_still(wd, 3);
+    cr_assert_eq(last.count[SOLVE_QUICK_FOUR], 3, "at rest, it solves 4·h at the last substep: %d of 3 bodies",
+                 last.count[SOLVE_QUICK_FOUR]);
 
     /* Now a collided pair touched the top box in this step. */
     const uint32_t top = handle_slot(b[2].id);
     cr_assert_lt((int32_t)top, wd->carry.struck_capacity);
     wd->carry.struck[top] = wd->carry.step;
-    first = plan_still(wd, 2), second = plan_still(wd, 3);
-    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 2 out");
+    solver_islands first = plan_still(wd, 0), second = plan_still(wd, 1);
+    cr_assert_eq(stepped(&first), 0, "the pile sits substep 0 out");
     cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "struck, it keeps every iteration: %d of 3 bodies (%d at rest)",
                  second.count[SOLVE_QUICK_TWO], second.count[SOLVE_QUICK_TWO_REST]);
+    first = plan_still(wd, 2), second = plan_still(wd, 3);
+    cr_assert_eq(stepped(&first), 0, "the pile sits substep 2 out");
+    cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "and solves 2·h at the last with every iteration: %d of 3 bodies",
+                 second.count[SOLVE_QUICK_TWO]);
     pp_world_destroy(w);
 }
 
@@ -275,7 +292,7 @@ Test(spans, a_quickstep_pile_moving_past_rest_keeps_its_iterations_while_its_pai
               "the sliding pair's bodies are restless (top %d, middle %d), the pair under them not (bottom %d)",
               carry_restless(c, top), carry_restless(c, middle), carry_restless(c, bottom));
     const solver_islands first = plan_still(wd, 2), second = plan_still(wd, 3);
-    cr_assert_eq(first.count[SOLVE_QUICK_TWO] + first.count[SOLVE_QUICK_TWO_REST], 0, "the pile sits substep 2 out");
+    cr_assert_eq(stepped(&first), 0, "the pile sits substep 2 out");
     cr_assert_eq(second.count[SOLVE_QUICK_TWO], 3, "it keeps every iteration: %d of 3 bodies (%d at rest)",
                  second.count[SOLVE_QUICK_TWO], second.count[SOLVE_QUICK_TWO_REST]);
     pp_world_destroy(w);
