@@ -81,18 +81,24 @@ void body_update_pose_cache(body *bd)
     const pp_raster *r = &bd->raster;
     pp_aabb box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     if (!raster_empty(r)) {
-        /* Each corner is pos + R·(corner − pivot); the four share their products, two by two. */
+        /* Each corner is pos + R·(corner − pivot): x = pos.x + c·dx − s·dy, y = pos.y + s·dx + c·dy. Rounding
+         * keeps order, so the corners' least x is the one from the least c·dx and the greatest s·dy, to the bit. */
         const double c = bd->cos_a, s = bd->sin_a;
-        const double dx[2] = {r->x0 - bd->pivot.x, r->x1 - bd->pivot.x};
-        const double dy[2] = {r->y0 - bd->pivot.y, r->y1 - bd->pivot.y};
-        const double cx[2] = {c * dx[0], c * dx[1]}, sx[2] = {s * dx[0], s * dx[1]};
-        const double cy[2] = {c * dy[0], c * dy[1]}, sy[2] = {s * dy[0], s * dy[1]};
-        for (int k = 0; k < 4; k++) {
-            const int i = k & 1, j = k >> 1;
-            const dvec2 w = dv_add(bd->pos, dv(cx[i] - sy[j], sx[i] + cy[j]));
-            box.x0 = dmin(box.x0, w.x), box.y0 = dmin(box.y0, w.y);
-            box.x1 = dmax(box.x1, w.x), box.y1 = dmax(box.y1, w.y);
+        const double dx0 = r->x0 - bd->pivot.x, dx1 = r->x1 - bd->pivot.x;
+        const double dy0 = r->y0 - bd->pivot.y, dy1 = r->y1 - bd->pivot.y;
+        const double cx0 = c * dx0, cx1 = c * dx1, sx0 = s * dx0, sx1 = s * dx1;
+        const double cy0 = c * dy0, cy1 = c * dy1, sy0 = s * dy0, sy1 = s * dy1;
+        box.x0 = bd->pos.x + (dmin(cx0, cx1) - dmax(sy0, sy1));
+        box.x1 = bd->pos.x + (dmax(cx0, cx1) - dmin(sy0, sy1));
+        box.y0 = bd->pos.y + (dmin(sx0, sx1) + dmin(cy0, cy1));
+        box.y1 = bd->pos.y + (dmax(sx0, sx1) + dmax(cy0, cy1));
+#ifdef PP_CHECKS
+        for (int k = 0; k < 4; k++) { /* every corner lies in the box */
+            const double x = bd->pos.x + ((k & 1 ? cx1 : cx0) - (k & 2 ? sy1 : sy0));
+            const double y = bd->pos.y + ((k & 1 ? sx1 : sx0) + (k & 2 ? cy1 : cy0));
+            PP_ASSERT(!(x < box.x0 || x > box.x1 || y < box.y0 || y > box.y1));
         }
+#endif
     }
     bd->aabb = box;
     body_update_com(bd);
