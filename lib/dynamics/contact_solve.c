@@ -80,7 +80,7 @@ typedef struct pair_solve {
 static pair_solve pair_solve_of(const world *wd, const contact_run *u, int span, double h)
 {
     pair_solve p = {.a = wd->bodies[u->a], .b = wd->bodies[u->b], .h = span * h};
-    const int kind = wd->islands.kind[p.a->sb.body ? u->a : u->b];
+    const int kind = wd->islands.kind[u->node];
     const bool stack = kind == ISLAND_QUICK_STACK || kind == ISLAND_EXACT;
     p.inv_mass_a = inv_mass(p.a), p.inv_mass_b = inv_mass(p.b);
     p.friction = sqrt(p.a->friction * p.b->friction);

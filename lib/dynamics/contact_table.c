@@ -384,6 +384,8 @@ pp_status contact_table_end_substep(world *wd)
     return PP_OK;
 }
 
+static uint32_t run_node(const world *wd, uint32_t a, uint32_t b) { return wd->bodies[a]->sb.body ? a : b; }
+
 pp_status contact_table_list_runs(world *wd)
 {
     contact_table *t = &wd->table;
@@ -397,7 +399,7 @@ pp_status contact_table_list_runs(world *wd)
         const int32_t k = lookup(t, pair_key(a, b));
         PP_ASSERT(a < b && k >= 0 && t->records[k].a == wd->contacts[i].a.id); /* every contact's pair was found */
         t->records[k].run = t->run_count; /* not logged: read only while found is this substep */
-        t->runs[t->run_count++] = (contact_run){i, end, a, b, k};
+        t->runs[t->run_count++] = (contact_run){i, end, a, b, k, run_node(wd, a, b)};
     }
     return PP_OK;
 }
@@ -409,7 +411,7 @@ pp_status contact_table_add_run(world *wd, int32_t first, int32_t end, uint32_t 
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to list %d contacts' pairs", (int)end);
     PP_ASSERT(a < b && record >= 0 && record < t->count && t->records[record].found == t->substep);
     t->records[record].run = t->run_count; /* not logged: read only while found is this substep */
-    t->runs[t->run_count++] = (contact_run){first, end, a, b, record};
+    t->runs[t->run_count++] = (contact_run){first, end, a, b, record, run_node(wd, a, b)};
     return PP_OK;
 }
 
@@ -421,7 +423,7 @@ void contact_table_validate_runs(const world *wd)
     for (int32_t n = 0; n < t->run_count; n++) {
         const contact_run *u = &t->runs[n];
         PP_ASSERT(u->first == next && u->end == contact_pair_end(wd, u->first));
-        PP_ASSERT(u->record >= 0 && u->record < t->count);
+        PP_ASSERT(u->record >= 0 && u->record < t->count && u->node == run_node(wd, u->a, u->b));
         const contact_record *rec = &t->records[u->record];
         PP_ASSERT(rec->a == wd->contacts[u->first].a.id && rec->b == wd->contacts[u->first].b.id &&
                   handle_slot(rec->a) == u->a && handle_slot(rec->b) == u->b);
@@ -433,12 +435,19 @@ void contact_table_validate_runs(const world *wd)
 #endif
 }
 
-void contact_table_store(world *wd)
+void contact_table_store(world *wd, double h)
 {
     contact_table *t = &wd->table;
     for (int32_t n = 0; n < t->run_count; n++) {
         const contact_run *u = &t->runs[n];
-        if (contact_run_span(wd, u) == SPAN_SKIP)
+        const bool solved = contact_run_span(wd, u) != SPAN_SKIP;
+        for (int32_t c = u->first; c < u->end; c++) {
+            pp_contact *ct = &wd->contacts[c];
+            /* Over one substep, whatever the span: force × h, as the header has it. */
+            ct->normal_impulse =
+                solved ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h) : 0;
+        }
+        if (!solved)
             continue; /* it sat the substep out: its last solve stands */
         contact_record *rec = edit(t, u->record);
         rec->point_count = u->end - u->first;

@@ -75,6 +75,7 @@ typedef struct contact_run {
     int32_t first, end;
     uint32_t a, b;           /* body slots, a < b */
     int32_t record;          /* its index in records */
+    uint32_t node;           /* a, or b where a has no solver body (is static): the slot its island is found by */
 } contact_run;
 
 typedef struct contact_table {
@@ -123,8 +124,9 @@ pp_status contact_table_found(struct world *wd, const struct body *a, const stru
  * is in. */
 pp_status contact_table_end_substep(struct world *wd);
 
-/* After a substep's solve: each solved contact's pair keeps its points and impulses as its manifold. */
-void contact_table_store(struct world *wd);
+/* After a substep's solve of h s: each contact's impulse over it from the solver (0 where its island sat the substep
+ * out), and each solved contact's pair keeps its points and impulses as its manifold. */
+void contact_table_store(struct world *wd, double h);
 
 /* The index of the record of the bodies in these slots (a < b), or −1. */
 int32_t contact_table_lookup(const struct world *wd, uint32_t a, uint32_t b);

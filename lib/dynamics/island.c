@@ -396,8 +396,8 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
             dmax(a->mass.mass, b->mass.mass) > HARD_MASS_RATIO * dmin(a->mass.mass, b->mass.mass))
             every[root_of[a->index]] |= EVERY_SUBSTEP;
         if (island_slanted_face(wd, u->first, u->end)) {
-            not_exact[root_of[a->sb.body ? u->a : u->b]] |= NOT_EXACT_SLANT;
-            every[root_of[a->sb.body ? u->a : u->b]] |= EVERY_SLANT;
+            not_exact[root_of[u->node]] |= NOT_EXACT_SLANT;
+            every[root_of[u->node]] |= EVERY_SLANT;
         }
     }
     /* An island with a body whose ODE centre of mass is far outside its bitmap (a snapshot can hold one,

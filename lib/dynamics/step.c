@@ -321,17 +321,7 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: ODE has no memory for its step");
         still = solver_islands_empty(&islands);
         island_list_woken(wd);
-        for (int32_t n = 0; n < wd->table.run_count; n++) {
-            const contact_run *u = &wd->table.runs[n];
-            const bool solved = contact_run_span(wd, u) > 0;
-            for (int32_t c = u->first; c < u->end; c++) {
-                pp_contact *ct = &wd->contacts[c];
-                /* Over one substep, whatever the span: force × h, as the header has it. */
-                ct->normal_impulse =
-                    solved ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h) : 0;
-            }
-        }
-        contact_table_store(wd);
+        contact_table_store(wd, h);
         if ((st = sync_bodies(wd)))
             return st;
         if ((st = continuous_end(wd)))

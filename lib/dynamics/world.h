@@ -344,7 +344,7 @@ static inline dvec2 body_com_world(const body *bd)
 /* The substeps of time a touching pair's island advances in this one (SPAN_*). */
 static inline int contact_run_span(const world *wd, const contact_run *u)
 {
-    return wd->islands.span[wd->bodies[u->a]->sb.body ? u->a : u->b];
+    return wd->islands.span[u->node];
 }
 /* The radius of the disc a dynamic body's inertia matches, px, or 0 for a body that is not round. */
 double body_round_radius(const body *bd);
