@@ -146,6 +146,7 @@ static pp_status collect_nodes(world *wd)
     is->node_count = 0;
     for (int32_t k = 0; k < wd->awake.count; k++)
         add_node(wd, wd->bodies[wd->awake.slots[k]]);
+    is->awake_nodes = is->node_count;
     for (int32_t n = 0; n < wd->table.run_count; n++) {
         add_node(wd, wd->bodies[wd->table.runs[n].a]);
         add_node(wd, wd->bodies[wd->table.runs[n].b]);
@@ -325,7 +326,7 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
         list_islands(wd, out);
         return PP_OK;
     }
-    wd->islands.node_count = 0;
+    wd->islands.node_count = wd->islands.awake_nodes = 0;
     /* Nodes come from the awake set and the contacts (joints only extend them): with neither, none. */
     if (wd->body_ids.capacity == 0 || (wd->awake.count == 0 && wd->contact_count == 0))
         return PP_OK;
@@ -445,7 +446,8 @@ pp_status island_plan(world *wd, int32_t k, substep_pairing pairing, bool still,
 
 void island_list_woken(world *wd)
 {
-    for (int32_t n = 0; n < wd->islands.node_count; n++) {
+    /* The awake set's own nodes are in it already. */
+    for (int32_t n = wd->islands.awake_nodes; n < wd->islands.node_count; n++) {
         body *bd = wd->bodies[wd->islands.nodes[n]];
         if (awake_mover(bd))
             awake_add(wd, bd);

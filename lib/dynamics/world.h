@@ -140,6 +140,7 @@ typedef struct island_set {
     uint32_t node_pass;
     int32_t *nodes;          /* the substep's island nodes: awake bodies and contacts' movable bodies */
     int32_t node_count, node_capacity;
+    int32_t awake_nodes;     /* nodes [0, awake_nodes) are the awake set's, listed first */
     solver_body **bodies;    /* this substep's islands for solver_step … */
     int32_t bodies_capacity;
     uint8_t *kind;           /* … and by slot, how each body's island is solved (ISLAND_*) */
