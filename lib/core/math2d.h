@@ -26,6 +26,18 @@ static inline dvec2 dv_rot(dvec2 a, double c, double s) { return dv(c * a.x - s 
 /* Rotate by −angle. */
 static inline dvec2 dv_unrot(dvec2 a, double c, double s) { return dv(c * a.x + s * a.y, -s * a.x + c * a.y); }
 
+/* An angle's cos and sin from its half's, as ODE's quaternion (cos ½a, 0, 0, sin ½a) turns about z: the solver's
+ * rotation and a body's (cos, sin) come from one sincos. Every body's (cos, sin) is made so, bit for bit alike. */
+static inline void turn_from_half(double half_c, double half_s, double *c, double *s)
+{
+    *c = half_c * half_c - half_s * half_s;
+    *s = 2.0 * half_c * half_s;
+}
+static inline void angle_cos_sin(double angle, double *c, double *s)
+{
+    turn_from_half(cos(0.5 * angle), sin(0.5 * angle), c, s);
+}
+
 static inline int finite2(float x, float y) { return isfinite(x) && isfinite(y); }
 
 #endif

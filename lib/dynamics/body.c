@@ -279,7 +279,7 @@ pp_status body_make(world *wd, const pp_body_def *def, int64_t want_slot, const 
     bd->pivot = def->custom_pivot ? dv(def->pivot.x, def->pivot.y) : dv(0.5 * def->width, 0.5 * def->height);
     bd->pos = dv(def->position.x, def->position.y);
     bd->angle = def->angle;
-    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    angle_cos_sin(bd->angle, &bd->cos_a, &bd->sin_a);
     body_update_pose_cache(bd);
 
     if (def->type != PP_BODY_STATIC) {
@@ -394,7 +394,7 @@ PP_API pp_status pp_body_set_transform(pp_world w, pp_body b, pp_vec2 position, 
         return pp_fail(PP_ERR_INVALID_ARGUMENT, "pp_body_set_transform: position and angle must be finite");
     bd->pos = dv(position.x, position.y);
     bd->angle = bd->fixed_rotation ? bd->angle : angle;
-    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    angle_cos_sin(bd->angle, &bd->cos_a, &bd->sin_a);
     body_update_pose_cache(bd);
     awake_moved(wd, bd);
     if (bd->sb.body) {

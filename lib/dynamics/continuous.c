@@ -184,7 +184,7 @@ static pp_status sweep_body(world *wd, body *bd, const continuous_pose *from)
         return PP_OK;
     dvec2 com;
     sweep_pose(&sw, t, &com, &bd->angle);
-    bd->cos_a = cos(bd->angle), bd->sin_a = sin(bd->angle);
+    angle_cos_sin(bd->angle, &bd->cos_a, &bd->sin_a);
     bd->pos = dv_sub(com, dv_rot(dv_sub(sw.com_local, bd->pivot), bd->cos_a, bd->sin_a));
     body_update_pose_cache(bd);
     awake_moved(wd, bd); /* the next sweeps' queries see it where it stopped */

@@ -137,11 +137,16 @@ void solver_destroy(pp_solver *s)
 
 /* A rotation about z by its quaternion: ODE keeps the quaternion and makes the matrix from it, so this is
  * what dBodySetRotation would end in, without its trip through a matrix and back. */
-static void set_rotation_z(solver_body *sb, double angle)
+static void set_rotation_half(solver_body *sb, double angle, double half_c, double half_s)
 {
     sb->rotation_angle = angle;
-    const dQuaternion q = {cos(0.5 * angle), 0, 0, sin(0.5 * angle)};
+    const dQuaternion q = {half_c, 0, 0, half_s};
     dBodySetQuaternion(sb->body, q);
+}
+
+static void set_rotation_z(solver_body *sb, double angle)
+{
+    set_rotation_half(sb, angle, cos(0.5 * angle), sin(0.5 * angle));
 }
 
 static void set_mass(const pp_solver *s, dBodyID b, double mass, double inertia)
@@ -673,11 +678,13 @@ void solver_body_sync(const pp_solver *s, solver_body *sb, solver_body_state *ou
     const dReal *R = dBodyGetRotation(b), *w = dBodyGetAngularVel(b), *p = dBodyGetPosition(b);
     const dReal *v = dBodyGetLinearVel(b);
     *out = (solver_body_state){dv(p[0] * s->ppm, p[1] * s->ppm), atan2(R[4], R[0]), dv(v[0] * s->ppm, v[1] * s->ppm),
-                               w[2], dBodyIsEnabled(b) != 0};
+                               w[2], dBodyIsEnabled(b) != 0, 0, 0};
+    const double half_c = cos(0.5 * out->angle), half_s = sin(0.5 * out->angle);
+    turn_from_half(half_c, half_s, &out->cos_a, &out->sin_a);
     if (!out->awake)
         return;
     const double px = p[0], py = p[1], vx = v[0], vy = v[1], wz = w[2];
-    set_rotation_z(sb, out->angle);
+    set_rotation_half(sb, out->angle, half_c, half_s);
     dBodySetAngularVel(b, 0, 0, wz);
     dBodySetPosition(b, px, py, 0);
     dBodySetLinearVel(b, vx, vy, 0);

@@ -36,6 +36,7 @@ typedef struct solver_body_state {
     dvec2 velocity;
     double angular_velocity;
     bool awake;
+    double cos_a, sin_a;       /* of angle (angle_cos_sin's): solver_body_sync's only */
 } solver_body_state;
 
 /* One contact handed to the solver; normal points from a to b. */

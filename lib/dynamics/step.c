@@ -277,7 +277,7 @@ static pp_status sync_bodies(world *wd)
         solver_body_state s;
         solver_body_sync(wd->solver, &bd->sb, &s);
         clamp_speed(wd, bd, &s);
-        const double c = cos(s.angle), sn = sin(s.angle);
+        const double c = s.cos_a, sn = s.sin_a;
         /* pivot = com − R(angle)·(com_local − pivot) */
         const dvec2 pos = dv_sub(s.com_world, dv_rot(dv_sub(dv(bd->mass.cx, bd->mass.cy), bd->pivot), c, sn));
         if (!within_float(pos.x) || !within_float(pos.y) || !isfinite(s.angle) || !within_float(s.velocity.x) ||

@@ -167,7 +167,8 @@ static pp_status restore_state(const json_ctx *c, const cJSON *obj, const char *
         (bd->sb.body && ((st = read_doubles(c, state, at, "ode", ode, 6)) || (st = read_bool(c, state, at, "awake", &awake)))))
         return st;
     bd->pos = dv(pose[0], pose[1]);
-    bd->angle = pose[2], bd->cos_a = cos(pose[2]), bd->sin_a = sin(pose[2]);
+    bd->angle = pose[2];
+    angle_cos_sin(bd->angle, &bd->cos_a, &bd->sin_a);
     bd->pivot = dv(pose[3], pose[4]);
     bd->user_data = user;
     body_update_pose_cache(bd);
