@@ -208,8 +208,8 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         const bool carried_before = rec->carried && rec->carried <= before;
         /* A QuickStep stack's pair that sat this substep out: bound CARRY_STACK_PX. A lone body at rest sits out
          * too, but keeps a resting pair's bound. */
-        const bool stack = sits_out(wd, a) && sits_out(wd, b) &&
-                           wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_QUICK_STACK;
+        const bool both_out = sits_out(wd, a) && sits_out(wd, b);
+        const bool stack = both_out && wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_QUICK_STACK;
         if (stack && !(marked_restless(&wd->carry, a) && marked_restless(&wd->carry, b)) &&
             moves_past(wd, a, b, dt, CARRY_REST_PX))
             mark_restless(&wd->carry, a), mark_restless(&wd->carry, b);
@@ -229,7 +229,7 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         const double motion = carriable ? pair_motion(wd, a, b, dt) : INFINITY;
         const bool slow = motion <= bound;
         const bool moving = !slow && motion <= CARRY_MOVING_PX && !island_slanted_face(wd, i, end);
-        const bool still = !slow && !moving && sits_out(wd, a) && sits_out(wd, b) && (k == 0 || !carried_before);
+        const bool still = !slow && !moving && both_out && (k == 0 || !carried_before);
         if (k == 0 && !slow && !moving)
             strike(&wd->carry, a), strike(&wd->carry, b);
         if (!slow && !moving && !still)

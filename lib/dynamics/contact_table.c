@@ -464,15 +464,13 @@ void contact_table_store(world *wd, double h)
     contact_table *t = &wd->table;
     for (int32_t n = 0; n < t->run_count; n++) {
         const contact_run *u = &t->runs[n];
-        const bool solved = contact_run_span(wd, u) != SPAN_SKIP;
-        for (int32_t c = u->first; c < u->end; c++) {
-            pp_contact *ct = &wd->contacts[c];
-            /* Over one substep, whatever the span: force × h, as the header has it. */
-            ct->normal_impulse =
-                solved ? (float)solver_contact_impulse(wd->solver, c, dv(ct->normal.x, ct->normal.y), h) : 0;
+        if (contact_run_span(wd, u) == SPAN_SKIP) { /* it sat the substep out: its last solve stands */
+            for (int32_t c = u->first; c < u->end; c++)
+                wd->contacts[c].normal_impulse = 0;
+            continue;
         }
-        if (!solved)
-            continue; /* it sat the substep out: its last solve stands */
+        /* Over one substep, whatever the span: force × h, as the header has it. */
+        solver_store_impulses(wd->solver, wd->contacts, u->first, u->end, h);
         contact_record *rec = edit(t, u->record);
         rec->point_count = u->end - u->first;
         PP_ASSERT(rec->point_count <= PP_MAX_CONTACTS_PER_PAIR);

@@ -457,14 +457,8 @@ void island_list_woken(world *wd)
 bool island_sleep(world *wd, double h)
 {
     const pp_world_def *d = &wd->def;
-    if (!d->allow_sleep) { /* nothing sleeps: no velocity to read, the timers (a woken sleeper's mark too) at 0 */
-        for (int32_t k = 0; k < wd->awake.count; k++) {
-            body *bd = wd->bodies[wd->awake.slots[k]];
-            if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd))
-                bd->slow_time = 0;
-        }
+    if (!d->allow_sleep) /* nothing sleeps: island_sleep_off sets the timers once a step */
         return false;
-    }
     bool ready = false; /* an awake body slow for sleep_time: only such a body can fall asleep */
     for (int32_t k = 0; k < wd->awake.count; k++) {
         body *bd = wd->bodies[wd->awake.slots[k]];
@@ -516,6 +510,16 @@ bool island_sleep(world *wd, double h)
         }
     }
     return slept;
+}
+
+void island_sleep_off(world *wd)
+{
+    PP_ASSERT(!wd->def.allow_sleep);
+    for (int32_t k = 0; k < wd->awake.count; k++) {
+        body *bd = wd->bodies[wd->awake.slots[k]];
+        if (bd->type == PP_BODY_DYNAMIC && awake_mover(bd))
+            bd->slow_time = 0;
+    }
 }
 
 void island_free(island_set *is)

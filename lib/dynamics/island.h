@@ -38,6 +38,10 @@ bool island_slanted_face(const world *wd, int32_t k, int32_t end);
 /* Advance the awake dynamic bodies' sleep timers by h s and put to sleep each group of bodies in contact
  * whose every body is ready. Uses island_plan's nodes and arrays; cannot fail. True if a body fell asleep. */
 bool island_sleep(world *wd, double h);
+/* In a world without sleep, after a step's last substep: the awake bodies' timers (a woken sleeper's mark too) at 0.
+ * Only island_sleep reads them, and within a step the awake set only grows: once a step does what each substep
+ * would. */
+void island_sleep_off(world *wd);
 
 void island_free(island_set *is);
 

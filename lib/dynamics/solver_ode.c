@@ -274,11 +274,14 @@ pp_status solver_reserve_contacts(pp_solver *s, int32_t n)
     return PP_OK;
 }
 
-double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h)
+void solver_store_impulses(const pp_solver *s, pp_contact *contacts, int32_t first, int32_t end, double h)
 {
-    /* f1 is the force on the joint's first body; along the normal it is the contact's push alone. */
-    const dReal *f = s->feedback[k].f1;
-    return fabs(f[0] * normal.x + f[1] * normal.y) * h * s->ppm;
+    for (int32_t k = first; k < end; k++) {
+        /* f1 is the force on the joint's first body; along the normal it is the contact's push alone. */
+        const dReal *f = s->feedback[k].f1;
+        const pp_vec2 n = contacts[k].normal;
+        contacts[k].normal_impulse = (float)(fabs(f[0] * (double)n.x + f[1] * (double)n.y) * h * s->ppm);
+    }
 }
 
 solver_contact *solver_add_contact(pp_solver *s, int32_t k)

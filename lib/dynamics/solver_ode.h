@@ -157,8 +157,9 @@ pp_status solver_reserve_contacts(pp_solver *s, int32_t n);
 /* Room for a contact of the next step, to be filled in place, its impulse read back as contact k. The solver
  * orders its rows itself. */
 solver_contact *solver_add_contact(pp_solver *s, int32_t k);
-/* Impulse the last step of h s applied at contact k along the unit normal, mass·px/s (≥ 0). */
-double solver_contact_impulse(const pp_solver *s, int32_t k, dvec2 normal, double h);
+/* Into each of contacts[first, end) (k = its index): the impulse the last step of h s applied at contact k along its
+ * unit normal, mass·px/s (≥ 0). One call a pair, not a point: contact_table_store's loop runs every substep. */
+void solver_store_impulses(const pp_solver *s, pp_contact *contacts, int32_t first, int32_t end, double h);
 
 /* The exact ODE state of a body, in ODE's units, for snapshots. */
 typedef struct solver_exact_state {

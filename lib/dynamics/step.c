@@ -211,6 +211,7 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     const int32_t *order = NULL;
     if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
         return st;
+    step_take_contacts(wd);
     wd->contact_count = 0;
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
@@ -329,6 +330,8 @@ static pp_status run_substeps(world *wd, float dt, double *t_broad, double *t_na
         still &= !island_sleep(wd, h);
         *t_solver += now_ms() - t0;
     }
+    if (!wd->def.allow_sleep)
+        island_sleep_off(wd);
     carry_end_step(wd);
     return PP_OK;
 }

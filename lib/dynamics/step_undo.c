@@ -72,18 +72,14 @@ pp_status step_save(world *wd)
                        (int)wd->body_ids.live);
     if (u->body_capacity > saved) /* step 0: never saved */
         memset(u->bodies + saved, 0, (size_t)(u->body_capacity - saved) * sizeof *u->bodies);
-    if (!ARRAY_RESERVE(u->contacts, u->contact_capacity, wd->contact_count))
-        return pp_fail(PP_ERR_OUT_OF_MEMORY, "pp_world_step: no memory to start a step of %d bodies",
-                       (int)wd->body_ids.live);
     u->step++;
     for (int32_t k = 0; k < wd->awake.count; k++) {
         const body *bd = wd->bodies[wd->awake.slots[k]];
         if (awake_mover(bd))
             save_body(u, bd);
     }
-    if (wd->contact_count > 0)
-        memcpy(u->contacts, wd->contacts, (size_t)wd->contact_count * sizeof *u->contacts);
     u->contact_count = wd->contact_count;
+    u->contacts_taken = false;
     u->event_count = wd->events.count;
     u->stats = wd->stats;
     u->solver_steps = solver_get_steps(wd->solver);
@@ -91,6 +87,24 @@ pp_status step_save(world *wd)
     u->fingerprint = fingerprint(wd);
 #endif
     return contact_table_save(wd);
+}
+
+static void swap_contacts(world *wd)
+{
+    step_undo *u = &wd->undo;
+    pp_contact *const array = u->contacts;
+    const int32_t capacity = u->contact_capacity;
+    u->contacts = wd->contacts, u->contact_capacity = wd->contact_capacity;
+    wd->contacts = array, wd->contact_capacity = capacity;
+}
+
+void step_take_contacts(world *wd)
+{
+    if (wd->undo.contacts_taken)
+        return;
+    PP_ASSERT(wd->contact_count == wd->undo.contact_count);
+    swap_contacts(wd);
+    wd->undo.contacts_taken = true;
 }
 
 void step_save_contact_bodies(world *wd)
@@ -113,8 +127,7 @@ void step_save_contact_bodies(world *wd)
 void step_restore(world *wd)
 {
     step_undo *u = &wd->undo;
-    PP_ASSERT(u->body_capacity >= wd->body_ids.capacity && u->contact_count <= wd->contact_capacity &&
-              u->event_count <= wd->events.count);
+    PP_ASSERT(u->body_capacity >= wd->body_ids.capacity && u->event_count <= wd->events.count);
     for (int32_t i = 0; i < wd->body_ids.capacity; i++) {
         body *bd = wd->bodies[i];
         const step_saved_body *sv = &u->bodies[i];
@@ -125,8 +138,9 @@ void step_restore(world *wd)
         bd->slow_time = sv->slow_time, bd->aabb = sv->aabb;
         body_update_com(bd);
     }
-    if (u->contact_count > 0)
-        memcpy(wd->contacts, u->contacts, (size_t)u->contact_count * sizeof *wd->contacts);
+    if (u->contacts_taken) /* else the step wrote none */
+        swap_contacts(wd);
+    u->contacts_taken = false;
     wd->contact_count = u->contact_count;
     wd->stats = u->stats;
     solver_set_steps(wd->solver, u->solver_steps);

@@ -28,8 +28,9 @@ typedef struct step_undo {
     step_saved_body *bodies;  /* by slot: awake movable bodies, and sleepers once a contact may wake them */
     int32_t body_capacity;
     uint64_t step;            /* counts steps, so a saved entry is known as this step's */
-    pp_contact *contacts;
+    pp_contact *contacts;     /* the contacts as the step found them, once step_take_contacts took them */
     int32_t contact_count, contact_capacity;
+    bool contacts_taken;      /* this step's first search took the world's array (step_take_contacts) */
     pp_step_stats stats;
     uint64_t solver_steps;
     int32_t event_count;      /* events queued before the step */
@@ -38,6 +39,9 @@ typedef struct step_undo {
 
 /* Save what the step may change. It allocates first and changes nothing, so a failure here is harmless. */
 pp_status step_save(world *wd);
+/* Before the step's first search writes the contacts: the world's array becomes the saved one, and the saved one
+ * (whatever it holds) the world's, emptied by the caller. A swap, not a copy; cannot fail. */
+void step_take_contacts(world *wd);
 /* Before the solver runs: every body a contact joint or a joint may wake is saved (a sleeper changes only
  * then). */
 void step_save_contact_bodies(world *wd);

@@ -237,3 +237,30 @@ Test(sleeping_contacts, a_pile_woken_all_at_once_stands, .init = cr_redirect_std
     fflush(stderr);
     cr_assert_stderr_eq_str("", "ODE wrote to stderr");
 }
+
+#ifdef PP_TEST_PRIVATE
+#include "world.h" /* the bodies' sleep timers */
+
+/* Without sleep, a body put to sleep by hand carries the sleeper's mark (sleep_time + 1 s) until it is woken; the
+ * step it wakes in leaves its timer at 0, as every substep of that step once set it (island_sleep_off does it once,
+ * after the last). Its crate above it, awake throughout, keeps 0 too. */
+Test(sleeping_contacts, without_sleep_a_woken_sleepers_mark_is_cleared_by_the_step)
+{
+    pp_world w = quickstep_world(4, GROUND_TOP);
+    const pp_body box = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 8, 0), 16, 16);
+    const pp_body top = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, GROUND_TOP - 23, 0), 16, 16);
+    step_n(w, DT, 30);
+    PP_OK_OR_FAIL(pp_body_set_awake(w, box, 0));
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    const body *bd = body_find(wd, box), *above = body_find(wd, top);
+    cr_assert(bd && above);
+    cr_assert_float_eq(bd->slow_time, wd->def.sleep_time + 1, 1e-12, "put to sleep: the mark, got %g", bd->slow_time);
+    PP_OK_OR_FAIL(pp_body_set_awake(w, box, 1));
+    cr_assert_gt(bd->slow_time, wd->def.sleep_time, "woken: the mark stays until a step");
+    PP_OK_OR_FAIL(pp_world_step(w, DT));
+    cr_assert_eq(bd->slow_time, 0.0, "after the step it woke in: %g s", bd->slow_time);
+    cr_assert_eq(above->slow_time, 0.0, "the crate above: %g s", above->slow_time);
+    pp_world_destroy(w);
+}
+#endif
