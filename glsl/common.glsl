@@ -11,11 +11,13 @@ struct Pair {
     ivec4 grid; // stride s, offset, i0, j0
     ivec4 size; // inner cells nx, ny; fallback normal nqx, nqy (Q14)
     ivec4 q;    // 16.16 sample point of plane cell (0, 0), step per column (x, y)
-    ivec4 q2;   // step per row (x, y), first strip word, first tile
+    ivec4 q2;   // step per row (x, y), first strip word, 0
 };
 
 layout(std430, binding = 0) readonly buffer Masks { uint masks[]; };
 layout(std430, binding = 1) readonly buffer Pairs { Pair pairs[]; };
+// Two words a tile: its pair, and its index in the pair's grid of tiles, TILE_FULL on a tile whose
+// every cell and neighbour lie in both bodies (np_classify_tiles in lib/collide/narrow_tiled.c).
 layout(std430, binding = 2) readonly buffer Tiles { uint tiles[]; };
 layout(std430, binding = 3) buffer Results { uint results[]; };
 layout(std430, binding = 4) buffer Strips { int strips[]; };
@@ -62,10 +64,15 @@ uint sample_cell(Pair p, int ci, int cj)
     return a | b | (cov << 2);
 }
 
+const uint TILE_FULL = 0x80000000u;
+
+uint tile_pair(uint tile) { return tiles[2u * tile]; }
+bool tile_full(uint tile) { return (tiles[2u * tile + 1u] & TILE_FULL) != 0u; }
+
 // The tile's first inner cell.
 ivec2 tile_origin(Pair p, uint tile)
 {
-    int tiles_x = (p.size.x + TILE - 1) / TILE, t = int(tile) - p.q2.w;
+    int tiles_x = (p.size.x + TILE - 1) / TILE, t = int(tiles[2u * tile + 1u] & ~TILE_FULL);
     return ivec2(t % tiles_x, t / tiles_x) * TILE;
 }
 

@@ -1,5 +1,5 @@
-// Pass 1, one workgroup per 16×16 tile of a pair's inner grid: intersection count and centroid
-// sums, and the normal estimator (cell_sums in narrow_cpu.h). Samples of the tile and its
+// Pass 1, one workgroup per mixed 16×16 tile of a pair's inner grid (the full ones are summed on the
+// host): intersection count and centroid sums, and the normal estimator (cell_sums in narrow_cpu.h). Samples of the tile and its
 // two-cell ring are shared; sums meet in shared memory, then one 64-bit add per tile.
 layout(local_size_x = 16, local_size_y = 16) in;
 
@@ -16,7 +16,7 @@ void main()
     uint tile = group_index();
     if (tile >= u_count)
         return;
-    uint pi = tiles[tile];
+    uint pi = tile_pair(tile);
     Pair p = pairs[pi];
     ivec2 o = tile_origin(p, tile);
     int ex = p.size.x + 2 * RING, ey = p.size.y + 2 * RING;

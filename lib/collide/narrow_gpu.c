@@ -1,7 +1,10 @@
 /* The GPU backend of the narrowphase core (glsl/narrow_*.comp): the world's masks live in one
  * buffer, each body's bit-packed rows at its own offset, written once and then only where rows
  * were edited. A step's pairs go up as one table, run as four passes over all of them (sums per
- * 16×16 tile, normal per pair, strips per tile, summary per pair), and come back in one read. */
+ * 16×16 tile, normal per pair, strips per tile, summary per pair), and come back in one read.
+ * Only a pair's rim is sampled: its tiles are sorted as the CPU's tiled core sorts its leaves
+ * (np_classify_tiles), those that add nothing are left out, and those all in the intersection are
+ * summed in closed form on the host and splatted into the strips without a sample. */
 #include "alloc.h"
 #include "narrow_gpu.h"
 #include "gpu_context.h"
@@ -11,6 +14,9 @@
 #include <string.h>
 
 enum { RESULT_WORDS = 24, TILE = 16, PAIRS_PER_GROUP = 64 };
+/* A tile entry is two words: its pair, and its index in the pair's grid with this bit on a full tile
+ * (glsl/common.glsl). */
+#define TILE_FULL 0x80000000u
 
 /* One pair as glsl/common.glsl's Pair reads it. */
 typedef struct gpu_pair {
@@ -35,8 +41,9 @@ struct gpu_narrow {
     int32_t *index;             /* the caller's pair behind each GPU pair */
     uint32_t *results;
     int64_t pair_cap;
-    uint32_t *tiles;
-    int64_t tile_cap;
+    uint32_t *tiles;            /* the batch's mixed tiles, two words each, then its full ones */
+    uint32_t *full;             /* the full tiles while they are sorted */
+    int64_t tile_cap;           /* tiles of each list */
 };
 
 pp_status gpu_narrow_create(const char *fn, gpu_narrow **out)
@@ -73,6 +80,7 @@ void gpu_narrow_destroy(gpu_narrow *g)
     pp_free(g->index);
     pp_free(g->results);
     pp_free(g->tiles);
+    pp_free(g->full);
     pp_free(g);
 }
 
@@ -190,10 +198,16 @@ static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs, int64_t
         g->pair_cap = pairs;
     }
     if (tiles > g->tile_cap) {
-        uint32_t *t = pp_realloc(g->tiles, (size_t)tiles * sizeof *t);
-        if (!t)
+        const int64_t cap = tiles > 2 * g->tile_cap ? tiles : 2 * g->tile_cap;
+        uint32_t *t = pp_realloc(g->tiles, (size_t)cap * 2 * 2 * sizeof *t); /* both lists, the full ones appended */
+        if (t)
+            g->tiles = t;
+        uint32_t *f = pp_realloc(g->full, (size_t)cap * 2 * sizeof *f);
+        if (f)
+            g->full = f;
+        if (!t || !f)
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU tiles", fn, (long long)tiles);
-        g->tiles = t, g->tile_cap = tiles;
+        g->tile_cap = cap;
     }
     return PP_OK;
 }
@@ -232,12 +246,30 @@ static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog
 
 static inline int64_t word64(const uint32_t *w) { return (int64_t)((uint64_t)w[0] | (uint64_t)w[1] << 32); }
 
+/* Where np_classify_tiles puts one pair's tiles: the mixed ones and the full ones in lists of their own. */
+typedef struct tile_lists {
+    gpu_narrow *g;
+    uint32_t pair;
+    int64_t mixed, full;
+} tile_lists;
+
+static void add_tile(void *user, int32_t tile, bool full)
+{
+    tile_lists *l = user;
+    uint32_t *at = full ? l->g->full + 2 * l->full++ : l->g->tiles + 2 * l->mixed++;
+    at[0] = l->pair, at[1] = (uint32_t)tile | (full ? TILE_FULL : 0);
+}
+
+static void put64(uint32_t *w, int64_t v) { w[0] = (uint32_t)(uint64_t)v, w[1] = (uint32_t)((uint64_t)v >> 32); }
+
 /* One batch: GPU pairs [from, to) of g->index, all four passes, one readback into out. */
 static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, const gpu_info *info,
                            const np_settings *set, const np_pair *pairs, int32_t from, int32_t to, np_core *out)
 {
     const int32_t n = to - from;
-    int64_t tiles = 0, strip_words = 0;
+    int64_t strip_words = 0;
+    tile_lists lists = {g, 0, 0, 0};
+    memset(g->results, 0, (size_t)n * RESULT_WORDS * sizeof(uint32_t));
     for (int32_t k = 0; k < n; k++) {
         const np_pair *p = &pairs[g->index[from + k]];
         const int32_t tx = (p->nx + TILE - 1) / TILE, ty = (p->ny + TILE - 1) / TILE;
@@ -250,18 +282,27 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
         gp->size[0] = p->nx, gp->size[1] = p->ny, gp->size[2] = p->fallback_nqx, gp->size[3] = p->fallback_nqy;
         gp->q[0] = (int32_t)p->qx0, gp->q[1] = (int32_t)p->qy0, gp->q[2] = (int32_t)p->dix, gp->q[3] = (int32_t)p->diy;
         gp->q2[0] = (int32_t)p->djx, gp->q2[1] = (int32_t)p->djy;
-        gp->q2[2] = (int32_t)strip_words, gp->q2[3] = (int32_t)tiles;
-        pp_status st = grow_host(g, fn, g->pair_cap, tiles + (int64_t)tx * ty);
+        gp->q2[2] = (int32_t)strip_words, gp->q2[3] = 0;
+        const int64_t most = (lists.mixed > lists.full ? lists.mixed : lists.full) + (int64_t)tx * ty;
+        pp_status st = grow_host(g, fn, g->pair_cap, most);
         if (st)
             return st;
-        for (int64_t t = 0; t < (int64_t)tx * ty; t++)
-            g->tiles[tiles + t] = (uint32_t)k;
-        tiles += (int64_t)tx * ty;
+        /* The full tiles' count and coordinate sums start the pair's results; the sums pass adds the rest. */
+        np_core sums = {0};
+        lists.pair = (uint32_t)k;
+        np_classify_tiles(p, TILE, add_tile, &lists, &sums);
+        uint32_t *res = g->results + (int64_t)k * RESULT_WORDS;
+        put64(res + 0, sums.count), put64(res + 2, sums.sx), put64(res + 4, sums.sy);
         strip_words += NP_STRIP_FIELDS * np_pair_max_strips(p);
     }
-    memset(g->results, 0, (size_t)n * RESULT_WORDS * sizeof(uint32_t));
+    /* The full tiles after the mixed ones: the sums pass runs over the mixed, the strips pass over both. */
+    memcpy(g->tiles + 2 * lists.mixed, g->full, (size_t)lists.full * 2 * sizeof *g->tiles);
+    const int64_t tiles = lists.mixed + lists.full;
     buffer_write(g, gl, BUF_PAIRS, g->pairs, (int64_t)n * sizeof(gpu_pair));
-    buffer_write(g, gl, BUF_TILES, g->tiles, tiles * 4);
+    if (tiles > 0)
+        buffer_write(g, gl, BUF_TILES, g->tiles, tiles * 2 * 4);
+    else /* no tile to sample (nothing meets): a store to bind all the same */
+        buffer_reserve(g, gl, BUF_TILES, 8);
     buffer_write(g, gl, BUF_RESULTS, g->results, (int64_t)n * RESULT_WORDS * 4);
     buffer_reserve(g, gl, BUF_STRIPS, strip_words * 4);
     for (int b = 0; b < BUF_COUNT; b++)
@@ -269,9 +310,11 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
 
     const int32_t method = set->normal_method == PP_NORMAL_KERNEL;
     const int64_t pair_groups = (n + PAIRS_PER_GROUP - 1) / PAIRS_PER_GROUP;
-    dispatch(gl, info, GPU_PROG_NARROW_SUMS, tiles, tiles, method);
+    if (lists.mixed > 0)
+        dispatch(gl, info, GPU_PROG_NARROW_SUMS, lists.mixed, lists.mixed, method);
     dispatch(gl, info, GPU_PROG_NARROW_NORMAL, n, pair_groups, method);
-    dispatch(gl, info, GPU_PROG_NARROW_STRIPS, tiles, tiles, method);
+    if (tiles > 0)
+        dispatch(gl, info, GPU_PROG_NARROW_STRIPS, tiles, tiles, method);
     dispatch(gl, info, GPU_PROG_NARROW_FINISH, n, pair_groups, method);
 
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[BUF_RESULTS]);
@@ -318,7 +361,7 @@ pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, 
             const np_pair *p = &pairs[g->index[to]];
             tiles += (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE);
             strips += NP_STRIP_FIELDS * np_pair_max_strips(p);
-            if (to > from && (tiles * 4 > limit || strips * 4 > limit || to - from >= (int64_t)PAIRS_PER_GROUP * 65535))
+            if (to > from && (tiles * 8 > limit || strips * 4 > limit || to - from >= (int64_t)PAIRS_PER_GROUP * 65535))
                 break;
         }
         st = run_batch(g, fn, gl, info, set, pairs, from, to, out);

@@ -58,6 +58,38 @@ static void leaf_cells(const np_pair *p, int64_t lx0, int64_t ly0, int64_t lx1, 
 /* What a rectangle's parent already knows holds for it too (its cells are a subset). */
 enum { REF_FULL = 1, REF_RING_FULL = 2, OTHER_FULL = 4 };
 
+/* What inner cells [x0, x1) × [y0, y1) hold, given what their parent rectangle's `*known` (REF_FULL, ...) says,
+ * which it extends: RASTER_EMPTY (they add nothing), RASTER_FULL (every cell and neighbour in both bodies) or
+ * RASTER_MIXED. */
+static inline raster_state cells_state(const np_pair *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, int *known)
+{
+    if (!(*known & REF_FULL)) {
+        const raster_state ref = ref_state(p, x0, y0, x1, y1, 0);
+        if (ref == RASTER_EMPTY)
+            return RASTER_EMPTY; /* every term needs a reference cell */
+        *known |= ref == RASTER_FULL ? REF_FULL : 0;
+    }
+    if (!(*known & OTHER_FULL)) {
+        const raster_state other = other_state(p, x0, y0, x1, y1, 1);
+        if (other == RASTER_EMPTY)
+            return RASTER_EMPTY; /* no coverage on the cells or their neighbours: no intersection, no gradient */
+        *known |= other == RASTER_FULL ? OTHER_FULL : 0;
+    }
+    if ((*known & (REF_FULL | OTHER_FULL)) == (REF_FULL | OTHER_FULL) && !(*known & REF_RING_FULL))
+        *known |= ref_state(p, x0, y0, x1, y1, 1) == RASTER_FULL ? REF_RING_FULL : 0;
+    return *known == (REF_FULL | REF_RING_FULL | OTHER_FULL) ? RASTER_FULL : RASTER_MIXED;
+}
+
+/* Every cell and neighbour in both: count and coordinate sums of the rectangle; the kernel finds no critical cell
+ * and the gradient's coverage differences are all zero. */
+static inline void add_full_sums(np_core *r, int64_t x0, int64_t y0, int64_t x1, int64_t y1)
+{
+    const int64_t w = x1 - x0, h = y1 - y0;
+    r->count += w * h;
+    r->sx += h * (w * (x0 + x1 - 1) / 2);
+    r->sy += w * (h * (y0 + y1 - 1) / 2);
+}
+
 /* Sort the leaves [lx0, lx1) × [ly0, ly1): skipped, summed in closed form, or marked dense. */
 static void classify(tiling *t, int32_t lx0, int32_t ly0, int32_t lx1, int32_t ly1, int known)
 {
@@ -65,27 +97,11 @@ static void classify(tiling *t, int32_t lx0, int32_t ly0, int32_t lx1, int32_t l
     int64_t c[4];
     leaf_cells(p, lx0, ly0, lx1, ly1, c);
     const int64_t x0 = c[0], y0 = c[1], x1 = c[2], y1 = c[3];
-    if (!(known & REF_FULL)) {
-        const raster_state ref = ref_state(p, x0, y0, x1, y1, 0);
-        if (ref == RASTER_EMPTY)
-            return; /* every term needs a reference cell */
-        known |= ref == RASTER_FULL ? REF_FULL : 0;
-    }
-    if (!(known & OTHER_FULL)) {
-        const raster_state other = other_state(p, x0, y0, x1, y1, 1);
-        if (other == RASTER_EMPTY)
-            return; /* no coverage on the cells or their neighbours: no intersection, no gradient */
-        known |= other == RASTER_FULL ? OTHER_FULL : 0;
-    }
-    if ((known & (REF_FULL | OTHER_FULL)) == (REF_FULL | OTHER_FULL) && !(known & REF_RING_FULL))
-        known |= ref_state(p, x0, y0, x1, y1, 1) == RASTER_FULL ? REF_RING_FULL : 0;
-    if (known == (REF_FULL | REF_RING_FULL | OTHER_FULL)) {
-        /* Every cell and neighbour in both: count and coordinate sums of a rectangle; the kernel
-         * finds no critical cell and the gradient's coverage differences are all zero. */
-        const int64_t w = x1 - x0, h = y1 - y0;
-        t->r->count += w * h;
-        t->r->sx += h * (w * (x0 + x1 - 1) / 2);
-        t->r->sy += w * (h * (y0 + y1 - 1) / 2);
+    const raster_state st = cells_state(p, x0, y0, x1, y1, &known);
+    if (st == RASTER_EMPTY)
+        return;
+    if (st == RASTER_FULL) {
+        add_full_sums(t->r, x0, y0, x1, y1);
         int32_t *f = t->full + 4 * t->nfull++;
         f[0] = (int32_t)x0, f[1] = (int32_t)y0, f[2] = (int32_t)x1, f[3] = (int32_t)y1;
         return;
@@ -325,6 +341,41 @@ static void strips_full(const np_core *r, int32_t *strips, const int32_t *f)
         for (int64_t x = f[0]; x < f[2]; x++)
             strips_line(r, strips, u0 - x * nqy + f[1] * nqx, nqx, x * nqx + f[1] * nqy, nqy, f[3] - f[1]);
     }
+}
+
+/* np_classify_tiles over tiles [tx0, tx1) × [ty0, ty1) of `size` cells. */
+static void classify_tiles(const np_pair *p, int32_t size, int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1, int known,
+                           np_tile_visit visit, void *user, np_core *sums)
+{
+    const int64_t x0 = (int64_t)tx0 * size, y0 = (int64_t)ty0 * size;
+    const int64_t x1 = (int64_t)tx1 * size < p->nx ? (int64_t)tx1 * size : p->nx;
+    const int64_t y1 = (int64_t)ty1 * size < p->ny ? (int64_t)ty1 * size : p->ny;
+    const raster_state st = cells_state(p, x0, y0, x1, y1, &known);
+    if (st == RASTER_EMPTY)
+        return;
+    if (st == RASTER_FULL || (tx1 - tx0 == 1 && ty1 - ty0 == 1)) {
+        if (st == RASTER_FULL)
+            add_full_sums(sums, x0, y0, x1, y1);
+        const int32_t tiles_x = (p->nx + size - 1) / size;
+        for (int32_t ty = ty0; ty < ty1; ty++)
+            for (int32_t tx = tx0; tx < tx1; tx++)
+                visit(user, ty * tiles_x + tx, st == RASTER_FULL);
+        return;
+    }
+    if (tx1 - tx0 >= ty1 - ty0) {
+        const int32_t m = tx0 + (tx1 - tx0) / 2;
+        classify_tiles(p, size, tx0, ty0, m, ty1, known, visit, user, sums);
+        classify_tiles(p, size, m, ty0, tx1, ty1, known, visit, user, sums);
+    } else {
+        const int32_t m = ty0 + (ty1 - ty0) / 2;
+        classify_tiles(p, size, tx0, ty0, tx1, m, known, visit, user, sums);
+        classify_tiles(p, size, tx0, m, tx1, ty1, known, visit, user, sums);
+    }
+}
+
+void np_classify_tiles(const np_pair *p, int32_t size, np_tile_visit visit, void *user, np_core *sums)
+{
+    classify_tiles(p, size, 0, 0, (p->nx + size - 1) / size, (p->ny + size - 1) / size, 0, visit, user, sums);
 }
 
 pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out)

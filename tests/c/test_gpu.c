@@ -295,3 +295,96 @@ Test(gpu, edited_bodies_match_the_cpu_after_every_edit, .timeout = 60) {
     cr_assert_eq(differ, 0, "%d of 12 collisions differ after edits", differ);
     for (int g = 0; g < 2; g++) pp_world_destroy(w[g]);
 }
+
+/* Two large boxes overlapping deeply: most of the GPU's tiles are all intersection, summed on the host in closed
+ * form and splatted into the strips without a sample, and the contacts are still the CPU's. */
+static void deep_overlap(pp_world w, pp_body *ground, pp_body *box) {
+    *ground = add_rect(w, body_def(PP_BODY_STATIC, 1000, 1000, 0.2f), 400, 400);
+    *box = add_rect(w, body_def(PP_BODY_DYNAMIC, 1040, 980, 0.7f), 300, 300);
+}
+
+Test(gpu, a_deep_overlap_sums_its_inside_in_closed_form_and_matches_the_cpu, .timeout = 60) {
+    SKIP_WITHOUT_GPU();
+    pp_contact c[2][2];
+    int32_t n[2] = {-1, -1};
+    for (int g = 0; g < 2; g++) {
+        pp_world_def d = pp_world_def_default();
+        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+        pp_world w = make_world_def(&d);
+        pp_body ground, box;
+        deep_overlap(w, &ground, &box);
+        PP_OK_OR_FAIL(pp_world_collide(w, box, ground, c[g], 2, &n[g]));
+        pp_world_destroy(w);
+    }
+    cr_assert_gt(n[0], 0, "the boxes overlap");
+    cr_assert_gt(c[0][0].pixel_count, 50000, "deeply: %d pixels", c[0][0].pixel_count);
+    cr_assert_eq(n[1], n[0]);
+    cr_assert(same_contacts(c[0], c[1], n[0]), "CPU (%.9g, %.9g) d %.9g vs GPU (%.9g, %.9g) d %.9g", c[0][0].point.x,
+              c[0][0].point.y, c[0][0].depth, c[1][0].point.x, c[1][0].point.y, c[1][0].depth);
+}
+
+#ifdef PP_TEST_PRIVATE
+#include "world.h" /* a pair's grid, and the narrowphase's cores */
+
+enum { GPU_TILE = 16 };
+
+typedef struct tile_count {
+    uint8_t *kind; /* by tile: 0 skipped, 1 mixed, 2 full */
+    int mixed, full;
+} tile_count;
+
+static void count_tile(void *user, int32_t tile, bool full) {
+    tile_count *t = user;
+    cr_assert_eq(t->kind[tile], 0, "tile %d visited twice", tile);
+    t->kind[tile] = full ? 2 : 1;
+    full ? t->full++ : t->mixed++;
+}
+
+/* np_classify_tiles against the plain per-cell core on the deep overlap: a full tile's cells all lie in both bodies
+ * and its closed-form sums are theirs, a skipped tile holds no intersection cell, and the full tiles' count plus the
+ * mixed tiles' intersection cells is the dense core's count. */
+Test(gpu, tiles_sorted_for_the_gpu_add_up_to_the_dense_core) {
+    pp_world w = make_world(0, 0);
+    pp_body ground, box;
+    deep_overlap(w, &ground, &box);
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    const np_settings set = world_np_settings(wd);
+    const np_body va = body_np_view(body_find(wd, box)), vb = body_np_view(body_find(wd, ground));
+    np_pair p;
+    cr_assert(np_pair_setup(&set, &va, &vb, &p));
+    const int32_t tx = (p.nx + GPU_TILE - 1) / GPU_TILE, ty = (p.ny + GPU_TILE - 1) / GPU_TILE;
+    tile_count t = {calloc((size_t)tx * ty, 1), 0, 0};
+    uint8_t *flags = malloc((size_t)p.nx * p.ny);
+    int32_t *kernel = malloc((size_t)p.nx * p.ny * 2 * sizeof *kernel);
+    cr_assert(t.kind && flags && kernel);
+    np_core sums = {0}, dense;
+    np_classify_tiles(&p, GPU_TILE, count_tile, &t, &sums);
+    np_scratch scratch = {0};
+    PP_OK_OR_FAIL(narrow_cpu_core_dense(&set, &p, &scratch, &dense));
+    PP_OK_OR_FAIL(narrow_cpu_debug(&p, &scratch, flags, kernel));
+    int64_t in_full = 0, in_mixed = 0, in_skipped = 0, sx = 0, sy = 0;
+    for (int32_t y = 0; y < p.ny; y++)
+        for (int32_t x = 0; x < p.nx; x++) {
+            const int kind = t.kind[(y / GPU_TILE) * tx + x / GPU_TILE];
+            const bool both = (flags[(int64_t)y * p.nx + x] & 3) == 3;
+            cr_assert(kind != 2 || both, "cell (%d, %d) of a full tile is not in both bodies", x, y);
+            in_full += kind == 2, in_mixed += kind == 1 && both, in_skipped += kind == 0 && both;
+            sx += kind == 2 ? x : 0, sy += kind == 2 ? y : 0;
+        }
+    cr_log_info("%d x %d tiles: %d full, %d mixed, %d skipped; intersection cells %lld = %lld full + %lld mixed",
+                tx, ty, t.full, t.mixed, tx * ty - t.full - t.mixed, (long long)dense.count, (long long)in_full,
+                (long long)in_mixed);
+    cr_assert_gt(t.full, 2 * t.mixed, "the inside is most of the overlap: %d full, %d mixed tiles", t.full, t.mixed);
+    cr_assert_gt(tx * ty - t.full - t.mixed, 0, "some tiles lie outside the overlap");
+    cr_assert_eq(in_skipped, 0, "a skipped tile holds %lld intersection cells", (long long)in_skipped);
+    cr_assert_eq(sums.count, in_full, "closed-form count %lld, cells %lld", (long long)sums.count, (long long)in_full);
+    cr_assert_eq(sums.sx, sx);
+    cr_assert_eq(sums.sy, sy);
+    cr_assert_eq(sums.count + in_mixed, dense.count, "%lld + %lld against the dense core's %lld", (long long)sums.count,
+                 (long long)in_mixed, (long long)dense.count);
+    np_scratch_free(&scratch);
+    free(t.kind), free(flags), free(kernel);
+    pp_world_destroy(w);
+}
+#endif
