@@ -74,6 +74,14 @@ typedef struct pp_broadphase {
  * box stays inside the fat one, or moved); an awake, dead or empty one has none. `slots` is the world's slot count. */
 pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t slot, int32_t slots);
 
+/* Whether broadphase_update would change nothing for slot: its proxy is awake or dead and has no leaf, the
+ * tree is started and room is made for `slots`. An awake body is listed at every search: most have no leaf. */
+static inline bool broadphase_update_is_idle(const pp_broadphase *bp, const bp_proxy *proxy, uint32_t slot,
+                                             int32_t slots)
+{
+    return (proxy->awake || !proxy->live) && bp->node_cap > 0 && slots <= bp->leaf_cap && bp->leaf[slot] < 0;
+}
+
 /* Take slot's leaf out (its body is being removed); cannot fail. */
 void broadphase_remove(pp_broadphase *bp, uint32_t slot);
 

@@ -126,6 +126,8 @@ pp_status awake_refresh(world *wd)
     for (int32_t k = 0; k < wd->awake.count; k++) {
         const int32_t i = wd->awake.slots[k];
         wd->awake.proxies[i] = proxy_of(wd->bodies[i]);
+        if (broadphase_update_is_idle(&wd->broad, &wd->awake.proxies[i], (uint32_t)i, wd->body_ids.capacity))
+            continue;
         pp_status st = broadphase_update(&wd->broad, &wd->awake.proxies[i], (uint32_t)i, wd->body_ids.capacity);
         if (st)
             return st;
