@@ -547,9 +547,11 @@ void contact_table_set_state(world *wd, const contact_table_counts *n, const con
         memcpy(t->carry_order, carry_order, (size_t)n->carry_count * sizeof *carry_order);
     t->count = n->count, t->awake = n->awake, t->gone = n->gone, t->carry_count = n->carry_count;
     t->substep = n->substep, t->found_count = n->found_count, t->resting_stale = n->resting_stale;
-    for (int32_t i = 0; i < t->count; i++)
+    for (int32_t i = 0; i < t->count; i++) { /* what is derived is derived again, never taken from the bytes */
+        anchor_turn(&t->records[i]);
         if (t->records[i].carried)
             contact_table_locate_carried(&t->records[i]);
+    }
     index_rebuild(t); /* room reserved: the keys are the records' */
 }
 
@@ -627,6 +629,9 @@ void contact_table_validate(const world *wd)
         const body *a = body_find(wd, (pp_body){r->a}), *b = body_find(wd, (pp_body){r->b});
         PP_ASSERT(a && b); /* a removed body's pairs are marked gone */
         PP_ASSERT(!(r->flags & (CT_SENSOR | CT_PASSING)) || r->point_count == 0);
+        contact_record turned = *r; /* the anchor's cos and sin are its angle's (anchor_turn) */
+        anchor_turn(&turned);
+        PP_ASSERT(turned.anchor_cos == r->anchor_cos && turned.anchor_sin == r->anchor_sin);
         /* A resting pair has no awake body (the pass moved the rest; awake_add marks the table stale). */
         PP_ASSERT(i < t->awake || t->resting_stale ||
                   (!wd->awake.proxies[a->index].awake && !wd->awake.proxies[b->index].awake));

@@ -53,7 +53,8 @@ typedef struct contact_record {
     uint32_t claimed;      /* the substep whose broadphase last paired it carried: its contacts moved, not collided */
     int32_t run;           /* its place in the table's runs, while found is the substep now and it has contacts */
     double anchor[3];      /* b's pivot and angle in a's frame when the pair last held still: px, px, rad */
-    double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it */
+    double anchor_cos, anchor_sin; /* of anchor[2], for every slip measured against it: derived (anchor_turn),
+                                    * never read from bytes */
     int32_t point_count;   /* the manifold: the points of the pair's last solve, their impulses with them */
     int32_t carried;       /* 1 + its place in the table's carry order, or 0: not carried (carry.h) */
     pp_contact points[PP_MAX_CONTACTS_PER_PAIR];

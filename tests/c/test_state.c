@@ -428,6 +428,41 @@ Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .t
     pp_world_destroy(changed);
     pp_world_destroy(w);
 }
+
+/* A stack's friction anchor holds b's pose in a's frame (an angle) and that angle's cos and sin, which the bytes
+ * hold too: they are derived from the angle again (anchor_turn), never taken from the bytes. The fuzzer's state
+ * had them at (3.2e-5, -0.042) for an angle of -0.042 rad: the pair kept that anchor, whose slip put its contacts
+ * 8 px from it (a PP_CHECKS assertion in set_anchor stopped it). */
+Test(state, a_pairs_anchor_turn_comes_from_its_angle_not_the_bytes, .timeout = 60)
+{
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    d.gravity = v2(0, 980);
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
+    const pp_body low = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 484, 0), 32, 32);
+    const pp_body top = add_rect(w, body_def(PP_BODY_DYNAMIC, 404, 452, 0), 32, 32);
+    step_n(w, DT, 60); /* settled: the boxes' pair keeps its anchor */
+    const world *wd = world_lookup(w, "test");
+    const contact_record *pair = contact_table_find(wd, low.id, top.id);
+    cr_assert_not_null(pair, "the boxes touch");
+    int64_t size = 0;
+    uint8_t *st = save(w, &size);
+    uint8_t *at = find_bytes(st, (size_t)size, &pair->anchor_cos, 2 * sizeof(double));
+    cr_assert_not_null(at, "the state holds the anchor's cos and sin as the world does");
+    pp_world clean = {0}, changed = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &clean));
+    const double wrong[2] = {3.2370036324904466e-05, pair->anchor_sin}; /* unit no longer, as the fuzzer's */
+    set_field(st, size, (size_t)(at - st), wrong, sizeof wrong);
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &changed));
+    step_n(clean, DT, 30);
+    step_n(changed, DT, 30);
+    cr_assert_eq(hash_of(changed), hash_of(clean), "an anchor turned by the bytes moved the stack");
+    free(st);
+    pp_world_destroy(clean);
+    pp_world_destroy(changed);
+    pp_world_destroy(w);
+}
 #endif
 
 Test(state, the_hash_sees_any_impulse, .timeout = 30)
