@@ -390,15 +390,36 @@ static uint8_t *find_bytes(uint8_t *buf, size_t size, const void *what, size_t n
     return NULL;
 }
 
-/* Loaded bytes give a held pair's carried contacts and poses; each point's place in the bodies' frames is derived
- * from them again (contact_table_locate_carried), never taken from the bytes, which hold it too. */
-Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .timeout = 60)
+/* A world without sleep: a ground 800 px wide whose top is at y = 500, and boxes of 32 px to put on it. */
+static pp_world ground_world(void)
 {
     pp_world_def d = pp_world_def_default();
     d.allow_sleep = 0;
     d.gravity = v2(0, 980);
     pp_world w = make_world_def(&d);
     add_rect(w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
+    return w;
+}
+
+/* The world loaded from bytes st, changed since `clean` was loaded from them, steps 30 steps to clean's hash. Frees
+ * st and both worlds. */
+static void steps_as_the_clean_bytes(pp_world clean, uint8_t *st, int64_t size, const char *what)
+{
+    pp_world changed = {0};
+    PP_OK_OR_FAIL(pp_world_load_state(st, size, &changed));
+    step_n(clean, DT, 30);
+    step_n(changed, DT, 30);
+    cr_assert_eq(hash_of(changed), hash_of(clean), "%s", what);
+    free(st);
+    pp_world_destroy(clean);
+    pp_world_destroy(changed);
+}
+
+/* Loaded bytes give a held pair's carried contacts and poses; each point's place in the bodies' frames is derived
+ * from them again (contact_table_locate_carried), never taken from the bytes, which hold it too. */
+Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .timeout = 60)
+{
+    pp_world w = ground_world();
     add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 484, 0), 32, 32);
     step_n(w, DT, 60); /* settled: its pair with the ground is held from step to step */
     const world *wd = world_lookup(w, "test");
@@ -411,7 +432,7 @@ Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .t
     const size_t n = (size_t)held->carry_count * sizeof held->carry_local[0];
     uint8_t *at = find_bytes(st, (size_t)size, held->carry_local, n);
     cr_assert_not_null(at, "the state holds the pair's carried frames as the world does");
-    pp_world clean = {0}, changed = {0};
+    pp_world clean = {0};
     PP_OK_OR_FAIL(pp_world_load_state(st, size, &clean));
     for (size_t k = 0; k < n; k += sizeof(double)) { /* each coordinate 5 px off, the checksum made right */
         double x;
@@ -419,13 +440,7 @@ Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .t
         x += 5;
         set_field(st, size, (size_t)(at - st) + k, &x, sizeof x);
     }
-    PP_OK_OR_FAIL(pp_world_load_state(st, size, &changed));
-    step_n(clean, DT, 30);
-    step_n(changed, DT, 30);
-    cr_assert_eq(hash_of(changed), hash_of(clean), "frames taken from the bytes moved the held pair's contacts");
-    free(st);
-    pp_world_destroy(clean);
-    pp_world_destroy(changed);
+    steps_as_the_clean_bytes(clean, st, size, "frames taken from the bytes moved the held pair's contacts");
     pp_world_destroy(w);
 }
 
@@ -435,11 +450,7 @@ Test(state, a_held_pairs_frames_come_from_its_carried_contacts_not_the_bytes, .t
  * 8 px from it (a PP_CHECKS assertion in set_anchor stopped it). */
 Test(state, a_pairs_anchor_turn_comes_from_its_angle_not_the_bytes, .timeout = 60)
 {
-    pp_world_def d = pp_world_def_default();
-    d.allow_sleep = 0;
-    d.gravity = v2(0, 980);
-    pp_world w = make_world_def(&d);
-    add_rect(w, body_def(PP_BODY_STATIC, 400, 520, 0), 800, 40);
+    pp_world w = ground_world();
     const pp_body low = add_rect(w, body_def(PP_BODY_DYNAMIC, 400, 484, 0), 32, 32);
     const pp_body top = add_rect(w, body_def(PP_BODY_DYNAMIC, 404, 452, 0), 32, 32);
     step_n(w, DT, 60); /* settled: the boxes' pair keeps its anchor */
@@ -450,17 +461,11 @@ Test(state, a_pairs_anchor_turn_comes_from_its_angle_not_the_bytes, .timeout = 6
     uint8_t *st = save(w, &size);
     uint8_t *at = find_bytes(st, (size_t)size, &pair->anchor_cos, 2 * sizeof(double));
     cr_assert_not_null(at, "the state holds the anchor's cos and sin as the world does");
-    pp_world clean = {0}, changed = {0};
+    pp_world clean = {0};
     PP_OK_OR_FAIL(pp_world_load_state(st, size, &clean));
     const double wrong[2] = {3.2370036324904466e-05, pair->anchor_sin}; /* unit no longer, as the fuzzer's */
     set_field(st, size, (size_t)(at - st), wrong, sizeof wrong);
-    PP_OK_OR_FAIL(pp_world_load_state(st, size, &changed));
-    step_n(clean, DT, 30);
-    step_n(changed, DT, 30);
-    cr_assert_eq(hash_of(changed), hash_of(clean), "an anchor turned by the bytes moved the stack");
-    free(st);
-    pp_world_destroy(clean);
-    pp_world_destroy(changed);
+    steps_as_the_clean_bytes(clean, st, size, "an anchor turned by the bytes moved the stack");
     pp_world_destroy(w);
 }
 #endif
