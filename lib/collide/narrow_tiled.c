@@ -1,5 +1,5 @@
 /* The tiled core of the CPU narrowphase backend (narrow_cpu_core): the dense core's integers, from the
- * cells near the contact only. It sorts the leaves (classify), samples the dense ones (sample_dense),
+ * cells near the contact only. It sorts the leaves (sort_tiles), samples the dense ones (sample_dense),
  * and sums the rectangles all in the intersection in closed form (floor_sum, strips_line, strips_full). */
 #include "narrow_cpu.h"
 
@@ -16,7 +16,6 @@
  * What is known comes from the rasters' tile occupancy (raster_rect_state). */
 typedef struct tiling {
     const np_pair *p;
-    np_core *r;
     int32_t leaves_x, leaves_y, words; /* leaves per row and per column; map words per row of leaves */
     uint64_t *dense;                   /* a bit per leaf to sample and sum cell by cell */
     int32_t *full;                     /* rectangles all in the intersection: x0, y0, x1, y1 (inner cells) */
@@ -47,12 +46,20 @@ static raster_state other_state(const np_pair *p, int64_t x0, int64_t y0, int64_
                              ((hx - HALF_PIXEL) >> NP_FIX_BITS) + 2, ((hy - HALF_PIXEL) >> NP_FIX_BITS) + 2);
 }
 
-/* Inner cells [c[0], c[2]) × [c[1], c[3]) of leaves [lx0, lx1) × [ly0, ly1) (the last are cut by the grid). */
+/* Inner cells [c[0], c[2]) × [c[1], c[3]) of tiles [tx0, tx1) × [ty0, ty1) of size × size cells (the last are cut
+ * by the grid). */
+static inline void tile_cells(const np_pair *p, int64_t size, int64_t tx0, int64_t ty0, int64_t tx1, int64_t ty1,
+                              int64_t c[4])
+{
+    c[0] = tx0 * size, c[1] = ty0 * size;
+    c[2] = tx1 * size < p->nx ? tx1 * size : p->nx;
+    c[3] = ty1 * size < p->ny ? ty1 * size : p->ny;
+}
+
+/* The same, of leaves (LEAF × LEAF cells). */
 static void leaf_cells(const np_pair *p, int64_t lx0, int64_t ly0, int64_t lx1, int64_t ly1, int64_t c[4])
 {
-    c[0] = lx0 * LEAF, c[1] = ly0 * LEAF;
-    c[2] = lx1 * LEAF < p->nx ? lx1 * LEAF : p->nx;
-    c[3] = ly1 * LEAF < p->ny ? ly1 * LEAF : p->ny;
+    tile_cells(p, LEAF, lx0, ly0, lx1, ly1, c);
 }
 
 /* What a rectangle's parent already knows holds for it too (its cells are a subset). */
@@ -90,34 +97,48 @@ static inline void add_full_sums(np_core *r, int64_t x0, int64_t y0, int64_t x1,
     r->sy += w * (h * (y0 + y1 - 1) / 2);
 }
 
-/* Sort the leaves [lx0, lx1) × [ly0, ly1): skipped, summed in closed form, or marked dense. */
-static void classify(tiling *t, int32_t lx0, int32_t ly0, int32_t lx1, int32_t ly1, int known)
+/* What sort_tiles finds: a rectangle of tiles all in the intersection (full), or one mixed tile. */
+typedef void (*rect_visit)(void *user, const int64_t c[4], int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1,
+                           bool full);
+
+/* Sort tiles [tx0, tx1) × [ty0, ty1) of size × size cells: those that add nothing are skipped; a rectangle of them all
+ * in the intersection has its count and coordinate sums added to *sums in closed form and is visited whole; the
+ * rest are halved down to single tiles, visited as mixed. c: the visited rectangle's inner cells. */
+static void sort_tiles(const np_pair *p, int32_t size, int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1, int known,
+                       rect_visit visit, void *user, np_core *sums)
 {
-    const np_pair *p = t->p;
     int64_t c[4];
-    leaf_cells(p, lx0, ly0, lx1, ly1, c);
-    const int64_t x0 = c[0], y0 = c[1], x1 = c[2], y1 = c[3];
-    const raster_state st = cells_state(p, x0, y0, x1, y1, &known);
+    tile_cells(p, size, tx0, ty0, tx1, ty1, c);
+    const raster_state st = cells_state(p, c[0], c[1], c[2], c[3], &known);
     if (st == RASTER_EMPTY)
         return;
-    if (st == RASTER_FULL) {
-        add_full_sums(t->r, x0, y0, x1, y1);
-        int32_t *f = t->full + 4 * t->nfull++;
-        f[0] = (int32_t)x0, f[1] = (int32_t)y0, f[2] = (int32_t)x1, f[3] = (int32_t)y1;
+    if (st == RASTER_FULL)
+        add_full_sums(sums, c[0], c[1], c[2], c[3]);
+    if (st == RASTER_FULL || (tx1 - tx0 == 1 && ty1 - ty0 == 1)) {
+        visit(user, c, tx0, ty0, tx1, ty1, st == RASTER_FULL);
         return;
     }
-    if (lx1 - lx0 == 1 && ly1 - ly0 == 1) {
-        t->dense[(int64_t)ly0 * t->words + (lx0 >> 6)] |= (uint64_t)1 << (lx0 & 63);
-        return;
-    }
-    if (lx1 - lx0 >= ly1 - ly0) {
-        const int32_t m = lx0 + (lx1 - lx0) / 2;
-        classify(t, lx0, ly0, m, ly1, known);
-        classify(t, m, ly0, lx1, ly1, known);
+    if (tx1 - tx0 >= ty1 - ty0) {
+        const int32_t m = tx0 + (tx1 - tx0) / 2;
+        sort_tiles(p, size, tx0, ty0, m, ty1, known, visit, user, sums);
+        sort_tiles(p, size, m, ty0, tx1, ty1, known, visit, user, sums);
     } else {
-        const int32_t m = ly0 + (ly1 - ly0) / 2;
-        classify(t, lx0, ly0, lx1, m, known);
-        classify(t, lx0, m, lx1, ly1, known);
+        const int32_t m = ty0 + (ty1 - ty0) / 2;
+        sort_tiles(p, size, tx0, ty0, tx1, m, known, visit, user, sums);
+        sort_tiles(p, size, tx0, m, tx1, ty1, known, visit, user, sums);
+    }
+}
+
+/* The CPU's leaves: a full rectangle kept for strips_full, a mixed leaf marked dense. */
+static void leaf_sorted(void *user, const int64_t c[4], int32_t lx0, int32_t ly0, int32_t lx1, int32_t ly1, bool full)
+{
+    tiling *t = user;
+    (void)lx1, (void)ly1;
+    if (full) {
+        int32_t *f = t->full + 4 * t->nfull++;
+        f[0] = (int32_t)c[0], f[1] = (int32_t)c[1], f[2] = (int32_t)c[2], f[3] = (int32_t)c[3];
+    } else {
+        t->dense[(int64_t)ly0 * t->words + (lx0 >> 6)] |= (uint64_t)1 << (lx0 & 63);
     }
 }
 
@@ -343,45 +364,33 @@ static void strips_full(const np_core *r, int32_t *strips, const int32_t *f)
     }
 }
 
-/* np_classify_tiles over tiles [tx0, tx1) × [ty0, ty1) of `size` cells. */
-static void classify_tiles(const np_pair *p, int32_t size, int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1, int known,
-                           np_tile_visit visit, void *user, np_core *sums)
+/* np_classify_tiles' visit, and where it goes. */
+typedef struct tile_visit {
+    int32_t tiles_x;
+    np_tile_visit visit;
+    void *user;
+} tile_visit;
+
+/* Each tile of a sorted rectangle. */
+static void tiles_sorted(void *user, const int64_t c[4], int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1, bool full)
 {
-    const int64_t x0 = (int64_t)tx0 * size, y0 = (int64_t)ty0 * size;
-    const int64_t x1 = (int64_t)tx1 * size < p->nx ? (int64_t)tx1 * size : p->nx;
-    const int64_t y1 = (int64_t)ty1 * size < p->ny ? (int64_t)ty1 * size : p->ny;
-    const raster_state st = cells_state(p, x0, y0, x1, y1, &known);
-    if (st == RASTER_EMPTY)
-        return;
-    if (st == RASTER_FULL || (tx1 - tx0 == 1 && ty1 - ty0 == 1)) {
-        if (st == RASTER_FULL)
-            add_full_sums(sums, x0, y0, x1, y1);
-        const int32_t tiles_x = (p->nx + size - 1) / size;
-        for (int32_t ty = ty0; ty < ty1; ty++)
-            for (int32_t tx = tx0; tx < tx1; tx++)
-                visit(user, ty * tiles_x + tx, st == RASTER_FULL);
-        return;
-    }
-    if (tx1 - tx0 >= ty1 - ty0) {
-        const int32_t m = tx0 + (tx1 - tx0) / 2;
-        classify_tiles(p, size, tx0, ty0, m, ty1, known, visit, user, sums);
-        classify_tiles(p, size, m, ty0, tx1, ty1, known, visit, user, sums);
-    } else {
-        const int32_t m = ty0 + (ty1 - ty0) / 2;
-        classify_tiles(p, size, tx0, ty0, tx1, m, known, visit, user, sums);
-        classify_tiles(p, size, tx0, m, tx1, ty1, known, visit, user, sums);
-    }
+    const tile_visit *v = user;
+    (void)c;
+    for (int32_t ty = ty0; ty < ty1; ty++)
+        for (int32_t tx = tx0; tx < tx1; tx++)
+            v->visit(v->user, ty * v->tiles_x + tx, full);
 }
 
 void np_classify_tiles(const np_pair *p, int32_t size, np_tile_visit visit, void *user, np_core *sums)
 {
-    classify_tiles(p, size, 0, 0, (p->nx + size - 1) / size, (p->ny + size - 1) / size, 0, visit, user, sums);
+    tile_visit v = {(p->nx + size - 1) / size, visit, user};
+    sort_tiles(p, size, 0, 0, v.tiles_x, (p->ny + size - 1) / size, 0, tiles_sorted, &v, sums);
 }
 
 pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out)
 {
     *out = (np_core){0};
-    tiling t = {.p = p, .r = out};
+    tiling t = {.p = p};
     t.leaves_x = (p->nx + LEAF - 1) / LEAF, t.leaves_y = (p->ny + LEAF - 1) / LEAF;
     t.words = (t.leaves_x + 63) / 64;
     const int64_t map_words = (int64_t)t.words * (t.leaves_y + 1);
@@ -390,7 +399,7 @@ pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *
         return st;
     t.dense = scratch->leaves, t.full = scratch->rects;
     memset(t.dense, 0, (size_t)map_words * sizeof *t.dense);
-    classify(&t, 0, 0, t.leaves_x, t.leaves_y, 0);
+    sort_tiles(p, LEAF, 0, 0, t.leaves_x, t.leaves_y, 0, leaf_sorted, &t, out);
 
     const int64_t cells = np_pair_cells(p);
     uint8_t *sa = scratch->cells, *sb = scratch->cells + cells;
