@@ -17,10 +17,11 @@
  * Results (contacts, events, stats) are read after pp_world_step; there are no callbacks during a step.
  *
  * Threads. A world is used from one thread at a time; different worlds may run on different threads.
- * Inside a step the CPU narrowphase may share its pairs over pp_world_def.worker_threads threads: they
- * start with the first batch of 32,768 cells or more and live until the world is destroyed, so a small
- * scene never has any, and each pair writes only its own result, so contacts are the same bit for bit
- * on any number of threads. The ODE step is serialised across worlds by one lock (the price of a
+ * Inside a step the narrowphase may share its pairs over pp_world_def.worker_threads threads (on the CPU
+ * backend each pair's set-up, core and contacts; on the GPU backend the host's share of each pair): they
+ * start with the first batch of 32,768 cells or 128 pairs or more and live until the world is destroyed,
+ * so a small scene never has any, and each pair writes only its own result, so contacts are the same bit
+ * for bit on any number of threads. The ODE step is serialised across worlds by one lock (the price of a
  * deterministic QuickStep with ODE's process-wide random generator). GPU batches from different worlds
  * take turns on the process's one GLES context. Measured figures: tests/bench/README.md. */
 #ifndef PHYSPIX_H
@@ -258,7 +259,7 @@ typedef struct pp_world_def {
     uint32_t continuous;            ///< nonzero: a dynamic body moving over half its thickness in a substep is swept
                                     ///< against static and kinematic bodies and stopped where it first hits (default 1)
     float max_correction_speed;     ///< fastest that contacts push overlapping bodies apart, px/s, > 0 (default 300)
-    int32_t worker_threads;         ///< threads the CPU narrowphase may use, 1..16, or 0: one per CPU, at most 16 (default 0);
+    int32_t worker_threads;         ///< threads the narrowphase may use, 1..16, or 0: one per CPU, at most 16 (default 0);
                                     ///< started only when a step's pairs are big enough to need them
     uint32_t contact_events;        ///< nonzero: PP_EVENT_CONTACT_BEGIN/END are queued for pp_world_get_events (default 0)
     int32_t exact_island_rows;      ///< islands of at most this many constraint rows (2 a contact point) are solved
@@ -295,8 +296,8 @@ typedef struct pp_step_stats {
     int64_t pixels_tested; ///< raster samples tested (all substeps; a pair touching at the step's start once)
     pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
     uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
-    int32_t threads;       ///< most threads any CPU narrowphase batch of the step ran on, the calling one included
-                           ///< (1: it alone; 0: the narrowphase ran on the GPU or had no pairs)
+    int32_t threads;       ///< most threads any narrowphase work of the step ran on (the pairs' set-up, CPU cores,
+                           ///< GPU tile sort, contacts), the calling one included (1: it alone; 0: no pairs)
 } pp_step_stats;
 
 /// Statistics of the last step.

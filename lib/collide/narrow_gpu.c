@@ -4,7 +4,8 @@
  * 16×16 tile, normal per pair, strips per tile, summary per pair), and come back in one read.
  * Only a pair's rim is sampled: its tiles are sorted as the CPU's tiled core sorts its leaves
  * (np_classify_tiles), those that add nothing are left out, and those all in the intersection are
- * summed in closed form on the host and splatted into the strips without a sample. */
+ * summed in closed form on the host and splatted into the strips without a sample. The sort is the
+ * host's work a pair: it is shared over the world's worker threads, each pair writing its own places. */
 #include "alloc.h"
 #include "narrow_gpu.h"
 #include "gpu_context.h"
@@ -41,6 +42,8 @@ struct gpu_narrow {
     int32_t *index;             /* the caller's pair behind each GPU pair */
     uint32_t *results;
     int64_t pair_cap;
+    int64_t *tile_at;           /* where each pair's tiles go while they are sorted: its grid's tiles before it */
+    int32_t *tile_n;            /* each pair's mixed and full tiles */
     uint32_t *tiles;            /* the batch's mixed tiles, two words each, then its full ones */
     uint32_t *full;             /* the full tiles while they are sorted */
     int64_t tile_cap;           /* tiles of each list */
@@ -79,6 +82,8 @@ void gpu_narrow_destroy(gpu_narrow *g)
     pp_free(g->pairs);
     pp_free(g->index);
     pp_free(g->results);
+    pp_free(g->tile_at);
+    pp_free(g->tile_n);
     pp_free(g->tiles);
     pp_free(g->full);
     pp_free(g);
@@ -193,13 +198,19 @@ static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs, int64_t
         uint32_t *res = pp_realloc(g->results, (size_t)pairs * RESULT_WORDS * sizeof *res);
         if (res)
             g->results = res;
-        if (!p || !ix || !res)
+        int64_t *at = pp_realloc(g->tile_at, (size_t)pairs * sizeof *at);
+        if (at)
+            g->tile_at = at;
+        int32_t *tn = pp_realloc(g->tile_n, (size_t)pairs * 2 * sizeof *tn);
+        if (tn)
+            g->tile_n = tn;
+        if (!p || !ix || !res || !at || !tn)
             return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU pairs", fn, (long long)pairs);
         g->pair_cap = pairs;
     }
     if (tiles > g->tile_cap) {
         const int64_t cap = tiles > 2 * g->tile_cap ? tiles : 2 * g->tile_cap;
-        uint32_t *t = pp_realloc(g->tiles, (size_t)cap * 2 * 2 * sizeof *t); /* both lists, the full ones appended */
+        uint32_t *t = pp_realloc(g->tiles, (size_t)cap * 2 * sizeof *t);
         if (t)
             g->tiles = t;
         uint32_t *f = pp_realloc(g->full, (size_t)cap * 2 * sizeof *f);
@@ -246,33 +257,57 @@ static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog
 
 static inline int64_t word64(const uint32_t *w) { return (int64_t)((uint64_t)w[0] | (uint64_t)w[1] << 32); }
 
-/* Where np_classify_tiles puts one pair's tiles: the mixed ones and the full ones in lists of their own. */
+/* Where np_classify_tiles puts one pair's tiles: its mixed ones and its full ones, each at the pair's place. */
 typedef struct tile_lists {
-    gpu_narrow *g;
+    uint32_t *mixed_at, *full_at;
     uint32_t pair;
-    int64_t mixed, full;
+    int32_t mixed, full;
 } tile_lists;
 
 static void add_tile(void *user, int32_t tile, bool full)
 {
     tile_lists *l = user;
-    uint32_t *at = full ? l->g->full + 2 * l->full++ : l->g->tiles + 2 * l->mixed++;
+    uint32_t *at = full ? l->full_at + 2 * l->full++ : l->mixed_at + 2 * l->mixed++;
     at[0] = l->pair, at[1] = (uint32_t)tile | (full ? TILE_FULL : 0);
 }
 
 static void put64(uint32_t *w, int64_t v) { w[0] = (uint32_t)(uint64_t)v, w[1] = (uint32_t)((uint64_t)v >> 32); }
 
-/* One batch: GPU pairs [from, to) of g->index, all four passes, one readback into out. */
+/* The batch whose tiles are being sorted. */
+typedef struct tile_sort {
+    gpu_narrow *g;
+    const np_pair *pairs;
+    int32_t from;
+} tile_sort;
+
+/* Sort GPU pair k's tiles into its places in g->tiles and g->full, on whichever thread takes it; the full tiles'
+ * count and coordinate sums start the pair's results, and the sums pass adds the rest. */
+static pp_status sort_pair_tiles(void *user, int32_t k, np_scratch *scratch)
+{
+    (void)scratch;
+    const tile_sort *t = user;
+    gpu_narrow *g = t->g;
+    const int64_t at = 2 * g->tile_at[k];
+    tile_lists lists = {g->tiles + at, g->full + at, (uint32_t)k, 0, 0};
+    np_core sums = {0};
+    np_classify_tiles(&t->pairs[g->index[t->from + k]], TILE, add_tile, &lists, &sums);
+    g->tile_n[2 * k] = lists.mixed, g->tile_n[2 * k + 1] = lists.full;
+    uint32_t *res = g->results + (int64_t)k * RESULT_WORDS;
+    memset(res, 0, RESULT_WORDS * sizeof *res);
+    put64(res + 0, sums.count), put64(res + 2, sums.sx), put64(res + 4, sums.sy);
+    return PP_OK;
+}
+
+/* One batch: GPU pairs [from, to) of g->index, all four passes, one readback into out. The pairs' tiles are
+ * sorted over `threads` threads of *pool. */
 static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, const gpu_info *info,
-                           const np_settings *set, const np_pair *pairs, int32_t from, int32_t to, np_core *out)
+                           const np_settings *set, const np_pair *pairs, int32_t from, int32_t to,
+                           np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used)
 {
     const int32_t n = to - from;
-    int64_t strip_words = 0;
-    tile_lists lists = {g, 0, 0, 0};
-    memset(g->results, 0, (size_t)n * RESULT_WORDS * sizeof(uint32_t));
+    int64_t strip_words = 0, grid_tiles = 0;
     for (int32_t k = 0; k < n; k++) {
         const np_pair *p = &pairs[g->index[from + k]];
-        const int32_t tx = (p->nx + TILE - 1) / TILE, ty = (p->ny + TILE - 1) / TILE;
         const int32_t ra[4] = {(int32_t)p->ra->gpu_word, p->ra->width, p->ra->height, 2 * p->ra->words_per_row};
         const int32_t rb[4] = {(int32_t)p->rb->gpu_word, p->rb->width, p->rb->height, 2 * p->rb->words_per_row};
         gpu_pair *gp = &g->pairs[k];
@@ -283,21 +318,28 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
         gp->q[0] = (int32_t)p->qx0, gp->q[1] = (int32_t)p->qy0, gp->q[2] = (int32_t)p->dix, gp->q[3] = (int32_t)p->diy;
         gp->q2[0] = (int32_t)p->djx, gp->q2[1] = (int32_t)p->djy;
         gp->q2[2] = (int32_t)strip_words, gp->q2[3] = 0;
-        const int64_t most = (lists.mixed > lists.full ? lists.mixed : lists.full) + (int64_t)tx * ty;
-        pp_status st = grow_host(g, fn, g->pair_cap, most);
-        if (st)
-            return st;
-        /* The full tiles' count and coordinate sums start the pair's results; the sums pass adds the rest. */
-        np_core sums = {0};
-        lists.pair = (uint32_t)k;
-        np_classify_tiles(p, TILE, add_tile, &lists, &sums);
-        uint32_t *res = g->results + (int64_t)k * RESULT_WORDS;
-        put64(res + 0, sums.count), put64(res + 2, sums.sx), put64(res + 4, sums.sy);
         strip_words += NP_STRIP_FIELDS * np_pair_max_strips(p);
+        g->tile_at[k] = grid_tiles;
+        grid_tiles += (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE);
     }
-    /* The full tiles after the mixed ones: the sums pass runs over the mixed, the strips pass over both. */
-    memcpy(g->tiles + 2 * lists.mixed, g->full, (size_t)lists.full * 2 * sizeof *g->tiles);
-    const int64_t tiles = lists.mixed + lists.full;
+    pp_status st = grow_host(g, fn, g->pair_cap, grid_tiles);
+    tile_sort sort = {g, pairs, from};
+    int32_t batch_used;
+    if (st || (st = workers_for(pool, threads, n, WORKERS_GRAIN, sort_pair_tiles, &sort, scratch, &batch_used)))
+        return st;
+    *used = batch_used > *used ? batch_used : *used;
+    /* The mixed tiles closed up, then the full ones after them: the sums pass runs over the mixed, the strips
+     * pass over both. */
+    int64_t mixed = 0, tiles = 0;
+    for (int32_t k = 0; k < n; k++) {
+        memmove(g->tiles + 2 * mixed, g->tiles + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k] * 2 * sizeof *g->tiles);
+        mixed += g->tile_n[2 * k];
+    }
+    tiles = mixed;
+    for (int32_t k = 0; k < n; k++) {
+        memcpy(g->tiles + 2 * tiles, g->full + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k + 1] * 2 * sizeof *g->tiles);
+        tiles += g->tile_n[2 * k + 1];
+    }
     buffer_write(g, gl, BUF_PAIRS, g->pairs, (int64_t)n * sizeof(gpu_pair));
     if (tiles > 0)
         buffer_write(g, gl, BUF_TILES, g->tiles, tiles * 2 * 4);
@@ -310,8 +352,8 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
 
     const int32_t method = set->normal_method == PP_NORMAL_KERNEL;
     const int64_t pair_groups = (n + PAIRS_PER_GROUP - 1) / PAIRS_PER_GROUP;
-    if (lists.mixed > 0)
-        dispatch(gl, info, GPU_PROG_NARROW_SUMS, lists.mixed, lists.mixed, method);
+    if (mixed > 0)
+        dispatch(gl, info, GPU_PROG_NARROW_SUMS, mixed, mixed, method);
     dispatch(gl, info, GPU_PROG_NARROW_NORMAL, n, pair_groups, method);
     if (tiles > 0)
         dispatch(gl, info, GPU_PROG_NARROW_STRIPS, tiles, tiles, method);
@@ -342,8 +384,9 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
 }
 
 pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
-                         np_scratch *scratch, np_core *out)
+                         np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used)
 {
+    *used = 0;
     const gpu_gl *gl;
     const gpu_info *info;
     pp_status st = grow_host(g, fn, n, 0);
@@ -364,7 +407,7 @@ pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, 
             if (to > from && (tiles * 8 > limit || strips * 4 > limit || to - from >= (int64_t)PAIRS_PER_GROUP * 65535))
                 break;
         }
-        st = run_batch(g, fn, gl, info, set, pairs, from, to, out);
+        st = run_batch(g, fn, gl, info, set, pairs, from, to, pool, threads, scratch, out, used);
     }
     gpu_release();
     /* The rest on the CPU: pairs beyond 32-bit sample points, or masks the mirror has no room for. */

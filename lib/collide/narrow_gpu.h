@@ -4,6 +4,7 @@
 #define PP_NARROW_GPU_H
 
 #include "narrowphase.h"
+#include "workers.h"
 
 typedef struct gpu_narrow gpu_narrow;
 
@@ -19,8 +20,10 @@ bool gpu_narrow_is_software(const gpu_narrow *g);
 void gpu_narrow_forget(gpu_narrow *g, pp_raster *r);
 
 /* The integer cores of n pairs: on the GPU where the pair fits its 32-bit arithmetic and its
- * masks fit the mirror, on the CPU otherwise; the outcome is the same either way. */
+ * masks fit the mirror, on the CPU otherwise; the outcome is the same either way. The host's share of
+ * each pair (sorting its tiles) is shared over `threads` threads of *pool (workers.h); *used says how
+ * many it ran on (0: no pair went to the GPU). */
 pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
-                         np_scratch *scratch, np_core *out);
+                         np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used);
 
 #endif

@@ -1,4 +1,5 @@
-/* A world's narrowphase workers: threads that run the CPU cores of one batch of pairs. */
+/* A world's narrowphase workers: threads that share a batch of pairs' work (their set-up, CPU cores, GPU tile sort,
+ * contacts), each pair's written to its own slots. */
 #ifndef PP_WORKERS_H
 #define PP_WORKERS_H
 
@@ -14,6 +15,23 @@ typedef struct np_workers np_workers;
 
 /* Threads `worker_threads` asks for: itself, or one per online CPU (at most 16) for 0. */
 int32_t workers_wanted(int32_t worker_threads);
+
+/* Below this many pairs a batch's per-pair host work (set-up, the GPU's tile sort, contacts: 2–12 k instructions
+ * a pair) runs on the calling thread: at about 1 µs a pair it pays for waking the threads (30–40 µs on 2 cores)
+ * from about a hundred. */
+#define WORKERS_MIN_PAIRS 128
+/* Items a thread takes at a time in that work: pairs cost alike there, and fewer turns of the shared counter. */
+#define WORKERS_GRAIN 16
+
+/* One item of a shared batch: item k, with the scratch of the thread that took it. */
+typedef pp_status (*workers_task)(void *user, int32_t k, np_scratch *scratch);
+
+/* task on items [0, n), shared over `threads` threads, the calling one included (its scratch is `scratch`),
+ * `grain` items at a time; *used says how many ran. The pool in *pool is started on first use and kept. Each item
+ * must write only its own slots, so that the result does not depend on the sharing; a task on a worker thread
+ * must not allocate. The first failing item's status and message are returned. */
+pp_status workers_for(np_workers **pool, int32_t threads, int32_t n, int32_t grain, workers_task task, void *user,
+                      np_scratch *scratch, int32_t *used);
 
 /* narrow_cpu_core on pairs[0, n) into cores[0, n), shared over `threads` threads, the calling one
  * included (its scratch is `scratch`); *used says how many ran. The pool in *pool is started on

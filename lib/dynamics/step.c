@@ -36,12 +36,25 @@ pp_status world_reserve_pairs(world *wd, const char *fn, int32_t n)
 {
     if (n <= wd->batch.capacity)
         return PP_OK;
-    int32_t pairs = wd->batch.capacity, cores = pairs, bodies = pairs; /* the three grow alike */
+    int32_t pairs = wd->batch.capacity, cores = pairs, results = pairs, candidates = pairs, bodies = pairs; /* alike */
     if (!ARRAY_RESERVE(wd->batch.pairs, pairs, n) || !ARRAY_RESERVE(wd->batch.cores, cores, n) ||
+        !ARRAY_RESERVE(wd->batch.results, results, n) || !ARRAY_RESERVE(wd->batch.candidates, candidates, n) ||
         !array_reserve((void **)&wd->batch.bodies, &bodies, n, 2 * sizeof *wd->batch.bodies))
         return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %d pairs", fn, (int)n);
     wd->batch.capacity = pairs;
     return PP_OK;
+}
+
+/* The threads a batch's per-pair host work is shared over: the world's workers for a batch of many pairs. */
+static int32_t host_threads(const world *wd, int32_t pairs)
+{
+    return pairs >= WORKERS_MIN_PAIRS ? workers_wanted(wd->def.worker_threads) : 1;
+}
+
+/* The step's stats keep the most threads any of its narrowphase work ran on. */
+static void note_threads(world *wd, int32_t used)
+{
+    wd->stats.threads = used > wd->stats.threads ? used : wd->stats.threads;
 }
 
 /* Whether AUTO may send a batch of `cells` either way: large enough, and a hardware GPU up. A software rasteriser
@@ -84,7 +97,8 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     np_core *cores = first ? wd->batch.cores + first : wd->batch.cores;
     pp_status st;
     if (*ran == PP_BACKEND_GPU)
-        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
+        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->workers, host_threads(wd, n), &wd->scratch, cores,
+                            threads);
     else {
         const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
         st = workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
@@ -94,28 +108,61 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     return st ? pp_fail_in(fn, st) : PP_OK;
 }
 
-/* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells. */
+typedef struct pair_work {
+    world *wd;
+    np_settings set;
+    int32_t from;
+} pair_work;
+
+/* Set up candidate from + k; one whose bodies have no cell in common gets −1 for its first body. */
+static pp_status set_up_one(void *user, int32_t k, np_scratch *scratch)
+{
+    (void)scratch;
+    const pair_work *w = user;
+    int32_t *slots = &w->wd->batch.bodies[2 * (w->from + k)];
+    const np_body va = body_np_view(w->wd->bodies[slots[0]]), vb = body_np_view(w->wd->bodies[slots[1]]);
+    if (!np_pair_setup(&w->set, &va, &vb, &w->wd->batch.pairs[w->from + k]))
+        slots[0] = -1;
+    return PP_OK;
+}
+
+/* Set up the candidate pairs of one pass (crowd_wants) after the *n set up before, adding their cells: the
+ * candidates are listed, set up (shared over the workers when there are many) and the kept ones closed up. */
 static pp_status set_up_pairs(world *wd, int pass, int32_t *n, int64_t *cells)
 {
-    const np_settings set = world_np_settings(wd);
+    pair_batch *b = &wd->batch;
+    int32_t listed = *n;
     for (int32_t p = 0; p < wd->broad.pair_count; p++) {
         if (!crowd_wants(wd, p, pass))
             continue;
-        pp_status st = pass ? world_reserve_pairs(wd, "pp_world_step", *n + 1) : PP_OK;
+        pp_status st = pass ? world_reserve_pairs(wd, "pp_world_step", listed + 1) : PP_OK;
         if (st)
             return st;
         const int32_t ia = wd->broad.pairs[p].a, ib = wd->broad.pairs[p].b;
         if (joint_keeps_apart(wd, wd->bodies[ia], wd->bodies[ib]) || carry_claim(wd, (uint32_t)ia, (uint32_t)ib))
             continue;
-        const np_body va = body_np_view(wd->bodies[ia]), vb = body_np_view(wd->bodies[ib]);
-        PP_ASSERT(*n < wd->batch.capacity);
-        if (!np_pair_setup(&set, &va, &vb, &wd->batch.pairs[*n]))
-            continue;
-        *cells += np_pair_cells(&wd->batch.pairs[*n]);
-        wd->batch.bodies[2 * *n] = ia, wd->batch.bodies[2 * *n + 1] = ib;
-        ++*n;
+        PP_ASSERT(listed < b->capacity);
+        b->bodies[2 * listed] = ia, b->bodies[2 * listed + 1] = ib, b->candidates[listed] = p;
+        listed++;
+    }
+    pair_work w = {wd, world_np_settings(wd), *n};
+    int32_t used;
+    pp_status st = workers_for(&wd->workers, host_threads(wd, listed - *n), listed - *n, WORKERS_GRAIN, set_up_one,
+                               &w, &wd->scratch, &used);
+    if (st)
+        return st;
+    note_threads(wd, used);
+    for (int32_t k = w.from; k < listed; k++) {
+        if (b->bodies[2 * k] < 0)
+            continue; /* most candidates of a pile: boxes side by side */
+        if (k != *n) {
+            b->pairs[*n] = b->pairs[k], b->candidates[*n] = b->candidates[k];
+            b->bodies[2 * *n] = b->bodies[2 * k], b->bodies[2 * *n + 1] = b->bodies[2 * k + 1];
+        }
+        *cells += np_pair_cells(&b->pairs[*n]);
         if (pass)
-            crowd_set_up(wd, p);
+            crowd_set_up(wd, b->candidates[*n]);
+        ++*n;
     }
     return PP_OK;
 }
@@ -134,7 +181,7 @@ static pp_status collide_pairs(world *wd, int32_t *n, int32_t *first, int64_t *c
         if (!st && (*n > from || (pass == 0 && !wd->carry.active))) {
             st = world_run_cores(wd, "pp_world_step", from, *n - from, *cells - cells_from, &wd->stats.backend,
                                  &threads);
-            wd->stats.threads = threads > wd->stats.threads ? threads : wd->stats.threads;
+            note_threads(wd, threads);
         }
         if (st)
             return st;
@@ -181,6 +228,21 @@ static void touch_round(const world *wd, const body *a, const body *b, np_result
     r->count = 1;
 }
 
+/* Pair k's contacts from its core, on whichever thread takes it: reads the bodies, writes its own result. */
+static pp_status finish_one(void *user, int32_t k, np_scratch *scratch)
+{
+    (void)scratch;
+    const pair_work *w = user;
+    const body *a = w->wd->bodies[w->wd->batch.bodies[2 * k]], *b = w->wd->bodies[w->wd->batch.bodies[2 * k + 1]];
+    const np_body va = body_np_view(a), vb = body_np_view(b);
+    np_result *r = &w->wd->batch.results[k];
+    np_pair_finish(&w->set, &va, &vb, &w->wd->batch.pairs[k], &w->wd->batch.cores[k], r);
+    corner_normal(a, b, r);
+    if (w->set.contact_mode == PP_CONTACT_MANIFOLD && r->count > 0)
+        touch_round(w->wd, a, b, r);
+    return PP_OK;
+}
+
 /* Broadphase and narrowphase at the current poses of `substep`; fills wd->contacts. At a step's first
  * substep every pair is collided but the held ones, and resting pairs' contacts are carried through the later
  * ones, as are a pair's whose bodies sat a substep out into the next (carry.h). */
@@ -204,24 +266,21 @@ static pp_status find_contacts(world *wd, int32_t substep, double dt, double *t_
     const double t1 = now_ms();
 
     /* Set every pair up and run the cores as one batch (or, with crowded bodies, in crowd.c's two
-     * passes), then turn them into contacts in the broadphase's order. */
-    const np_settings set = world_np_settings(wd);
-    int32_t n = 0, first = 0;
+     * passes), turn them into contacts, then take those in the broadphase's order. */
+    int32_t n = 0, first = 0, used;
     int64_t cells = 0;
     const int32_t *order = NULL;
-    if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))))
+    pair_work w = {wd, world_np_settings(wd), 0};
+    if ((st = collide_pairs(wd, &n, &first, &cells)) || (wd->crowd.split && (st = crowd_order(wd, first, n, &order))) ||
+        (st = workers_for(&wd->workers, host_threads(wd, n), n, WORKERS_GRAIN, finish_one, &w, &wd->scratch, &used)))
         return st;
+    note_threads(wd, used);
     step_take_contacts(wd);
     wd->contact_count = 0;
     for (int32_t i = 0; i < n; i++) {
         const int32_t k = order ? order[i] : i;
         const body *a = wd->bodies[wd->batch.bodies[2 * k]], *b = wd->bodies[wd->batch.bodies[2 * k + 1]];
-        const np_body va = body_np_view(a), vb = body_np_view(b);
-        np_result r;
-        np_pair_finish(&set, &va, &vb, &wd->batch.pairs[k], &wd->batch.cores[k], &r);
-        corner_normal(a, b, &r);
-        if (set.contact_mode == PP_CONTACT_MANIFOLD && r.count > 0)
-            touch_round(wd, a, b, &r);
+        np_result r = wd->batch.results[k];
         bool keep = true;
         int32_t at = -1;
         if (r.count > 0 && (st = contact_table_found(wd, a, b, &r, &at, &keep)))

@@ -299,6 +299,8 @@ void world_free(world *wd)
     forces_free(&wd->forced);
     pp_free(wd->batch.pairs);
     pp_free(wd->batch.cores);
+    pp_free(wd->batch.results);
+    pp_free(wd->batch.candidates);
     pp_free(wd->batch.bodies);
     contact_table_free(&wd->table);
     pp_free(wd->contacts);

@@ -116,7 +116,9 @@ typedef struct awake_set {
 typedef struct pair_batch {
     np_pair *pairs;          /* the pairs that passed set-up … */
     np_core *cores;          /* … their integer cores … */
-    int32_t *bodies;         /* … and their bodies' slots, two per pair */
+    np_result *results;      /* … their contacts … */
+    int32_t *bodies;         /* … their bodies' slots, two per pair … */
+    int32_t *candidates;     /* … and their broadphase pairs (wd->broad.pairs) */
     int32_t capacity;
 } pair_batch;
 

@@ -2,6 +2,7 @@
  * worlds are stepped in between (ODE's random generator is process-wide), and the same pinned hash
  * per preset in every build, on the CPU and on the GPU. */
 #include "helpers.h"
+#include "workers.h" /* WORKERS_MIN_CELLS: when the cores share */
 
 PP_TEST_SUITE(determinism);
 
@@ -205,4 +206,50 @@ Test(determinism, the_gpu_backend_gives_the_pinned_hash_per_preset, .timeout = 3
     }
     pp_world_destroy(w);
     expect_golden(PP_BACKEND_GPU, "GPU");
+}
+
+/* A bin of 300 crates of 5 px: several hundred pairs a step, each of a few dozen cells. The pairs' set-up and
+ * contacts are shared over the threads from WORKERS_MIN_PAIRS pairs; the cores, from WORKERS_MIN_CELLS cells.
+ * *shared_alone counts the steps whose threads came from the host work alone (under WORKERS_MIN_CELLS cells). */
+static uint64_t small_crates_run(int32_t worker_threads, int32_t *max_threads, int *shared_alone) {
+    enum { CRATES = 300, SIDE = 5, STEPS = 90 };
+    pp_world_def d = pp_world_def_default();
+    d.worker_threads = worker_threads;
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 200, 410, 0), 400, 20);
+    add_rect(w, body_def(PP_BODY_STATIC, 115, 300, 0), 10, 200);
+    add_rect(w, body_def(PP_BODY_STATIC, 285, 300, 0), 10, 200);
+    pp_body crates[CRATES];
+    for (int i = 0; i < CRATES; i++)
+        crates[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 125.0f + 6.5f * (i % 24), 395.0f - 6.5f * (i / 24),
+                                         0.05f * (i % 5)), SIDE, SIDE);
+    uint64_t h = FNV_START;
+    *max_threads = 0, *shared_alone = 0;
+    for (int k = 0; k < STEPS; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
+        pp_step_stats st;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
+        *max_threads = st.threads > *max_threads ? st.threads : *max_threads;
+        *shared_alone += st.threads > 1 && st.pixels_tested < WORKERS_MIN_CELLS;
+        uint64_t state = 0;
+        PP_OK_OR_FAIL(pp_world_get_hash(w, &state));
+        h = fnv1a(h, &state, sizeof state);
+    }
+    const pp_vec2 p = body_pos(w, crates[0]);
+    cr_assert(p.y > 390 && p.y < 400, "the bottom crate is not on the floor (y = %g)", p.y);
+    pp_world_destroy(w);
+    return h;
+}
+
+Test(determinism, pairs_set_up_and_finished_on_threads_give_the_result_of_one, .timeout = 60) {
+    int32_t used1, used3;
+    int alone1, alone3;
+    const uint64_t h1 = small_crates_run(1, &used1, &alone1), h3 = small_crates_run(3, &used3, &alone3);
+    cr_log_info("300 crates of 5 px, 90 steps: %d steps shared only their set-up and contacts", alone3);
+    cr_assert_eq(used1, 1, "worker_threads 1 ran on %d threads", used1);
+    cr_assert_eq(used3, 3, "worker_threads 3 never ran on 3 threads (at most %d)", used3);
+    cr_assert_gt(alone3, 10, "only %d steps shared their set-up and contacts without their cores: the test shares "
+                             "little of them", alone3);
+    cr_assert_eq(h1, h3, "1 thread: %016llx, 3 threads: %016llx", (unsigned long long)h1, (unsigned long long)h3);
 }

@@ -182,22 +182,25 @@ Test(gpu, a_600_step_scene_hashes_the_same_on_both_backends, .timeout = 120) {
 }
 
 /* 150 boxes spawned into one spot: the contact budget's choices (crowd.c) come from contacts and slots, so
- * both backends keep the same pairs; poses over 15 steps, hashed. */
-static uint64_t crowd_hash(pp_backend backend, int *gpu_steps) {
+ * both backends keep the same pairs; poses over 15 steps, hashed. Thousands of pairs a step: on the GPU
+ * backend their set-up, tile sort and contacts are shared over the world's threads. */
+static uint64_t crowd_hash(pp_backend backend, int32_t worker_threads, int *gpu_steps, int32_t *max_threads) {
     pp_world_def d = pp_world_def_default();
     d.backend = backend;
+    d.worker_threads = worker_threads;
     pp_world w = make_world_def(&d);
     add_rect(w, body_def(PP_BODY_STATIC, 1000, 1010, 0), 8000, 20);
     pp_body b[150];
     for (int i = 0; i < 150; i++)
         b[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 1000.0f + (i % 5) * 0.5f, 900.0f, 0.1f * (i % 7)), 8, 8);
     uint64_t h = FNV_START;
-    *gpu_steps = 0;
+    *gpu_steps = *max_threads = 0;
     for (int s = 0; s < 15; s++) {
         PP_OK_OR_FAIL(pp_world_step(w, 1.0f / 60.0f));
         pp_step_stats st;
         PP_OK_OR_FAIL(pp_world_get_stats(w, &st));
         *gpu_steps += st.backend == PP_BACKEND_GPU;
+        *max_threads = st.threads > *max_threads ? st.threads : *max_threads;
         for (int i = 0; i < 150; i++) {
             const pp_vec2 p = body_pos(w, b[i]);
             h = fnv1a(h, &p, sizeof p);
@@ -210,9 +213,13 @@ static uint64_t crowd_hash(pp_backend backend, int *gpu_steps) {
 Test(gpu, a_crowded_spawn_keeps_the_same_contacts_on_both_backends, .timeout = 120) {
     SKIP_WITHOUT_GPU();
     int cpu_gpu_steps, gpu_steps;
-    const uint64_t hc = crowd_hash(PP_BACKEND_CPU, &cpu_gpu_steps), hg = crowd_hash(PP_BACKEND_GPU, &gpu_steps);
+    int32_t cpu_threads, gpu_threads;
+    const uint64_t hc = crowd_hash(PP_BACKEND_CPU, 1, &cpu_gpu_steps, &cpu_threads);
+    const uint64_t hg = crowd_hash(PP_BACKEND_GPU, 3, &gpu_steps, &gpu_threads);
     cr_assert_eq(cpu_gpu_steps, 0, "a CPU world reported the GPU backend");
     cr_assert_eq(gpu_steps, 15, "%d of 15 steps ran on the GPU", gpu_steps);
+    cr_assert_eq(cpu_threads, 1, "the CPU world on one thread ran on %d", cpu_threads);
+    cr_assert_eq(gpu_threads, 3, "the GPU world's host work ran on at most %d of its 3 threads", gpu_threads);
     cr_assert_eq(hc, hg, "the backends diverge on a crowded spawn: CPU %016llx, GPU %016llx", (unsigned long long)hc,
                  (unsigned long long)hg);
 }

@@ -3,8 +3,9 @@
  * bodies, contacts, events and stats are read, the world is saved as a snapshot and loaded back. Some
  * threads share their narrowphase over a worker pool; all of them churn the world handle table, use
  * stale handles of worlds other threads destroyed, fail calls for pp_last_error and swap the log hook.
- * It passes only if every thread's hash equals that of the same scene run alone before the threads
- * start, the crates rested where they should, and TSan (halt_on_error) found no race.
+ * Each thread also pours a bin of small crates: hundreds of pairs a step, whose set-up and contacts are shared
+ * over its narrowphase threads. It passes only if every thread's hash equals that of the same scene run alone
+ * before the threads start, the crates rested where they should, and TSan (halt_on_error) found no race.
  * A plain program, not Criterion: Criterion does not start under TSan. */
 #define _GNU_SOURCE /* mkdtemp */
 #include <dirent.h>
@@ -21,6 +22,7 @@
 
 #include "handle.h" /* handle_saved: ids compared across worlds */
 #include "physpix.h"
+#include "workers.h" /* WORKERS_MIN_CELLS: below it only the pairs' set-up and contacts are shared */
 
 enum {
     THREADS = 8,
@@ -32,6 +34,7 @@ enum {
     AFTER_STEPS = 40,        /* the original and its snapshot, stepped side by side */
     CHURN = 24,              /* throwaway worlds each thread creates and destroys */
     SKIPPED_EDITS = 12,      /* edits scheduled on a body destroyed before they apply: one log line each */
+    BIN_CRATES = 300, BIN_CRATE = 5, BIN_STEPS = 90, /* the bin: crates of 5 px, 24 a row */
 };
 #define DT (1.0f / 60.0f)
 #define TERRAIN_X 450.0f
@@ -81,6 +84,8 @@ typedef struct run {
     int contacts_seen;
     float rest_y[CRATES];
     float crater_fall; /* how far crate 0 fell into its crater, px */
+    uint64_t bin_hash; /* the bin's poses after every step */
+    int bin_shared;    /* the bin's steps that shared their set-up and contacts, not their cores */
 } run;
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
@@ -343,6 +348,54 @@ static void run_scene(run *t)
     CHECK(pp_world_step(w, DT) == PP_ERR_INVALID_HANDLE, "a destroyed world still steps");
 }
 
+/* 300 crates of 5 px poured into a bin, every pose hashed after each step. */
+static void run_bin(run *t)
+{
+    pp_world_def wd = pp_world_def_default();
+    wd.backend = PP_BACKEND_CPU;
+    wd.worker_threads = t->workers;
+    pp_world w = {0};
+    OK(pp_world_create(&wd, &w));
+    static const float walls[3][4] = {{200, 410, 400, 20}, {115, 300, 10, 200}, {285, 300, 10, 200}}; /* x y w h */
+    uint8_t *solid = malloc(400 * 200);
+    CHECK(solid != NULL, "no memory");
+    if (!solid)
+        return;
+    memset(solid, 1, 400 * 200);
+    pp_body_def d = pp_body_def_default();
+    pp_body b = {0};
+    for (int i = 0; i < 3; i++) {
+        d.type = PP_BODY_STATIC;
+        d.position = (pp_vec2){walls[i][0], walls[i][1]};
+        d.width = (int32_t)walls[i][2], d.height = (int32_t)walls[i][3], d.mask = solid;
+        OK(pp_body_create(w, &d, &b));
+    }
+    pp_body crates[BIN_CRATES];
+    for (int i = 0; i < BIN_CRATES; i++) {
+        d = pp_body_def_default();
+        d.position = (pp_vec2){125.0f + 6.5f * (i % 24), 395.0f - 6.5f * (i / 24)};
+        d.angle = 0.05f * (i % 5);
+        d.width = d.height = BIN_CRATE, d.mask = solid;
+        OK(pp_body_create(w, &d, &crates[i]));
+    }
+    free(solid);
+    uint64_t h = 1469598103934665603ull;
+    for (int k = 0; k < BIN_STEPS; k++) {
+        OK(pp_world_step(w, DT));
+        pp_step_stats st;
+        OK(pp_world_get_stats(w, &st));
+        t->bin_shared += st.threads > 1 && st.pixels_tested < WORKERS_MIN_CELLS;
+        t->max_threads = st.threads > t->max_threads ? st.threads : t->max_threads;
+        for (int i = 0; i < BIN_CRATES; i++) {
+            pp_vec2 p = {0, 0};
+            OK(pp_body_get_position(w, crates[i], &p));
+            h = fnv1a(h, &p, sizeof p);
+        }
+    }
+    t->bin_hash = h;
+    OK(pp_world_destroy(w));
+}
+
 static run runs[ROUNDS][THREADS];
 static pthread_barrier_t round_start;
 
@@ -356,6 +409,7 @@ static void *thread_main(void *arg)
         pthread_barrier_wait(&round_start);
         churn(t, CHURN / 2);
         run_scene(t);
+        run_bin(t);
         churn(t, CHURN / 2);
     }
     return NULL;
@@ -378,6 +432,7 @@ int main(void)
     ref = (run){.index = THREADS, .workers = 1};
     run *t = &ref; /* CHECK names it */
     run_scene(&ref);
+    run_bin(&ref);
     int ref_lines = 0;
     for (int i = 0; i <= THREADS; i++)
         ref_lines += atomic_exchange(&log_lines[i], 0);
@@ -416,6 +471,10 @@ int main(void)
         CHECK(t->hash == ref.hash, "hash %016llx, alone %016llx (%d narrowphase threads)",
               (unsigned long long)t->hash, (unsigned long long)ref.hash, t->workers);
         CHECK(t->events == ref.events, "%d events, alone %d", t->events, ref.events);
+        CHECK(t->bin_hash == ref.bin_hash, "the bin's hash %016llx, alone %016llx (%d narrowphase threads)",
+              (unsigned long long)t->bin_hash, (unsigned long long)ref.bin_hash, t->workers);
+        CHECK(t->workers == 1 || t->bin_shared > 0, "the bin never shared its set-up and contacts alone over %d threads",
+              t->workers);
         CHECK(t->max_threads == t->workers, "worker_threads %d ran on at most %d threads", t->workers,
               t->max_threads);
         for (int k = 0; k < CRATES; k++)
