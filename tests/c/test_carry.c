@@ -342,3 +342,55 @@ Test(carry, a_lone_crate_at_rest_is_solved_once_a_step_and_still_rests)
 #endif
     pp_world_destroy(w);
 }
+
+/* Two towers of three 16 px boxes on the ground, in the default world (sleep off): each tower is an island of a few
+ * rows, which the exact solver takes. */
+static pp_world exact_towers(void)
+{
+    pp_world_def d = pp_world_def_default();
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    add_rect(w, body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0), 800, 40);
+    for (int t = 0; t < 2; t++)
+        for (int k = 0; k < 3; k++)
+            add_rect(w, body_def(PP_BODY_DYNAMIC, 300.0f + 200.0f * t, GROUND_TOP - 7 - 15 * k, 0), 16, 16);
+    return w;
+}
+
+Test(carry, an_exact_tower_at_rest_is_held_and_stands)
+{
+    /* A small stack's resting pairs are held as a QuickStep pile's are: settled, whole steps test no raster
+     * sample, every pair keeps its two points, and the towers stand where they rest when collided (their top box
+     * sinks 0–5 px below three bare boxes, in line with the bottom one). */
+    pp_world w = exact_towers();
+    step_n(w, DT, 120);
+#ifdef PP_TEST_PRIVATE
+    {
+        world *wd = world_lookup(w, "test");
+        int32_t n = 0;
+        pp_body bodies[7];
+        PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 7, &n));
+        cr_assert_eq(wd->islands.kind[handle_slot(bodies[1].id)], ISLAND_EXACT, "the tower is not an exact island");
+    }
+#endif
+    int idle = 0;
+    for (int k = 0; k < 60; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        idle += pixels_tested(w) == 0;
+        pp_step_stats s;
+        PP_OK_OR_FAIL(pp_world_get_stats(w, &s));
+        cr_assert_eq(s.contacts, 12, "step %d: %d contacts (6 pairs of two points)", k, (int)s.contacts);
+    }
+    cr_assert_geq(idle, 50, "only %d of 60 settled steps tested no raster sample", idle);
+    pp_body bodies[7];
+    int32_t n = 0;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, bodies, 7, &n));
+    cr_assert_eq(n, 7);
+    for (int t = 0; t < 2; t++) {
+        const pp_vec2 top = body_pos(w, bodies[3 + 3 * t]), bottom = body_pos(w, bodies[1 + 3 * t]);
+        const float sink = top.y - (GROUND_TOP - 2 * 16 - 8);
+        cr_assert(sink >= 0 && sink <= 5, "tower %d's top box sank %g px", t, sink);
+        cr_assert_float_eq(top.x, bottom.x, 0.05, "tower %d leans: top at x = %g, bottom at %g", t, top.x, bottom.x);
+    }
+    pp_world_destroy(w);
+}
