@@ -158,26 +158,34 @@ static bool carried_into(const world *wd, const contact_record *r, const void *k
     return r->carry_last >= *(const int32_t *)k;
 }
 
+/* Grow a by-slot array of the carry state to the world's slots, its new entries zero (no step's stamp), before
+ * the next one grows: a later failure must not leave entries unset behind a capacity that says they are. */
+static pp_status grow_zeroed(world *wd, void **items, int32_t *capacity, size_t size)
+{
+    const int32_t had = *capacity;
+    const pp_status st = world_slot_array(wd, items, capacity, size, "the carried pairs");
+    if (!st && *capacity > had)
+        memset((char *)*items + (size_t)had * size, 0, (size_t)(*capacity - had) * size);
+    return st;
+}
+
 /* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    const int32_t had = c->struck_capacity, had_collided = c->collided_capacity, had_motion = c->motion_capacity;
-    const int32_t had_restless = c->restless_capacity;
-    static const char *what = "the carried pairs";
-    pp_status st = world_slot_array(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, what);
-    if (st || (st = world_slot_array(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided, what)) ||
-        (st = world_slot_array(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion, what)) ||
-        (st = world_slot_array(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless, what)))
+    pp_status st = grow_zeroed(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck);
+    if (st || (st = grow_zeroed(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided)) ||
+        (st = grow_zeroed(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion)) ||
+        (st = grow_zeroed(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless)))
         return st;
-    if (c->restless_capacity > had_restless)
-        memset(c->restless + had_restless, 0, (size_t)(c->restless_capacity - had_restless) * sizeof *c->restless);
-    if (c->motion_capacity > had_motion)
-        memset(c->motion + had_motion, 0, (size_t)(c->motion_capacity - had_motion) * sizeof *c->motion);
-    if (c->struck_capacity > had)
-        memset(c->struck + had, 0, (size_t)(c->struck_capacity - had) * sizeof *c->struck);
-    if (c->collided_capacity > had_collided)
-        memset(c->collided + had_collided, 0, (size_t)(c->collided_capacity - had_collided) * sizeof *c->collided);
+#ifdef PP_CHECKS
+    for (int32_t i = 0; i < c->struck_capacity; i++) /* stamps are steps that began: none from the future */
+        PP_ASSERT(c->struck[i] <= c->step);
+    for (int32_t i = 0; i < c->collided_capacity; i++)
+        PP_ASSERT(c->collided[i] <= c->step);
+    for (int32_t i = 0; i < c->restless_capacity; i++)
+        PP_ASSERT(c->restless[i] <= c->step);
+#endif
     if (++c->step == 0) { /* wrapped: no stale stamp may match */
         memset(c->struck, 0, (size_t)c->struck_capacity * sizeof *c->struck);
         memset(c->collided, 0, (size_t)c->collided_capacity * sizeof *c->collided);
