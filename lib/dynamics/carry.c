@@ -47,6 +47,12 @@
  * verdict stayed the same at 2, 4 and 8 px; at 8 the wall shots moved. */
 #define CARRY_MOVING_PX 2.0
 
+/* CARRY_MOVING_PX for a pair of a small island the exact solver takes, whose corners decide whether it stands: at
+ * 2 px bench_stability's cardhouse_v3_3 fell, at 1 px cardhouse4w (BALANCED); at 0.5 px every verdict stands at 7
+ * grid offsets (--offset 0 … 3.3) and 200 crates of 128 px on a terrain (bench_backends --no-gpu) collide 0.78 ms
+ * a step against 1.30–1.37 ms with the exact pairs collided at every substep. */
+#define CARRY_EXACT_MOVING_PX 0.5
+
 /* Forget every body's motion: velocities may have changed since (a solve, damping). Called before each pass over
  * the pairs, within which none changes. */
 static void motion_stale(carry *c)
@@ -230,16 +236,17 @@ pp_status carry_record(world *wd, double dt, int32_t k)
         const double bound = stack ? CARRY_STACK_PX : CARRY_MOTION_PX;
         /* Collided at every substep instead: a round body, whose contact stays under its centre as it rolls
          * (carried, it turned with the disc and a rolling disc lost 0.5 % of its acceleration); and, moving, a
-         * pair of a small island solved exactly, whose corners decide whether it stands (carried at 2 px,
-         * bench_stability's 3-level v3 card house fell), and a pair on a long slanted face, whose load moves
-         * between its ends (carried at 2 px, Box2D v3's arch fell). An exact island's resting pair is carried and
-         * held as any other: every verdict stands, its towers stop jittering (drift 0.002–0.04 px to under
-         * 1e-5), and most pairs of bench_backends' terrain scenes are no longer collided at every substep. */
+         * pair of a small island solved exactly past CARRY_EXACT_MOVING_PX, and a pair on a long slanted face,
+         * whose load moves between its ends (carried at 2 px, Box2D v3's arch fell). An exact island's resting
+         * pair is carried and held as any other: every verdict stands, its towers stop jittering (drift
+         * 0.002–0.04 px to under 1e-5), and most pairs of bench_backends' terrain scenes are no longer collided
+         * at every substep. */
         const bool exact = wd->islands.kind[(a->sb.body ? a : b)->index] == ISLAND_EXACT;
         const bool carriable = k == 0 && body_round_radius(a) == 0 && body_round_radius(b) == 0;
         const double motion = carriable ? pair_motion(wd, a, b, dt) : INFINITY;
         const bool slow = motion <= bound;
-        const bool moving = !slow && !exact && motion <= CARRY_MOVING_PX && !island_slanted_face(wd, i, end);
+        const bool moving =
+            !slow && motion <= (exact ? CARRY_EXACT_MOVING_PX : CARRY_MOVING_PX) && !island_slanted_face(wd, i, end);
         const bool still = !slow && !moving && both_out && (k == 0 || !carried_before);
         if (k == 0 && !slow && !moving)
             strike(&wd->carry, a), strike(&wd->carry, b);

@@ -2,8 +2,8 @@
  * runs at a step's first substep;
  * each later substep moves a touching pair's points with its two bodies and its depths along the
  * (fixed) normals by their relative motion, as Box2D's substeps do, instead of colliding the rasters
- * again, for pairs moving under 2 px a step against themselves (a small island the exact solver takes: at
- * rest, under CARRY_MOTION_PX). Pairs that move faster and round bodies are collided at every substep, and so is a pair that did not touch at the step's start, until it does: a
+ * again, for pairs moving under 2 px a step against themselves (0.5 px in a small island the exact solver
+ * takes). Pairs that move faster and round bodies are collided at every substep, and so is a pair that did not touch at the step's start, until it does: a
  * body that lands mid-step is caught at the substep it lands in.
  * A pair whose bodies sat a substep out (island.h: QuickStep stacks solve every other substep) is where it
  * was, so its contacts are carried into the next substep too, however fast it moves: the raster would

@@ -394,3 +394,50 @@ Test(carry, an_exact_tower_at_rest_is_held_and_stands)
     }
     pp_world_destroy(w);
 }
+
+/* A stack of two 16 px boxes (an island the exact solver takes) sliding on a frictionless ground at `speed` px/s,
+ * the top box carried along by friction; the raster samples of 30 steps, and where the top box ends against the
+ * bottom one. */
+static int64_t slide_stack(int32_t substeps, float speed, pp_vec2 *offset)
+{
+    pp_world_def d = pp_world_def_default();
+    d.substeps = substeps;
+    d.allow_sleep = 0;
+    pp_world w = make_world_def(&d);
+    pp_body_def g = body_def(PP_BODY_STATIC, 400, GROUND_TOP + 20, 0);
+    g.friction = 0;
+    add_rect(w, g, 800, 40);
+    const pp_body bottom = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, GROUND_TOP - 7, 0), 16, 16);
+    const pp_body top = add_rect(w, body_def(PP_BODY_DYNAMIC, 100, GROUND_TOP - 22, 0), 16, 16);
+    step_n(w, DT, 30); /* settled */
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, bottom, v2(speed, 0), 0));
+    PP_OK_OR_FAIL(pp_body_set_velocity(w, top, v2(speed, 0), 0));
+    int64_t samples = 0;
+    for (int k = 0; k < 30; k++) {
+        PP_OK_OR_FAIL(pp_world_step(w, DT));
+        samples += pixels_tested(w);
+    }
+    const pp_vec2 pb = body_pos(w, bottom), pt = body_pos(w, top);
+    *offset = v2(pt.x - pb.x, pt.y - pb.y);
+    pp_world_destroy(w);
+    return samples;
+}
+
+Test(carry, a_small_exact_stack_under_half_a_pixel_a_step_is_collided_once_a_step)
+{
+    /* 24 px/s is 0.4 px a step: too fast to rest, slow enough for a stack whose corners the exact solver weighs,
+     * so four substeps test about what one does, and the top box rides along on the bottom one. At 90 px/s
+     * (1.5 px a step, which a QuickStep pile would carry) the stack's pairs are collided at every substep. */
+    pp_vec2 off;
+    const int64_t one = slide_stack(1, 24, &off), four = slide_stack(4, 24, &off);
+    cr_assert_gt(one, 0);
+    cr_assert_lt(four, 3 * one / 2, "4 substeps tested %lld samples in 30 steps, one %lld", (long long)four,
+                 (long long)one);
+    cr_assert(fabsf(off.x) < 0.5f && off.y > -16.5f && off.y < -14.0f, "the top box ended at (%g, %g) from the bottom",
+              off.x, off.y);
+    const int64_t fast_one = slide_stack(1, 90, &off), fast_four = slide_stack(4, 90, &off);
+    cr_assert_gt(fast_four, 3 * fast_one, "at 90 px/s 4 substeps tested %lld samples, one %lld", (long long)fast_four,
+                 (long long)fast_one);
+    cr_assert(fabsf(off.x) < 0.5f && off.y > -16.5f && off.y < -14.0f, "the fast stack's top box ended at (%g, %g)",
+              off.x, off.y);
+}
