@@ -13,6 +13,8 @@
 #include "status.h"
 #include "world.h"
 
+#include <string.h>
+
 /* Overlap, in multiples of a body's solid pixels, past which a body with many pairs is crowded. */
 #define CROWD_OVERLAP_RATIO 2
 
@@ -36,6 +38,25 @@ static bool crowded(const world *wd, uint32_t slot)
 }
 
 static void reset_slot(world *wd, uint32_t slot) { wd->crowd.slots[slot] = (crowd_slot){.list = -1}; }
+
+/* A new count over the slots (crowd_plan's, crowd_limit_contacts'): every slot is stale until plan_slot resets it. */
+static void next_plan(crowd *c)
+{
+    if (++c->serial == 0) { /* wrapped: no slot may look reset by this count */
+        for (int32_t i = 0; i < c->slot_capacity; i++)
+            c->slots[i].stamp = 0;
+        c->serial = 1;
+    }
+}
+
+/* A slot as this count found it: reset the first time the count meets it (its stamp is an older count's). */
+static crowd_slot *plan_slot(crowd *c, uint32_t slot)
+{
+    crowd_slot *s = &c->slots[slot];
+    if (s->stamp != c->serial)
+        *s = (crowd_slot){.list = -1, .stamp = c->serial};
+    return s;
+}
 
 /* Give a slot a list (room reserved by reserve_lists). */
 static void open_list(crowd *c, uint32_t slot)
@@ -115,6 +136,17 @@ static bool box_before(const world *wd, uint32_t self, int32_t i, int32_t j)
 
 static bool both_eligible(const world *wd, const bp_pair *p) { return eligible(wd, p->a) && eligible(wd, p->b); }
 
+/* Room for a slot per body; new slots stamped by no plan. */
+static pp_status grow_slots(world *wd)
+{
+    crowd *c = &wd->crowd;
+    const int32_t had = c->slot_capacity;
+    const pp_status st = world_slot_array(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots, "the contact budget");
+    if (!st && c->slot_capacity > had)
+        memset(c->slots + had, 0, (size_t)(c->slot_capacity - had) * sizeof *c->slots);
+    return st;
+}
+
 pp_status crowd_plan(world *wd)
 {
     crowd *c = &wd->crowd;
@@ -123,17 +155,17 @@ pp_status crowd_plan(world *wd)
     const int32_t np = wd->broad.pair_count;
     if (np <= CROWD_CANDIDATES) /* no body can have more */
         return PP_OK;
-    pp_status st = world_slot_array(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots, "the contact budget");
+    pp_status st = grow_slots(wd);
     if (st)
         return st;
-    for (int32_t k = 0; k < np; k++)
-        reset_slot(wd, pairs[k].a), reset_slot(wd, pairs[k].b);
+    next_plan(c);
+    /* Every pair's slots reset, and the candidates among dynamic bodies counted, in one pass. */
     int32_t many = 0; /* bodies with more than CROWD_CANDIDATES */
-    for (int32_t k = 0; k < np; k++)
-        if (both_eligible(wd, &pairs[k])) {
-            many += ++c->slots[pairs[k].a].pairs == CROWD_CANDIDATES + 1;
-            many += ++c->slots[pairs[k].b].pairs == CROWD_CANDIDATES + 1;
-        }
+    for (int32_t k = 0; k < np; k++) {
+        crowd_slot *a = plan_slot(c, pairs[k].a), *b = plan_slot(c, pairs[k].b);
+        if (both_eligible(wd, &pairs[k]))
+            many += (++a->pairs == CROWD_CANDIDATES + 1) + (++b->pairs == CROWD_CANDIDATES + 1);
+    }
     if (many == 0)
         return PP_OK;
     if ((st = reserve_lists(c, many)))
@@ -241,19 +273,18 @@ pp_status crowd_limit_contacts(world *wd)
     if (wd->contact_count <= PP_CROWDED_CONTACT_PAIRS)
         return PP_OK;
     crowd *c = &wd->crowd;
-    pp_status st = world_slot_array(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots, "the contact budget");
+    pp_status st = grow_slots(wd);
     if (st)
         return st;
-    /* Only the slots of this substep's pairs are counted, so a large world pays for its contacts alone. */
+    /* Only the slots of this substep's pairs are reset and counted, in one pass, so a large world pays for its
+     * contacts alone. Bodies the budget may limit with more than PP_CROWDED_CONTACT_PAIRS pairs: with none, none
+     * is crowded (a ground under a row of crates has more, and is never crowded). */
+    next_plan(c);
     const contact_run *runs = wd->table.runs;
-    for (int32_t n = 0; n < wd->table.run_count; n++)
-        reset_slot(wd, runs[n].a), reset_slot(wd, runs[n].b);
-    /* Bodies the budget may limit with more than PP_CROWDED_CONTACT_PAIRS pairs: with none, none is crowded (a
-     * ground under a row of crates has more, and is never crowded). */
     int32_t many = 0;
     for (int32_t n = 0; n < wd->table.run_count; n++) {
         const int32_t overlap = wd->contacts[runs[n].first].pixel_count;
-        crowd_slot *a = &c->slots[runs[n].a], *b = &c->slots[runs[n].b];
+        crowd_slot *a = plan_slot(c, runs[n].a), *b = plan_slot(c, runs[n].b);
         many += (++a->pairs == PP_CROWDED_CONTACT_PAIRS + 1 && eligible(wd, runs[n].a)) +
                 (++b->pairs == PP_CROWDED_CONTACT_PAIRS + 1 && eligible(wd, runs[n].b));
         a->overlap += overlap, b->overlap += overlap;

@@ -20,6 +20,7 @@ typedef struct crowd_slot {
     int64_t overlap;  /* intersecting pixels of its pairs with contacts */
     int32_t pairs;    /* candidates with dynamic bodies, then pairs with contacts */
     int32_t list;     /* its entry in crowd.lists, or −1 */
+    uint32_t stamp;   /* crowd.serial of the count that last reset it */
     bool proven;      /* crowded by its first-pass pairs alone */
 } crowd_slot;
 
@@ -40,6 +41,7 @@ typedef struct crowd {
     int32_t pass_capacity, box_capacity;
     int32_t *order;      /* set-up pairs in candidate order, when split */
     int32_t order_capacity;
+    uint32_t serial;     /* counts the counts over the slots (crowd_plan, crowd_limit_contacts) */
     bool split;          /* this substep collides its pairs in two passes */
 } crowd;
 
