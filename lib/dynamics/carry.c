@@ -179,10 +179,14 @@ static pp_status grow_zeroed(world *wd, void **items, int32_t *capacity, size_t 
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    pp_status st = grow_zeroed(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck);
-    if (st || (st = grow_zeroed(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided)) ||
-        (st = grow_zeroed(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion)) ||
-        (st = grow_zeroed(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless)))
+    const int32_t slots = wd->body_ids.capacity;
+    pp_status st = PP_OK;
+    if ((c->struck_capacity < slots || c->collided_capacity < slots || c->motion_capacity < slots ||
+         c->restless_capacity < slots) && /* rarely: as the world grows */
+        ((st = grow_zeroed(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck)) ||
+         (st = grow_zeroed(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided)) ||
+         (st = grow_zeroed(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion)) ||
+         (st = grow_zeroed(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless))))
         return st;
 #ifdef PP_CHECKS
     for (int32_t i = 0; i < c->struck_capacity; i++) /* stamps are steps that began: none from the future */
