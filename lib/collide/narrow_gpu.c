@@ -330,12 +330,12 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
     *used = batch_used > *used ? batch_used : *used;
     /* The mixed tiles closed up, then the full ones after them: the sums pass runs over the mixed, the strips
      * pass over both. */
-    int64_t mixed = 0, tiles = 0;
+    int64_t mixed = 0;
     for (int32_t k = 0; k < n; k++) {
         memmove(g->tiles + 2 * mixed, g->tiles + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k] * 2 * sizeof *g->tiles);
         mixed += g->tile_n[2 * k];
     }
-    tiles = mixed;
+    int64_t tiles = mixed;
     for (int32_t k = 0; k < n; k++) {
         memcpy(g->tiles + 2 * tiles, g->full + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k + 1] * 2 * sizeof *g->tiles);
         tiles += g->tile_n[2 * k + 1];
