@@ -197,6 +197,10 @@ pp_status broadphase_update(pp_broadphase *bp, const bp_proxy *proxy, uint32_t s
         broadphase_remove(bp, slot);
         return PP_OK;
     }
+    /* A body at rest is updated when it changed (an edit, a move, a new type): the step candidates were filtered by
+     * its old box, which its leaf's margin may still hold (fuzz_scene: a terrain's timed erase and paint under a
+     * falling crate, whose pair the reused candidates then missed while the crate stayed within its searched box). */
+    bp->cand_valid = false;
     if (leaf >= 0 && contains(bp->nodes[leaf].box, b))
         return PP_OK;
     /* A query's walk holds at most the root's height + 1 nodes, and an insert adds at most one level: room

@@ -127,6 +127,7 @@ PP_API pp_status pp_body_set_filter(pp_world w, pp_body b, uint32_t category_bit
     if (st)
         return st;
     bd->category_bits = category_bits, bd->mask_bits = mask_bits;
+    wd->broad.cand_valid = false; /* the step candidates were filtered by the old bits */
     wake_touching(wd, bd); /* its resting pairs are tested again, now filtered */
     return PP_OK;
 }
