@@ -16,9 +16,10 @@ typedef struct np_workers np_workers;
 /* Threads `worker_threads` asks for: itself, or one per online CPU (at most 16) for 0. */
 int32_t workers_wanted(int32_t worker_threads);
 
-/* Below this many pairs a batch's per-pair host work (set-up, the GPU's tile sort, contacts: 2–12 k instructions
- * a pair) runs on the calling thread: at about 1 µs a pair it pays for waking the threads (30–40 µs on 2 cores)
- * from about a hundred. */
+/* Below this many pairs a batch's per-pair host work runs on the calling thread. It costs 1.6 k (set-up), 2.9 k
+ * (contacts) and 6–12 k (the GPU's tile sort) instructions a pair, about 1–4 µs, against a thread wake-up's
+ * 30–40 µs: a hundred pairs pays for the wake-ups on many cores. On 2 cores sharing it measured a wash
+ * (tests/bench/README.md, Worker threads). */
 #define WORKERS_MIN_PAIRS 128
 /* Items a thread takes at a time in that work: pairs cost alike there, and fewer turns of the shared counter. */
 #define WORKERS_GRAIN 16

@@ -164,29 +164,16 @@ static bool carried_into(const world *wd, const contact_record *r, const void *k
     return r->carry_last >= *(const int32_t *)k;
 }
 
-/* Grow a by-slot array of the carry state to the world's slots, its new entries zero (no step's stamp), before
- * the next one grows: a later failure must not leave entries unset behind a capacity that says they are. */
-static pp_status grow_zeroed(world *wd, void **items, int32_t *capacity, size_t size)
-{
-    const int32_t had = *capacity;
-    const pp_status st = world_slot_array(wd, items, capacity, size, "the carried pairs");
-    if (!st && *capacity > had)
-        memset((char *)*items + (size_t)had * size, 0, (size_t)(*capacity - had) * size);
-    return st;
-}
-
 /* At the step's first substep: a fresh stamp for struck bodies, room for one by slot. */
 static pp_status start_step(world *wd)
 {
     carry *c = &wd->carry;
-    const int32_t slots = wd->body_ids.capacity;
-    pp_status st = PP_OK;
-    if ((c->struck_capacity < slots || c->collided_capacity < slots || c->motion_capacity < slots ||
-         c->restless_capacity < slots) && /* rarely: as the world grows */
-        ((st = grow_zeroed(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck)) ||
-         (st = grow_zeroed(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided)) ||
-         (st = grow_zeroed(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion)) ||
-         (st = grow_zeroed(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless))))
+    static const char *what = "the carried pairs";
+    pp_status st = world_slot_array_zeroed(wd, (void **)&c->struck, &c->struck_capacity, sizeof *c->struck, what);
+    if (st ||
+        (st = world_slot_array_zeroed(wd, (void **)&c->collided, &c->collided_capacity, sizeof *c->collided, what)) ||
+        (st = world_slot_array_zeroed(wd, (void **)&c->motion, &c->motion_capacity, sizeof *c->motion, what)) ||
+        (st = world_slot_array_zeroed(wd, (void **)&c->restless, &c->restless_capacity, sizeof *c->restless, what)))
         return st;
 #ifdef PP_CHECKS
     for (int32_t i = 0; i < c->struck_capacity; i++) /* stamps are steps that began: none from the future */

@@ -13,8 +13,6 @@
 #include "status.h"
 #include "world.h"
 
-#include <string.h>
-
 /* Overlap, in multiples of a body's solid pixels, past which a body with many pairs is crowded. */
 #define CROWD_OVERLAP_RATIO 2
 
@@ -136,17 +134,6 @@ static bool box_before(const world *wd, uint32_t self, int32_t i, int32_t j)
 
 static bool both_eligible(const world *wd, const bp_pair *p) { return eligible(wd, p->a) && eligible(wd, p->b); }
 
-/* Room for a slot per body; new slots stamped by no plan. */
-static pp_status grow_slots(world *wd)
-{
-    crowd *c = &wd->crowd;
-    const int32_t had = c->slot_capacity;
-    const pp_status st = world_slot_array(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots, "the contact budget");
-    if (!st && c->slot_capacity > had)
-        memset(c->slots + had, 0, (size_t)(c->slot_capacity - had) * sizeof *c->slots);
-    return st;
-}
-
 pp_status crowd_plan(world *wd)
 {
     crowd *c = &wd->crowd;
@@ -155,7 +142,8 @@ pp_status crowd_plan(world *wd)
     const int32_t np = wd->broad.pair_count;
     if (np <= CROWD_CANDIDATES) /* no body can have more */
         return PP_OK;
-    pp_status st = grow_slots(wd);
+    pp_status st = world_slot_array_zeroed(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots,
+                                           "the contact budget"); /* new slots: stamped by no count */
     if (st)
         return st;
     next_plan(c);
@@ -273,7 +261,8 @@ pp_status crowd_limit_contacts(world *wd)
     if (wd->contact_count <= PP_CROWDED_CONTACT_PAIRS)
         return PP_OK;
     crowd *c = &wd->crowd;
-    pp_status st = grow_slots(wd);
+    pp_status st = world_slot_array_zeroed(wd, (void **)&c->slots, &c->slot_capacity, sizeof *c->slots,
+                                           "the contact budget"); /* new slots: stamped by no count */
     if (st)
         return st;
     /* Only the slots of this substep's pairs are reset and counted, in one pass, so a large world pays for its

@@ -319,6 +319,15 @@ pp_status world_slot_array_grow(world *wd, void **items, int32_t *capacity, size
     return PP_OK;
 }
 
+pp_status world_slot_array_grow_zeroed(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what)
+{
+    const int32_t had = *capacity;
+    const pp_status st = world_slot_array_grow(wd, items, capacity, per_slot, what);
+    if (!st)
+        memset((char *)*items + (size_t)had * per_slot, 0, (size_t)(*capacity - had) * per_slot);
+    return st;
+}
+
 WORLD_GETTER(pp_world_get_def, pp_world_def, wd->def)
 
 PP_API pp_status pp_world_get_bodies(pp_world w, pp_body *out, int32_t capacity, int32_t *count)

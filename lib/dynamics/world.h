@@ -366,6 +366,15 @@ static inline pp_status world_slot_array(world *wd, void **items, int32_t *capac
 {
     return wd->body_ids.capacity <= *capacity ? PP_OK : world_slot_array_grow(wd, items, capacity, per_slot, what);
 }
+/* The same, its new slots zeroed as it grows: for arrays whose entries are read as stamps or counts, never reset
+ * before use, so that a later failure cannot leave entries unset behind a capacity that says they are. */
+pp_status world_slot_array_grow_zeroed(world *wd, void **items, int32_t *capacity, size_t per_slot, const char *what);
+static inline pp_status world_slot_array_zeroed(world *wd, void **items, int32_t *capacity, size_t per_slot,
+                                                const char *what)
+{
+    return wd->body_ids.capacity <= *capacity ? PP_OK
+                                              : world_slot_array_grow_zeroed(wd, items, capacity, per_slot, what);
+}
 
 /* Whether a velocity (px/s) and angular velocity (rad/s) are within PP_MAX_SPEED and PP_MAX_ANGULAR_SPEED. */
 bool body_speed_ok(dvec2 v, double w);
