@@ -11,16 +11,19 @@ struct Pair {
     ivec4 grid; // stride s, offset, i0, j0
     ivec4 size; // inner cells nx, ny; fallback normal nqx, nqy (Q14)
     ivec4 q;    // 16.16 sample point of plane cell (0, 0), step per column (x, y)
-    ivec4 q2;   // step per row (x, y), first strip word, 0
+    ivec4 q2;   // step per row (x, y), first strip word, first tile of the batch's grid tiles
 };
 
 layout(std430, binding = 0) readonly buffer Masks { uint masks[]; };
 layout(std430, binding = 1) readonly buffer Pairs { Pair pairs[]; };
-// Two words a tile: its pair, and its index in the pair's grid of tiles, TILE_FULL on a tile whose
-// every cell and neighbour lie in both bodies (np_classify_tiles in lib/collide/narrow_tiled.c).
-layout(std430, binding = 2) readonly buffer Tiles { uint tiles[]; };
+// Two words a tile that adds something: its pair, and its index in the pair's grid of tiles, TILE_FULL on a
+// tile whose every cell and neighbour lie in both bodies (narrow_tiles.comp). The mixed tiles fill it from
+// the front, the full ones from the back.
+layout(std430, binding = 2) buffer Tiles { uint tiles[]; };
 layout(std430, binding = 3) buffer Results { uint results[]; };
 layout(std430, binding = 4) buffer Strips { int strips[]; };
+// The batch's grid tiles and pairs, then the sums and the strips passes' indirect dispatches (narrow_args.comp).
+layout(std430, binding = 5) buffer Lists { uint lists[]; };
 
 uniform uint u_count; // tiles or pairs in this dispatch
 
@@ -30,6 +33,11 @@ const uint R_NQX = 10u, R_NQY = 11u, R_TMIN = 12u, R_NSTRIPS = 13u, R_FIRST = 14
 const uint R_FIRST_MIN = 16u, R_FIRST_MAX = 17u, R_LAST_MIN = 18u, R_LAST_MAX = 19u;
 const uint R_COVER_ALL = 20u, R_COVER_LO = 21u, R_COVER_HI = 22u, R_STRIDE = 24u;
 const int RING = 2, TILE = 16, ONE = 16384;
+const uint L_GRID_TILES = 0u, L_PAIRS = 1u, L_SUMS_ARGS = 2u, L_STRIPS_ARGS = 5u;
+
+// The mixed and full tiles' counts follow the pairs' results (so they come back in the same read).
+uint mixed_count() { return results[lists[L_PAIRS] * R_STRIDE]; }
+uint full_count() { return results[lists[L_PAIRS] * R_STRIDE + 1u]; }
 
 // The workgroup's index among the dispatch's (a 2D grid when there are more than 65535).
 uint group_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
@@ -66,15 +74,24 @@ uint sample_cell(Pair p, int ci, int cj)
 
 const uint TILE_FULL = 0x80000000u;
 
-uint tile_pair(uint tile) { return tiles[2u * tile]; }
-bool tile_full(uint tile) { return (tiles[2u * tile + 1u] & TILE_FULL) != 0u; }
-
-// The tile's first inner cell.
-ivec2 tile_origin(Pair p, uint tile)
+// Entry i of the mixed tiles followed by the full ones.
+uint tile_entry(uint i)
 {
-    int tiles_x = (p.size.x + TILE - 1) / TILE, t = int(tiles[2u * tile + 1u] & ~TILE_FULL);
+    uint mixed = mixed_count();
+    return i < mixed ? i : lists[L_GRID_TILES] - full_count() + (i - mixed);
+}
+
+uint tile_pair(uint entry) { return tiles[2u * entry]; }
+bool tile_full(uint entry) { return (tiles[2u * entry + 1u] & TILE_FULL) != 0u; }
+
+// The first inner cell of grid tile t of pair p.
+ivec2 grid_tile_origin(Pair p, int t)
+{
+    int tiles_x = (p.size.x + TILE - 1) / TILE;
     return ivec2(t % tiles_x, t / tiles_x) * TILE;
 }
+
+ivec2 tile_origin(Pair p, uint entry) { return grid_tile_origin(p, int(tiles[2u * entry + 1u] & ~TILE_FULL)); }
 
 // 64-bit integer add of a 32-bit signed value by two 32-bit atomics: the carry out of the low
 // word is known from the value the atomic saw, so concurrent adds still sum exactly.

@@ -1,4 +1,4 @@
-// Pass 4, one invocation per pair: the first and last strips holding intersection cells and the
+// Pass 5, one invocation per pair: the first and last strips holding intersection cells and the
 // deepest cover overall and in each half between them (strips_summary in narrow_cpu.c).
 layout(local_size_x = 64) in;
 

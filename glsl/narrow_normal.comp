@@ -1,5 +1,5 @@
-// Pass 2, one invocation per pair: the Q14 normal from the integer sums (np_quantize_normal in
-// narrowphase.c), the strip range across it, and the strips cleared for pass 3.
+// Pass 3, one invocation per pair: the Q14 normal from the integer sums (np_quantize_normal in
+// narrowphase.c), the strip range across it, and the strips cleared for pass 4.
 layout(local_size_x = 64) in;
 
 uvec2 abs64(uvec2 v)

@@ -1,4 +1,4 @@
-// Pass 3, over the mixed and full tiles: coverage tent-splatted onto the two nearest strips, and
+// Pass 4, over the mixed and full tiles: coverage tent-splatted onto the two nearest strips, and
 // each intersection cell's projection on the normal into its own strip (strips_along). A mixed
 // tile has one invocation per inner cell. A full tile's cells are all in both bodies at coverage
 // 256: one invocation per line of it (along the axis on which the tangent coordinate changes
@@ -61,9 +61,10 @@ void full_line(Pair p, ivec2 o, int nqx, int nqy, int lo)
 
 void main()
 {
-    uint tile = group_index();
-    if (tile >= u_count)
+    uint i = group_index();
+    if (i >= mixed_count() + full_count())
         return;
+    uint tile = tile_entry(i);
     uint pi = tile_pair(tile);
     Pair p = pairs[pi];
     uint r = pi * R_STRIDE;

@@ -1,5 +1,5 @@
-// Pass 1, one workgroup per mixed 16×16 tile of a pair's inner grid (the full ones are summed on the
-// host): intersection count and centroid sums, and the normal estimator (cell_sums in narrow_cpu.h). Samples of the tile and its
+// Pass 2, one workgroup per mixed 16×16 tile of a pair's inner grid (the full ones were summed by the tiles
+// pass): intersection count and centroid sums, and the normal estimator (cell_sums in narrow_cpu.h). Samples of the tile and its
 // two-cell ring are shared; sums meet in shared memory, then one 64-bit add per tile.
 layout(local_size_x = 16, local_size_y = 16) in;
 
@@ -14,7 +14,7 @@ uint cell_at(int x, int y) { return cells[(y + RING) * HALO + x + RING]; }
 void main()
 {
     uint tile = group_index();
-    if (tile >= u_count)
+    if (tile >= mixed_count())
         return;
     uint pi = tile_pair(tile);
     Pair p = pairs[pi];

@@ -297,7 +297,7 @@ typedef struct pp_step_stats {
     pp_backend backend;    ///< the backend that ran the narrowphase (CPU or GPU)
     uint32_t swept_stops;  ///< times continuous collision stopped a fast body at a wall (all substeps)
     int32_t threads;       ///< most threads any narrowphase work of the step ran on (the pairs' set-up, CPU cores,
-                           ///< GPU tile sort, contacts), the calling one included (1: it alone; 0: no pairs)
+                           ///< contacts), the calling one included (1: it alone; 0: no pairs)
 } pp_step_stats;
 
 /// Statistics of the last step.

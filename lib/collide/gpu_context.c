@@ -39,8 +39,8 @@ static EGLContext context = EGL_NO_CONTEXT;
 static gpu_gl gl;
 static gpu_info info;
 static GLuint programs[GPU_PROG_COUNT];
-static const char *program_names[GPU_PROG_COUNT] = {"narrow_sums", "narrow_normal", "narrow_strips",
-                                                    "narrow_finish"};
+static const char *program_names[GPU_PROG_COUNT] = {"narrow_tiles", "narrow_args",   "narrow_sums",
+                                                    "narrow_normal", "narrow_strips", "narrow_finish"};
 
 /* Record why bring-up failed; every later GPU request reports the same reason. */
 static pp_status __attribute__((format(printf, 1, 2))) bring_up_failed(const char *fmt, ...)

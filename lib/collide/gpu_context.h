@@ -29,7 +29,7 @@
     X(PFNGLBUFFERDATAPROC, BufferData) X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                         \
     X(PFNGLCOPYBUFFERSUBDATAPROC, CopyBufferSubData) X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)         \
     X(PFNGLUNMAPBUFFERPROC, UnmapBuffer) X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                   \
-    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)
+    X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect) X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)
 
 typedef struct gpu_gl {
 #define GPU_GL_MEMBER(type, name) type name;
@@ -39,6 +39,8 @@ typedef struct gpu_gl {
 
 /* The compute programs, one per file in glsl/. */
 typedef enum gpu_program_id {
+    GPU_PROG_NARROW_TILES,
+    GPU_PROG_NARROW_ARGS,
     GPU_PROG_NARROW_SUMS,
     GPU_PROG_NARROW_NORMAL,
     GPU_PROG_NARROW_STRIPS,

@@ -1,11 +1,10 @@
 /* The GPU backend of the narrowphase core (glsl/narrow_*.comp): the world's masks live in one
- * buffer, each body's bit-packed rows at its own offset, written once and then only where rows
- * were edited. A step's pairs go up as one table, run as four passes over all of them (sums per
- * 16×16 tile, normal per pair, strips per tile, summary per pair), and come back in one read.
- * Only a pair's rim is sampled: its tiles are sorted as the CPU's tiled core sorts its leaves
- * (np_classify_tiles), those that add nothing are left out, and those all in the intersection are
- * summed in closed form on the host and splatted into the strips without a sample. The sort is the
- * host's work a pair: it is shared over the world's worker threads, each pair writing its own places. */
+ * buffer, each body's bit-packed rows at its own offset followed by its 8×8 occupancy counts, written
+ * once and then only where rows were edited. A step's pairs go up as one table and run as five passes
+ * over all of them, read back once: tiles (each 16×16 tile of each pair's grid sorted as the CPU's tiled
+ * core sorts its leaves: those that add nothing left out, those all in the intersection summed in closed
+ * form), sums per mixed tile, normal per pair, strips per tile, summary per pair. Only a pair's rim is
+ * sampled, and the host's share of a pair is one row of the table. */
 #include "alloc.h"
 #include "narrow_gpu.h"
 #include "gpu_context.h"
@@ -15,10 +14,6 @@
 #include <string.h>
 
 enum { RESULT_WORDS = 24, TILE = 16, PAIRS_PER_GROUP = 64 };
-/* A tile entry is two words: its pair, and its index in the pair's grid with this bit on a full tile
- * (glsl/common.glsl). */
-#define TILE_FULL 0x80000000u
-
 /* One pair as glsl/common.glsl's Pair reads it. */
 typedef struct gpu_pair {
     int32_t ra[4], rb[4], grid[4], size[4], q[4], q2[4];
@@ -28,7 +23,10 @@ typedef struct span {
     int64_t at, len;
 } span;
 
-enum { BUF_MASKS, BUF_PAIRS, BUF_TILES, BUF_RESULTS, BUF_STRIPS, BUF_COUNT };
+enum { BUF_MASKS, BUF_PAIRS, BUF_TILES, BUF_RESULTS, BUF_STRIPS, BUF_LISTS, BUF_COUNT };
+/* BUF_LISTS (glsl/common.glsl's L_*): the batch's grid tiles and pairs, then two indirect dispatches of three
+ * words, written by glsl/narrow_args.comp. */
+enum { L_GRID_TILES, L_PAIRS, L_SUMS_ARGS, L_STRIPS_ARGS = L_SUMS_ARGS + 3, L_WORDS = L_STRIPS_ARGS + 3 };
 
 struct gpu_narrow {
     GLuint buf[BUF_COUNT];
@@ -37,16 +35,12 @@ struct gpu_narrow {
     span *holes;                /* freed mask ranges below mask_top, by address */
     int32_t hole_count, hole_cap;
     bool software;
+    int64_t mixed, full;        /* tiles of each kind the last batch sampled (the tests' view of the tiles pass) */
     /* Host staging, grown as needed. */
     gpu_pair *pairs;
     int32_t *index;             /* the caller's pair behind each GPU pair */
-    uint32_t *results;
+    uint32_t *results;          /* RESULT_WORDS a pair, then the mixed and full tiles' counts */
     int64_t pair_cap;
-    int64_t *tile_at;           /* where each pair's tiles go while they are sorted: its grid's tiles before it */
-    int32_t *tile_n;            /* each pair's mixed and full tiles */
-    uint32_t *tiles;            /* the batch's mixed tiles, two words each, then its full ones */
-    uint32_t *full;             /* the full tiles while they are sorted */
-    int64_t tile_cap;           /* tiles of each list */
 };
 
 pp_status gpu_narrow_create(const char *fn, gpu_narrow **out)
@@ -82,16 +76,16 @@ void gpu_narrow_destroy(gpu_narrow *g)
     pp_free(g->pairs);
     pp_free(g->index);
     pp_free(g->results);
-    pp_free(g->tile_at);
-    pp_free(g->tile_n);
-    pp_free(g->tiles);
-    pp_free(g->full);
     pp_free(g);
 }
 
 bool gpu_narrow_is_software(const gpu_narrow *g) { return g->software; }
 
-static int64_t mask_words(const pp_raster *r) { return (int64_t)r->height * r->words_per_row * 2; }
+void gpu_narrow_tiles_sampled(const gpu_narrow *g, int64_t *mixed, int64_t *full) { *mixed = g->mixed, *full = g->full; }
+
+/* A mask's 32-bit words in the mirror: its rows, then its tiles' counts, a byte each (glsl/narrow_tiles.comp). */
+static int64_t row_words(const pp_raster *r) { return (int64_t)r->height * r->words_per_row * 2; }
+static int64_t mask_words(const pp_raster *r) { return row_words(r) + ((int64_t)r->tiles_x * r->tiles_y + 3) / 4; }
 
 void gpu_narrow_forget(gpu_narrow *g, pp_raster *r)
 {
@@ -165,8 +159,8 @@ static int64_t mask_alloc(gpu_narrow *g, const gpu_gl *gl, const gpu_info *info,
     return at;
 }
 
-/* Make the GPU copy of a mask current: written whole the first time, edited rows after that.
- * The bit-packed rows go up as they are: little-endian 64-bit words read as pairs of 32-bit ones. */
+/* Make the GPU copy of a mask current: written whole the first time, edited rows and their tiles' counts after
+ * that. The bit-packed rows go up as they are: little-endian 64-bit words read as pairs of 32-bit ones. */
 static bool mask_sync(gpu_narrow *g, const gpu_gl *gl, const gpu_info *info, const pp_raster *cr)
 {
     pp_raster *r = (pp_raster *)cr; /* the mirror fields are this backend's cache */
@@ -181,45 +175,30 @@ static bool mask_sync(gpu_narrow *g, const gpu_gl *gl, const gpu_info *info, con
         gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[BUF_MASKS]);
         gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, r->gpu_word * 4 + r->dirty_y0 * row_bytes,
                           (r->dirty_y1 - r->dirty_y0) * row_bytes, r->bits + (int64_t)r->dirty_y0 * r->words_per_row);
+        const int64_t ty0 = r->dirty_y0 >> RASTER_TILE_SHIFT, ty1 = ((r->dirty_y1 - 1) >> RASTER_TILE_SHIFT) + 1;
+        gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, (r->gpu_word + row_words(r)) * 4 + ty0 * r->tiles_x,
+                          (ty1 - ty0) * r->tiles_x, r->tile_count + ty0 * r->tiles_x);
         r->dirty_y0 = r->dirty_y1 = 0;
     }
     return true;
 }
 
-static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs, int64_t tiles)
+static pp_status grow_host(gpu_narrow *g, const char *fn, int64_t pairs)
 {
-    if (pairs > g->pair_cap) {
-        gpu_pair *p = pp_realloc(g->pairs, (size_t)pairs * sizeof *p);
-        if (p)
-            g->pairs = p;
-        int32_t *ix = pp_realloc(g->index, (size_t)pairs * sizeof *ix);
-        if (ix)
-            g->index = ix;
-        uint32_t *res = pp_realloc(g->results, (size_t)pairs * RESULT_WORDS * sizeof *res);
-        if (res)
-            g->results = res;
-        int64_t *at = pp_realloc(g->tile_at, (size_t)pairs * sizeof *at);
-        if (at)
-            g->tile_at = at;
-        int32_t *tn = pp_realloc(g->tile_n, (size_t)pairs * 2 * sizeof *tn);
-        if (tn)
-            g->tile_n = tn;
-        if (!p || !ix || !res || !at || !tn)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU pairs", fn, (long long)pairs);
-        g->pair_cap = pairs;
-    }
-    if (tiles > g->tile_cap) {
-        const int64_t cap = tiles > 2 * g->tile_cap ? tiles : 2 * g->tile_cap;
-        uint32_t *t = pp_realloc(g->tiles, (size_t)cap * 2 * sizeof *t);
-        if (t)
-            g->tiles = t;
-        uint32_t *f = pp_realloc(g->full, (size_t)cap * 2 * sizeof *f);
-        if (f)
-            g->full = f;
-        if (!t || !f)
-            return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU tiles", fn, (long long)tiles);
-        g->tile_cap = cap;
-    }
+    if (pairs <= g->pair_cap)
+        return PP_OK;
+    gpu_pair *p = pp_realloc(g->pairs, (size_t)pairs * sizeof *p);
+    if (p)
+        g->pairs = p;
+    int32_t *ix = pp_realloc(g->index, (size_t)pairs * sizeof *ix);
+    if (ix)
+        g->index = ix;
+    uint32_t *res = pp_realloc(g->results, ((size_t)pairs * RESULT_WORDS + 2) * sizeof *res);
+    if (res)
+        g->results = res;
+    if (!p || !ix || !res)
+        return pp_fail(PP_ERR_OUT_OF_MEMORY, "%s: no memory for %lld GPU pairs", fn, (long long)pairs);
+    g->pair_cap = pairs;
     return PP_OK;
 }
 
@@ -241,7 +220,8 @@ static void buffer_write(gpu_narrow *g, const gpu_gl *gl, int which, const void 
     gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, data);
 }
 
-/* A pass over `groups` workgroups, as a 2D grid when one row of groups is not enough. */
+/* A pass over `groups` workgroups, as a 2D grid when one row of groups is not enough; or, with groups < 0, the
+ * workgroups that BUF_LISTS holds at word `count`. */
 static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog, int64_t count, int64_t groups,
                      int32_t method)
 {
@@ -250,62 +230,26 @@ static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog
     gl->Uniform1ui(gl->GetUniformLocation(p, "u_count"), (GLuint)count);
     if (prog == GPU_PROG_NARROW_SUMS)
         gl->Uniform1i(gl->GetUniformLocation(p, "u_method"), method);
-    const int64_t gx = groups < info->max_groups_x ? groups : info->max_groups_x;
-    gl->DispatchCompute((GLuint)gx, (GLuint)((groups + gx - 1) / gx), 1);
-    gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (groups < 0) {
+        gl->DispatchComputeIndirect((GLintptr)(count * 4));
+    } else {
+        const int64_t gx = groups < info->max_groups_x ? groups : info->max_groups_x;
+        gl->DispatchCompute((GLuint)gx, (GLuint)((groups + gx - 1) / gx), 1);
+    }
+    gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 static inline int64_t word64(const uint32_t *w) { return (int64_t)((uint64_t)w[0] | (uint64_t)w[1] << 32); }
 
-/* Where np_classify_tiles puts one pair's tiles: its mixed ones and its full ones, each at the pair's place. */
-typedef struct tile_lists {
-    uint32_t *mixed_at, *full_at;
-    uint32_t pair;
-    int32_t mixed, full;
-} tile_lists;
+/* The tiles of a pair's grid. */
+static int64_t grid_tiles(const np_pair *p) { return (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE); }
 
-static void add_tile(void *user, int32_t tile, bool full)
-{
-    tile_lists *l = user;
-    uint32_t *at = full ? l->full_at + 2 * l->full++ : l->mixed_at + 2 * l->mixed++;
-    at[0] = l->pair, at[1] = (uint32_t)tile | (full ? TILE_FULL : 0);
-}
-
-static void put64(uint32_t *w, int64_t v) { w[0] = (uint32_t)(uint64_t)v, w[1] = (uint32_t)((uint64_t)v >> 32); }
-
-/* The batch whose tiles are being sorted. */
-typedef struct tile_sort {
-    gpu_narrow *g;
-    const np_pair *pairs;
-    int32_t from;
-} tile_sort;
-
-/* Sort GPU pair k's tiles into its places in g->tiles and g->full, on whichever thread takes it; the full tiles'
- * count and coordinate sums start the pair's results, and the sums pass adds the rest. */
-static pp_status sort_pair_tiles(void *user, int32_t k, np_scratch *scratch)
-{
-    (void)scratch;
-    const tile_sort *t = user;
-    gpu_narrow *g = t->g;
-    const int64_t at = 2 * g->tile_at[k];
-    tile_lists lists = {g->tiles + at, g->full + at, (uint32_t)k, 0, 0};
-    np_core sums = {0};
-    np_classify_tiles(&t->pairs[g->index[t->from + k]], TILE, add_tile, &lists, &sums);
-    g->tile_n[2 * k] = lists.mixed, g->tile_n[2 * k + 1] = lists.full;
-    uint32_t *res = g->results + (int64_t)k * RESULT_WORDS;
-    memset(res, 0, RESULT_WORDS * sizeof *res);
-    put64(res + 0, sums.count), put64(res + 2, sums.sx), put64(res + 4, sums.sy);
-    return PP_OK;
-}
-
-/* One batch: GPU pairs [from, to) of g->index, all four passes, one readback into out. The pairs' tiles are
- * sorted over `threads` threads of *pool. */
+/* One batch: GPU pairs [from, to) of g->index, all five passes, one readback into out. */
 static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, const gpu_info *info,
-                           const np_settings *set, const np_pair *pairs, int32_t from, int32_t to,
-                           np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used)
+                           const np_settings *set, const np_pair *pairs, int32_t from, int32_t to, np_core *out)
 {
     const int32_t n = to - from;
-    int64_t strip_words = 0, grid_tiles = 0;
+    int64_t strip_words = 0, tiles = 0;
     for (int32_t k = 0; k < n; k++) {
         const np_pair *p = &pairs[g->index[from + k]];
         const int32_t ra[4] = {(int32_t)p->ra->gpu_word, p->ra->width, p->ra->height, 2 * p->ra->words_per_row};
@@ -317,51 +261,36 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
         gp->size[0] = p->nx, gp->size[1] = p->ny, gp->size[2] = p->fallback_nqx, gp->size[3] = p->fallback_nqy;
         gp->q[0] = (int32_t)p->qx0, gp->q[1] = (int32_t)p->qy0, gp->q[2] = (int32_t)p->dix, gp->q[3] = (int32_t)p->diy;
         gp->q2[0] = (int32_t)p->djx, gp->q2[1] = (int32_t)p->djy;
-        gp->q2[2] = (int32_t)strip_words, gp->q2[3] = 0;
+        gp->q2[2] = (int32_t)strip_words, gp->q2[3] = (int32_t)tiles;
         strip_words += NP_STRIP_FIELDS * np_pair_max_strips(p);
-        g->tile_at[k] = grid_tiles;
-        grid_tiles += (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE);
+        tiles += grid_tiles(p);
     }
-    pp_status st = grow_host(g, fn, g->pair_cap, grid_tiles);
-    tile_sort sort = {g, pairs, from};
-    int32_t batch_used;
-    if (st || (st = workers_for(pool, threads, n, WORKERS_GRAIN, sort_pair_tiles, &sort, scratch, &batch_used)))
-        return st;
-    *used = batch_used > *used ? batch_used : *used;
-    /* The mixed tiles closed up, then the full ones after them: the sums pass runs over the mixed, the strips
-     * pass over both. */
-    int64_t mixed = 0;
-    for (int32_t k = 0; k < n; k++) {
-        memmove(g->tiles + 2 * mixed, g->tiles + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k] * 2 * sizeof *g->tiles);
-        mixed += g->tile_n[2 * k];
-    }
-    int64_t tiles = mixed;
-    for (int32_t k = 0; k < n; k++) {
-        memcpy(g->tiles + 2 * tiles, g->full + 2 * g->tile_at[k], (size_t)g->tile_n[2 * k + 1] * 2 * sizeof *g->tiles);
-        tiles += g->tile_n[2 * k + 1];
-    }
+    const int64_t result_words = (int64_t)n * RESULT_WORDS + 2;
+    memset(g->results, 0, (size_t)result_words * sizeof *g->results);
+    const uint32_t lists[L_WORDS] = {[L_GRID_TILES] = (uint32_t)tiles, [L_PAIRS] = (uint32_t)n};
     buffer_write(g, gl, BUF_PAIRS, g->pairs, (int64_t)n * sizeof(gpu_pair));
-    if (tiles > 0)
-        buffer_write(g, gl, BUF_TILES, g->tiles, tiles * 2 * 4);
-    else /* no tile to sample (nothing meets): a store to bind all the same */
-        buffer_reserve(g, gl, BUF_TILES, 8);
-    buffer_write(g, gl, BUF_RESULTS, g->results, (int64_t)n * RESULT_WORDS * 4);
+    buffer_write(g, gl, BUF_RESULTS, g->results, result_words * 4);
+    buffer_write(g, gl, BUF_LISTS, lists, sizeof lists);
+    buffer_reserve(g, gl, BUF_TILES, tiles > 0 ? tiles * 2 * 4 : 8);
     buffer_reserve(g, gl, BUF_STRIPS, strip_words * 4);
     for (int b = 0; b < BUF_COUNT; b++)
         gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)b, g->buf[b]);
+    gl->BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, g->buf[BUF_LISTS]);
 
     const int32_t method = set->normal_method == PP_NORMAL_KERNEL;
     const int64_t pair_groups = (n + PAIRS_PER_GROUP - 1) / PAIRS_PER_GROUP;
-    if (mixed > 0)
-        dispatch(gl, info, GPU_PROG_NARROW_SUMS, mixed, mixed, method);
+    if (tiles > 0) {
+        dispatch(gl, info, GPU_PROG_NARROW_TILES, tiles, (tiles + 63) / 64, method);
+        dispatch(gl, info, GPU_PROG_NARROW_ARGS, info->max_groups_x, 1, method);
+        dispatch(gl, info, GPU_PROG_NARROW_SUMS, L_SUMS_ARGS, -1, method);
+    }
     dispatch(gl, info, GPU_PROG_NARROW_NORMAL, n, pair_groups, method);
     if (tiles > 0)
-        dispatch(gl, info, GPU_PROG_NARROW_STRIPS, tiles, tiles, method);
+        dispatch(gl, info, GPU_PROG_NARROW_STRIPS, L_STRIPS_ARGS, -1, method);
     dispatch(gl, info, GPU_PROG_NARROW_FINISH, n, pair_groups, method);
 
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[BUF_RESULTS]);
-    const uint32_t *res = gl->MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (int64_t)n * RESULT_WORDS * 4,
-                                             GL_MAP_READ_BIT);
+    const uint32_t *res = gl->MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, result_words * 4, GL_MAP_READ_BIT);
     if (!res)
         return pp_fail(PP_ERR_UNSUPPORTED, "%s: reading the GPU results failed (GL error 0x%x)", fn,
                        (unsigned)gl->GetError());
@@ -376,6 +305,7 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
             .cover_all = v[20], .cover_lo = v[21], .cover_hi = v[22],
         };
     }
+    g->mixed += res[(int64_t)n * RESULT_WORDS], g->full += res[(int64_t)n * RESULT_WORDS + 1];
     gl->UnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     const GLenum err = gl->GetError();
     if (err != GL_NO_ERROR)
@@ -384,12 +314,11 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
 }
 
 pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
-                         np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used)
+                         np_scratch *scratch, np_core *out)
 {
-    *used = 0;
     const gpu_gl *gl;
     const gpu_info *info;
-    pp_status st = grow_host(g, fn, n, 0);
+    pp_status st = grow_host(g, fn, n);
     if (st || (st = gpu_acquire(fn, &gl, &info)))
         return st;
     int32_t m = 0;
@@ -402,12 +331,12 @@ pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, 
         int64_t tiles = 0, strips = 0;
         for (to = from; to < m; to++) {
             const np_pair *p = &pairs[g->index[to]];
-            tiles += (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE);
+            tiles += grid_tiles(p);
             strips += NP_STRIP_FIELDS * np_pair_max_strips(p);
             if (to > from && (tiles * 8 > limit || strips * 4 > limit || to - from >= (int64_t)PAIRS_PER_GROUP * 65535))
                 break;
         }
-        st = run_batch(g, fn, gl, info, set, pairs, from, to, pool, threads, scratch, out, used);
+        st = run_batch(g, fn, gl, info, set, pairs, from, to, out);
     }
     gpu_release();
     /* The rest on the CPU: pairs beyond 32-bit sample points, or masks the mirror has no room for. */

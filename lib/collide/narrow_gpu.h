@@ -1,10 +1,9 @@
 /* The GPU backend of the narrowphase core: a world's masks mirrored in one GPU buffer, and all
- * of a step's pairs run in one batch of four compute passes with one readback. */
+ * of a step's pairs run in one batch of five compute passes with one readback. */
 #ifndef PP_NARROW_GPU_H
 #define PP_NARROW_GPU_H
 
 #include "narrowphase.h"
-#include "workers.h"
 
 typedef struct gpu_narrow gpu_narrow;
 
@@ -20,10 +19,11 @@ bool gpu_narrow_is_software(const gpu_narrow *g);
 void gpu_narrow_forget(gpu_narrow *g, pp_raster *r);
 
 /* The integer cores of n pairs: on the GPU where the pair fits its 32-bit arithmetic and its
- * masks fit the mirror, on the CPU otherwise; the outcome is the same either way. The host's share of
- * each pair (sorting its tiles) is shared over `threads` threads of *pool (workers.h); *used says how
- * many it ran on (0: no pair went to the GPU). */
+ * masks fit the mirror, on the CPU otherwise; the outcome is the same either way. */
 pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
-                         np_workers **pool, int32_t threads, np_scratch *scratch, np_core *out, int32_t *used);
+                         np_scratch *scratch, np_core *out);
+
+/* The mixed and the full 16×16 tiles the GPU has sampled since the world was made (the tiles pass's sort). */
+void gpu_narrow_tiles_sampled(const gpu_narrow *g, int64_t *mixed, int64_t *full);
 
 #endif

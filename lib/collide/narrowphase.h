@@ -117,8 +117,8 @@ void np_quantize_normal(int64_t gx, int64_t gy, int32_t *nqx, int32_t *nqy);
  * all intersection are skipped or summed in closed form); the same integers as the dense core. */
 pp_status narrow_cpu_core(const np_settings *set, const np_pair *p, np_scratch *scratch, np_core *out);
 
-/* The GPU backend's share of the tiled core: a pair's inner grid cut into tiles of size × size cells (row-major
- * index), sorted as narrow_cpu_core sorts its leaves. A tile that adds nothing is skipped; every other is visited,
+/* The C twin of the GPU's tiles pass (glsl/narrow_tiles.comp), which the tests hold it to: a pair's inner grid cut
+ * into tiles of size × size cells (row-major index), sorted as narrow_cpu_core sorts its leaves. A tile that adds nothing is skipped; every other is visited,
  * `full` when each of its cells and their neighbours lie in both bodies (then coverage 256, no normal term), and a
  * full tile's count and coordinate sums are added to *sums in closed form. */
 typedef void (*np_tile_visit)(void *user, int32_t tile, bool full);

@@ -1,5 +1,5 @@
-/* A world's narrowphase workers: threads that share a batch of pairs' work (their set-up, CPU cores, GPU tile sort,
- * contacts), each pair's written to its own slots. */
+/* A world's narrowphase workers: threads that share a batch of pairs' work (their set-up, CPU cores, contacts), each
+ * pair's written to its own slots. */
 #ifndef PP_WORKERS_H
 #define PP_WORKERS_H
 
@@ -16,9 +16,9 @@ typedef struct np_workers np_workers;
 /* Threads `worker_threads` asks for: itself, or one per online CPU (at most 16) for 0. */
 int32_t workers_wanted(int32_t worker_threads);
 
-/* Below this many pairs a batch's per-pair host work runs on the calling thread. It costs 1.6 k (set-up), 2.9 k
- * (contacts) and 6–12 k (the GPU's tile sort) instructions a pair, about 1–4 µs, against a thread wake-up's
- * 30–40 µs: a hundred pairs pays for the wake-ups on many cores. On 2 cores sharing it measured a wash
+/* Below this many pairs a batch's per-pair host work runs on the calling thread. It costs 1.6 k (set-up) and 2.9 k
+ * (contacts) instructions a pair, about 1–2 µs, against a thread wake-up's 30–40 µs: a hundred pairs pays for the
+ * wake-ups on many cores. On 2 cores sharing it measured a wash
  * (tests/bench/README.md, Worker threads). */
 #define WORKERS_MIN_PAIRS 128
 /* Items a thread takes at a time in that work: pairs cost alike there, and fewer turns of the shared counter. */

@@ -96,10 +96,10 @@ pp_status world_run_cores(world *wd, const char *fn, int32_t first, int32_t n, i
     np_pair *pairs = first ? wd->batch.pairs + first : wd->batch.pairs;
     np_core *cores = first ? wd->batch.cores + first : wd->batch.cores;
     pp_status st;
-    if (*ran == PP_BACKEND_GPU)
-        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->workers, host_threads(wd, n), &wd->scratch, cores,
-                            threads);
-    else {
+    if (*ran == PP_BACKEND_GPU) {
+        st = gpu_narrow_run(wd->gpu, fn, &set, pairs, n, &wd->scratch, cores);
+        *threads = 1;
+    } else {
         const int32_t wanted = n > 1 && cells >= WORKERS_MIN_CELLS ? workers_wanted(wd->def.worker_threads) : 1;
         st = workers_run(&wd->workers, wanted, &set, pairs, n, &wd->scratch, cores, threads);
     }

@@ -183,7 +183,7 @@ Test(gpu, a_600_step_scene_hashes_the_same_on_both_backends, .timeout = 120) {
 
 /* 150 boxes spawned into one spot: the contact budget's choices (crowd.c) come from contacts and slots, so
  * both backends keep the same pairs; poses over 15 steps, hashed. Thousands of pairs a step: on the GPU
- * backend their set-up, tile sort and contacts are shared over the world's threads. */
+ * backend their set-up and contacts are shared over the world's threads. */
 static uint64_t crowd_hash(pp_backend backend, int32_t worker_threads, int *gpu_steps, int32_t *max_threads) {
     pp_world_def d = pp_world_def_default();
     d.backend = backend;
@@ -393,5 +393,69 @@ Test(gpu, tiles_sorted_for_the_gpu_add_up_to_the_dense_core) {
     np_scratch_free(&scratch);
     free(t.kind), free(flags), free(kernel);
     pp_world_destroy(w);
+}
+
+/* np_classify_tiles' mixed and full tiles of the box on the ground, and the collision's contacts. */
+static void cpu_tile_sort(pp_world w, pp_body box, pp_body ground, tile_count *t, pp_contact *c, int32_t *n) {
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    const np_settings set = world_np_settings(wd);
+    const np_body va = body_np_view(body_find(wd, box)), vb = body_np_view(body_find(wd, ground));
+    np_pair p;
+    cr_assert(np_pair_setup(&set, &va, &vb, &p));
+    const int32_t tiles = ((p.nx + GPU_TILE - 1) / GPU_TILE) * ((p.ny + GPU_TILE - 1) / GPU_TILE);
+    *t = (tile_count){calloc((size_t)tiles, 1), 0, 0};
+    cr_assert_not_null(t->kind);
+    np_core sums = {0};
+    np_classify_tiles(&p, GPU_TILE, count_tile, t, &sums);
+    free(t->kind);
+    PP_OK_OR_FAIL(pp_world_collide(w, box, ground, c, 2, n));
+}
+
+/* The GPU's tiles pass sorts a pair's tiles as np_classify_tiles does, from the occupancy counts it mirrors: on the
+ * deep overlap, then after holes bitten out of the box turn full tiles mixed (the mirror follows the edit). */
+Test(gpu, the_tiles_pass_sorts_a_pairs_tiles_as_the_cpu_does, .timeout = 60) {
+    SKIP_WITHOUT_GPU();
+    pp_world w[2];
+    pp_body ground[2], box[2];
+    for (int g = 0; g < 2; g++) {
+        pp_world_def d = pp_world_def_default();
+        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+        w[g] = make_world_def(&d);
+        deep_overlap(w[g], &ground[g], &box[g]);
+    }
+    const gpu_narrow *gpu = world_lookup(w[1], "test")->gpu;
+    cr_assert_not_null(gpu);
+    int64_t mixed0 = 0, full0 = 0, mixed_before = -1;
+    for (int round = 0; round < 2; round++) {
+        tile_count t[2];
+        pp_contact c[2][2];
+        int32_t n[2];
+        for (int g = 0; g < 2; g++)
+            cpu_tile_sort(w[g], box[g], ground[g], &t[g], c[g], &n[g]);
+        int64_t mixed, full;
+        gpu_narrow_tiles_sampled(gpu, &mixed, &full);
+        cr_log_info("round %d: CPU %d mixed, %d full; GPU %lld mixed, %lld full", round, t[0].mixed, t[0].full,
+                    (long long)(mixed - mixed0), (long long)(full - full0));
+        cr_assert_eq(mixed - mixed0, t[0].mixed, "round %d: the GPU sampled %lld mixed tiles, the CPU sorts %d", round,
+                     (long long)(mixed - mixed0), t[0].mixed);
+        cr_assert_eq(full - full0, t[0].full, "round %d: the GPU summed %lld full tiles, the CPU sorts %d", round,
+                     (long long)(full - full0), t[0].full);
+        cr_assert_eq(n[1], n[0]);
+        cr_assert(same_contacts(c[0], c[1], n[0]), "round %d: the contacts differ", round);
+        if (round == 1)
+            cr_assert_gt(t[0].mixed, mixed_before + 20, "the holes made %d mixed tiles of %lld", t[0].mixed,
+                         (long long)mixed_before);
+        mixed_before = t[0].mixed, mixed0 = mixed, full0 = full;
+        for (int g = 0; g < 2 && round == 0; g++)
+            for (int k = 0; k < 6; k++) {
+                int32_t changed;
+                PP_OK_OR_FAIL(pp_body_erase_circle(w[g], box[g], v2(980.0f + 25.0f * k, 1000.0f - 12.0f * k), 6,
+                                                   &changed));
+                cr_assert_gt(changed, 50, "hole %d bit %d pixels", k, changed);
+            }
+    }
+    for (int g = 0; g < 2; g++)
+        pp_world_destroy(w[g]);
 }
 #endif
