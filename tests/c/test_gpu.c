@@ -71,6 +71,13 @@ static int same_contacts(const pp_contact *a, const pp_contact *b, int n) {
     return 1;
 }
 
+/* A default world on the CPU backend (gpu 0) or the GPU backend (gpu 1). */
+static pp_world backend_world(int gpu) {
+    pp_world_def d = pp_world_def_default();
+    d.backend = gpu ? PP_BACKEND_GPU : PP_BACKEND_CPU;
+    return make_world_def(&d);
+}
+
 #define PARITY_PAIRS 1000
 #define COMBOS 4 /* normal method × contact mode */
 
@@ -257,9 +264,7 @@ Test(gpu, the_widest_bitmaps_match_at_the_edge_of_32_bit_sampling, .timeout = 60
     pp_contact kc[2], kg[2];
     int32_t n[2] = {-1, -1};
     for (int g = 0; g < 2; g++) {
-        pp_world_def d = pp_world_def_default();
-        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
-        pp_world w = make_world_def(&d);
+        pp_world w = backend_world(g);
         pp_body ground = add_rect(w, body_def(PP_BODY_STATIC, 8192, 1032, 0), 16384, 64);
         pp_body strip = add_rect(w, body_def(PP_BODY_DYNAMIC, 8192, 1000, 0.0002f), 16384, 8);
         PP_OK_OR_FAIL(pp_world_collide(w, strip, ground, g ? kg : kc, 2, &n[g]));
@@ -279,9 +284,7 @@ Test(gpu, edited_bodies_match_the_cpu_after_every_edit, .timeout = 60) {
     pp_world w[2];
     pp_body ground[2], box[2];
     for (int g = 0; g < 2; g++) {
-        pp_world_def d = pp_world_def_default();
-        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
-        w[g] = make_world_def(&d);
+        w[g] = backend_world(g);
         ground[g] = add_rect(w[g], body_def(PP_BODY_STATIC, 400, 500, 0), 800, 40);
         box[g] = add_rect(w[g], body_def(PP_BODY_DYNAMIC, 400, 466, 0.1f), 48, 48);
     }
@@ -315,9 +318,7 @@ Test(gpu, a_deep_overlap_sums_its_inside_in_closed_form_and_matches_the_cpu, .ti
     pp_contact c[2][2];
     int32_t n[2] = {-1, -1};
     for (int g = 0; g < 2; g++) {
-        pp_world_def d = pp_world_def_default();
-        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
-        pp_world w = make_world_def(&d);
+        pp_world w = backend_world(g);
         pp_body ground, box;
         deep_overlap(w, &ground, &box);
         PP_OK_OR_FAIL(pp_world_collide(w, box, ground, c[g], 2, &n[g]));
@@ -347,6 +348,17 @@ static void count_tile(void *user, int32_t tile, bool full) {
     full ? t->full++ : t->mixed++;
 }
 
+/* The narrowphase's pair of box (the reference) and ground in world w, and the world's settings in *set. */
+static np_pair pair_set_up(pp_world w, pp_body box, pp_body ground, np_settings *set) {
+    world *wd = world_lookup(w, "test");
+    cr_assert_not_null(wd);
+    *set = world_np_settings(wd);
+    const np_body va = body_np_view(body_find(wd, box)), vb = body_np_view(body_find(wd, ground));
+    np_pair p;
+    cr_assert(np_pair_setup(set, &va, &vb, &p));
+    return p;
+}
+
 /* np_classify_tiles against the plain per-cell core on the deep overlap: a full tile's cells all lie in both bodies
  * and its closed-form sums are theirs, a skipped tile holds no intersection cell, and the full tiles' count plus the
  * mixed tiles' intersection cells is the dense core's count. */
@@ -354,12 +366,8 @@ Test(gpu, tiles_sorted_for_the_gpu_add_up_to_the_dense_core) {
     pp_world w = make_world(0, 0);
     pp_body ground, box;
     deep_overlap(w, &ground, &box);
-    world *wd = world_lookup(w, "test");
-    cr_assert_not_null(wd);
-    const np_settings set = world_np_settings(wd);
-    const np_body va = body_np_view(body_find(wd, box)), vb = body_np_view(body_find(wd, ground));
-    np_pair p;
-    cr_assert(np_pair_setup(&set, &va, &vb, &p));
+    np_settings set;
+    const np_pair p = pair_set_up(w, box, ground, &set);
     const int32_t tx = (p.nx + GPU_TILE - 1) / GPU_TILE, ty = (p.ny + GPU_TILE - 1) / GPU_TILE;
     tile_count t = {calloc((size_t)tx * ty, 1), 0, 0};
     uint8_t *flags = malloc((size_t)p.nx * p.ny);
@@ -397,12 +405,8 @@ Test(gpu, tiles_sorted_for_the_gpu_add_up_to_the_dense_core) {
 
 /* np_classify_tiles' mixed and full tiles of the box on the ground, and the collision's contacts. */
 static void cpu_tile_sort(pp_world w, pp_body box, pp_body ground, tile_count *t, pp_contact *c, int32_t *n) {
-    world *wd = world_lookup(w, "test");
-    cr_assert_not_null(wd);
-    const np_settings set = world_np_settings(wd);
-    const np_body va = body_np_view(body_find(wd, box)), vb = body_np_view(body_find(wd, ground));
-    np_pair p;
-    cr_assert(np_pair_setup(&set, &va, &vb, &p));
+    np_settings set;
+    const np_pair p = pair_set_up(w, box, ground, &set);
     const int32_t tiles = ((p.nx + GPU_TILE - 1) / GPU_TILE) * ((p.ny + GPU_TILE - 1) / GPU_TILE);
     *t = (tile_count){calloc((size_t)tiles, 1), 0, 0};
     cr_assert_not_null(t->kind);
@@ -419,9 +423,7 @@ Test(gpu, the_tiles_pass_sorts_a_pairs_tiles_as_the_cpu_does, .timeout = 60) {
     pp_world w[2];
     pp_body ground[2], box[2];
     for (int g = 0; g < 2; g++) {
-        pp_world_def d = pp_world_def_default();
-        d.backend = g ? PP_BACKEND_GPU : PP_BACKEND_CPU;
-        w[g] = make_world_def(&d);
+        w[g] = backend_world(g);
         deep_overlap(w[g], &ground[g], &box[g]);
     }
     const gpu_narrow *gpu = world_lookup(w[1], "test")->gpu;
