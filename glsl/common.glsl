@@ -25,7 +25,7 @@ layout(std430, binding = 4) buffer Strips { int strips[]; };
 // The batch's grid tiles and pairs, then the sums and the strips passes' indirect dispatches (narrow_args.comp).
 layout(std430, binding = 5) buffer Lists { uint lists[]; };
 
-uniform uint u_count; // tiles or pairs in this dispatch
+uniform uint u_count; // pairs in a per-pair pass; narrow_args: the most workgroups a row
 
 // Results: 24 words per pair (np_core), 64-bit sums as (low, high).
 const uint R_COUNT = 0u, R_SX = 2u, R_SY = 4u, R_GX = 6u, R_GY = 8u;

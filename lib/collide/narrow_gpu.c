@@ -35,7 +35,7 @@ struct gpu_narrow {
     span *holes;                /* freed mask ranges below mask_top, by address */
     int32_t hole_count, hole_cap;
     bool software;
-    int64_t mixed, full;        /* tiles of each kind the last batch sampled (the tests' view of the tiles pass) */
+    int64_t mixed, full;        /* tiles of each kind sampled since the world was made (the tests' view of the tiles pass) */
     /* Host staging, grown as needed. */
     gpu_pair *pairs;
     int32_t *index;             /* the caller's pair behind each GPU pair */
