@@ -12,7 +12,7 @@ int deepest_in(int base, int from, int to)
 
 void main()
 {
-    uint pi = gl_GlobalInvocationID.x;
+    uint pi = group_index() * 64u + gl_LocalInvocationIndex;
     if (pi >= u_count)
         return;
     uint r = pi * R_STRIDE;

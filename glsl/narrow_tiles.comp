@@ -89,7 +89,7 @@ uint pair_of_tile(uint t)
 
 void main()
 {
-    uint t = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x;
+    uint t = group_index() * 64u + gl_LocalInvocationIndex;
     if (t >= lists[L_GRID_TILES])
         return;
     uint pi = pair_of_tile(t);

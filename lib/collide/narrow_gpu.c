@@ -35,6 +35,7 @@ struct gpu_narrow {
     span *holes;                /* freed mask ranges below mask_top, by address */
     int32_t hole_count, hole_cap;
     bool software;
+    int64_t row_groups;         /* the most workgroups a dispatch's row holds: the context's, or fewer (the tests) */
     int64_t mixed, full;        /* tiles of each kind sampled since the world was made (the tests' view of the tiles pass) */
     /* Host staging, grown as needed. */
     gpu_pair *pairs;
@@ -54,6 +55,7 @@ pp_status gpu_narrow_create(const char *fn, gpu_narrow **out)
     if (g) {
         gl->GenBuffers(BUF_COUNT, g->buf);
         g->software = info->software;
+        g->row_groups = info->max_groups_x;
     }
     gpu_release();
     if (!g)
@@ -80,6 +82,8 @@ void gpu_narrow_destroy(gpu_narrow *g)
 }
 
 bool gpu_narrow_is_software(const gpu_narrow *g) { return g->software; }
+
+void gpu_narrow_limit_rows(gpu_narrow *g, int32_t groups) { g->row_groups = groups; }
 
 void gpu_narrow_tiles_sampled(const gpu_narrow *g, int64_t *mixed, int64_t *full) { *mixed = g->mixed, *full = g->full; }
 
@@ -220,10 +224,9 @@ static void buffer_write(gpu_narrow *g, const gpu_gl *gl, int which, const void 
     gl->BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, data);
 }
 
-/* A pass over `groups` workgroups, as a 2D grid when one row of groups is not enough; or, with groups < 0, the
- * workgroups that BUF_LISTS holds at word `count`. */
-static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog, int64_t count, int64_t groups,
-                     int32_t method)
+/* A pass over `groups` workgroups, as a 2D grid of rows of at most `row` when one row is not enough; or, with
+ * groups < 0, the workgroups that BUF_LISTS holds at word `count`. */
+static void dispatch(const gpu_gl *gl, int64_t row, gpu_program_id prog, int64_t count, int64_t groups, int32_t method)
 {
     const GLuint p = gpu_program(prog);
     gl->UseProgram(p);
@@ -233,7 +236,7 @@ static void dispatch(const gpu_gl *gl, const gpu_info *info, gpu_program_id prog
     if (groups < 0) {
         gl->DispatchComputeIndirect((GLintptr)(count * 4));
     } else {
-        const int64_t gx = groups < info->max_groups_x ? groups : info->max_groups_x;
+        const int64_t gx = groups < row ? groups : row;
         gl->DispatchCompute((GLuint)gx, (GLuint)((groups + gx - 1) / gx), 1);
     }
     gl->MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -245,8 +248,8 @@ static inline int64_t word64(const uint32_t *w) { return (int64_t)((uint64_t)w[0
 static int64_t grid_tiles(const np_pair *p) { return (int64_t)((p->nx + TILE - 1) / TILE) * ((p->ny + TILE - 1) / TILE); }
 
 /* One batch: GPU pairs [from, to) of g->index, all five passes, one readback into out. */
-static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, const gpu_info *info,
-                           const np_settings *set, const np_pair *pairs, int32_t from, int32_t to, np_core *out)
+static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, const np_settings *set,
+                           const np_pair *pairs, int32_t from, int32_t to, np_core *out)
 {
     const int32_t n = to - from;
     int64_t strip_words = 0, tiles = 0;
@@ -280,14 +283,14 @@ static pp_status run_batch(gpu_narrow *g, const char *fn, const gpu_gl *gl, cons
     const int32_t method = set->normal_method == PP_NORMAL_KERNEL;
     const int64_t pair_groups = (n + PAIRS_PER_GROUP - 1) / PAIRS_PER_GROUP;
     if (tiles > 0) {
-        dispatch(gl, info, GPU_PROG_NARROW_TILES, tiles, (tiles + 63) / 64, method);
-        dispatch(gl, info, GPU_PROG_NARROW_ARGS, info->max_groups_x, 1, method);
-        dispatch(gl, info, GPU_PROG_NARROW_SUMS, L_SUMS_ARGS, -1, method);
+        dispatch(gl, g->row_groups, GPU_PROG_NARROW_TILES, tiles, (tiles + 63) / 64, method);
+        dispatch(gl, g->row_groups, GPU_PROG_NARROW_ARGS, g->row_groups, 1, method);
+        dispatch(gl, g->row_groups, GPU_PROG_NARROW_SUMS, L_SUMS_ARGS, -1, method);
     }
-    dispatch(gl, info, GPU_PROG_NARROW_NORMAL, n, pair_groups, method);
+    dispatch(gl, g->row_groups, GPU_PROG_NARROW_NORMAL, n, pair_groups, method);
     if (tiles > 0)
-        dispatch(gl, info, GPU_PROG_NARROW_STRIPS, L_STRIPS_ARGS, -1, method);
-    dispatch(gl, info, GPU_PROG_NARROW_FINISH, n, pair_groups, method);
+        dispatch(gl, g->row_groups, GPU_PROG_NARROW_STRIPS, L_STRIPS_ARGS, -1, method);
+    dispatch(gl, g->row_groups, GPU_PROG_NARROW_FINISH, n, pair_groups, method);
 
     gl->BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[BUF_RESULTS]);
     const uint32_t *res = gl->MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, result_words * 4, GL_MAP_READ_BIT);
@@ -333,10 +336,11 @@ pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, 
             const np_pair *p = &pairs[g->index[to]];
             tiles += grid_tiles(p);
             strips += NP_STRIP_FIELDS * np_pair_max_strips(p);
-            if (to > from && (tiles * 8 > limit || strips * 4 > limit || to - from >= (int64_t)PAIRS_PER_GROUP * 65535))
+            const int64_t results = ((int64_t)(to - from + 1) * RESULT_WORDS + 2) * 4;
+            if (to > from && (tiles * 8 > limit || strips * 4 > limit || results > limit))
                 break;
         }
-        st = run_batch(g, fn, gl, info, set, pairs, from, to, out);
+        st = run_batch(g, fn, gl, set, pairs, from, to, out);
     }
     gpu_release();
     /* The rest on the CPU: pairs beyond 32-bit sample points, or masks the mirror has no room for. */

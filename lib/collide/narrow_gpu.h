@@ -23,6 +23,10 @@ void gpu_narrow_forget(gpu_narrow *g, pp_raster *r);
 pp_status gpu_narrow_run(gpu_narrow *g, const char *fn, const np_settings *set, const np_pair *pairs, int32_t n,
                          np_scratch *scratch, np_core *out);
 
+/* Dispatch rows of at most `groups` workgroups (the context's limit until then), so that the tests run small batches
+ * as 2D grids. */
+void gpu_narrow_limit_rows(gpu_narrow *g, int32_t groups);
+
 /* The mixed and the full 16×16 tiles the GPU has sampled since the world was made (the tiles pass's sort). */
 void gpu_narrow_tiles_sampled(const gpu_narrow *g, int64_t *mixed, int64_t *full);
 

@@ -191,15 +191,23 @@ Test(gpu, a_600_step_scene_hashes_the_same_on_both_backends, .timeout = 120) {
 /* 150 boxes spawned into one spot: the contact budget's choices (crowd.c) come from contacts and slots, so
  * both backends keep the same pairs; poses over 15 steps, hashed. Thousands of pairs a step: on the GPU
  * backend their set-up and contacts are shared over the world's threads. */
-static uint64_t crowd_hash(pp_backend backend, int32_t worker_threads, int *gpu_steps, int32_t *max_threads) {
+static pp_world crowd_world(pp_backend backend, int32_t worker_threads) {
     pp_world_def d = pp_world_def_default();
     d.backend = backend;
     d.worker_threads = worker_threads;
     pp_world w = make_world_def(&d);
     add_rect(w, body_def(PP_BODY_STATIC, 1000, 1010, 0), 8000, 20);
-    pp_body b[150];
     for (int i = 0; i < 150; i++)
-        b[i] = add_rect(w, body_def(PP_BODY_DYNAMIC, 1000.0f + (i % 5) * 0.5f, 900.0f, 0.1f * (i % 7)), 8, 8);
+        add_rect(w, body_def(PP_BODY_DYNAMIC, 1000.0f + (i % 5) * 0.5f, 900.0f, 0.1f * (i % 7)), 8, 8);
+    return w;
+}
+
+/* 15 steps of crowd_world's w, which it destroys: the boxes' poses hashed. */
+static uint64_t crowd_run(pp_world w, int *gpu_steps, int32_t *max_threads) {
+    pp_body all[151], *b = all + 1; /* the ground, then the boxes, in slot order */
+    int32_t count;
+    PP_OK_OR_FAIL(pp_world_get_bodies(w, all, 151, &count));
+    cr_assert_eq(count, 151);
     uint64_t h = FNV_START;
     *gpu_steps = *max_threads = 0;
     for (int s = 0; s < 15; s++) {
@@ -221,8 +229,8 @@ Test(gpu, a_crowded_spawn_keeps_the_same_contacts_on_both_backends, .timeout = 1
     SKIP_WITHOUT_GPU();
     int cpu_gpu_steps, gpu_steps;
     int32_t cpu_threads, gpu_threads;
-    const uint64_t hc = crowd_hash(PP_BACKEND_CPU, 1, &cpu_gpu_steps, &cpu_threads);
-    const uint64_t hg = crowd_hash(PP_BACKEND_GPU, 3, &gpu_steps, &gpu_threads);
+    const uint64_t hc = crowd_run(crowd_world(PP_BACKEND_CPU, 1), &cpu_gpu_steps, &cpu_threads);
+    const uint64_t hg = crowd_run(crowd_world(PP_BACKEND_GPU, 3), &gpu_steps, &gpu_threads);
     cr_assert_eq(cpu_gpu_steps, 0, "a CPU world reported the GPU backend");
     cr_assert_eq(gpu_steps, 15, "%d of 15 steps ran on the GPU", gpu_steps);
     cr_assert_eq(cpu_threads, 1, "the CPU world on one thread ran on %d", cpu_threads);
@@ -459,5 +467,20 @@ Test(gpu, the_tiles_pass_sorts_a_pairs_tiles_as_the_cpu_does, .timeout = 60) {
     }
     for (int g = 0; g < 2; g++)
         pp_world_destroy(w[g]);
+}
+
+/* The same crowded spawn with the GPU's dispatches cut into rows of two workgroups: every pass, the per-pair ones and
+ * the indirect ones, then runs as a 2D grid of many rows, and the contacts are still the CPU's. */
+Test(gpu, passes_dispatched_as_2d_grids_match_the_cpu, .timeout = 120) {
+    SKIP_WITHOUT_GPU();
+    int gpu_steps, cpu_gpu_steps;
+    int32_t threads;
+    pp_world w = crowd_world(PP_BACKEND_GPU, 1);
+    gpu_narrow_limit_rows(world_lookup(w, "test")->gpu, 2);
+    const uint64_t hg = crowd_run(w, &gpu_steps, &threads);
+    const uint64_t hc = crowd_run(crowd_world(PP_BACKEND_CPU, 1), &cpu_gpu_steps, &threads);
+    cr_assert_eq(gpu_steps, 15, "%d of 15 steps ran on the GPU", gpu_steps);
+    cr_assert_eq(hc, hg, "rows of two workgroups diverge: CPU %016llx, GPU %016llx", (unsigned long long)hc,
+                 (unsigned long long)hg);
 }
 #endif
