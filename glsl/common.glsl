@@ -36,11 +36,15 @@ const int RING = 2, TILE = 16, ONE = 16384;
 const uint L_GRID_TILES = 0u, L_PAIRS = 1u, L_SUMS_ARGS = 2u, L_STRIPS_ARGS = 5u;
 
 // The mixed and full tiles' counts follow the pairs' results (so they come back in the same read).
-uint mixed_count() { return results[lists[L_PAIRS] * R_STRIDE]; }
-uint full_count() { return results[lists[L_PAIRS] * R_STRIDE + 1u]; }
+uint tile_counts() { return lists[L_PAIRS] * R_STRIDE; }
+uint mixed_count() { return results[tile_counts()]; }
+uint full_count() { return results[tile_counts() + 1u]; }
 
 // The workgroup's index among the dispatch's (a 2D grid when there are more than 65535).
 uint group_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
+
+// The invocation's index among the dispatch's, in a pass of workgroups of 64 (the tiles and per-pair passes).
+uint invocation_index() { return group_index() * 64u + gl_LocalInvocationIndex; }
 
 bool solid(ivec4 r, int x, int y)
 {

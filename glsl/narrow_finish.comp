@@ -12,7 +12,7 @@ int deepest_in(int base, int from, int to)
 
 void main()
 {
-    uint pi = group_index() * 64u + gl_LocalInvocationIndex;
+    uint pi = invocation_index();
     if (pi >= u_count)
         return;
     uint r = pi * R_STRIDE;

@@ -40,7 +40,7 @@ int round_unit_q14(uint a, uint r2)
 
 void main()
 {
-    uint pi = group_index() * 64u + gl_LocalInvocationIndex;
+    uint pi = invocation_index();
     if (pi >= u_count)
         return;
     uint r = pi * R_STRIDE;

@@ -89,7 +89,7 @@ uint pair_of_tile(uint t)
 
 void main()
 {
-    uint t = group_index() * 64u + gl_LocalInvocationIndex;
+    uint t = invocation_index();
     if (t >= lists[L_GRID_TILES])
         return;
     uint pi = pair_of_tile(t);
@@ -106,16 +106,15 @@ void main()
         return;
     bool full = ref == FULL && other == FULL && ref_state(p, c, 1) == FULL;
     uint entry;
-    uint counts = lists[L_PAIRS] * R_STRIDE;
     if (full) {
         // add_full_sums: the kernel finds no critical cell and the gradient's coverage differences are zero.
         int w = c.z - c.x, h = c.w - c.y;
         atomic_add64(pi * R_STRIDE + R_COUNT, w * h);
         atomic_add64(pi * R_STRIDE + R_SX, h * (w * (c.x + c.z - 1) / 2));
         atomic_add64(pi * R_STRIDE + R_SY, w * (h * (c.y + c.w - 1) / 2));
-        entry = lists[L_GRID_TILES] - 1u - atomicAdd(results[counts + 1u], 1u);
+        entry = lists[L_GRID_TILES] - 1u - atomicAdd(results[tile_counts() + 1u], 1u);
     } else {
-        entry = atomicAdd(results[counts], 1u);
+        entry = atomicAdd(results[tile_counts()], 1u);
     }
     tiles[2u * entry] = pi;
     tiles[2u * entry + 1u] = uint(own) | (full ? TILE_FULL : 0u);
