@@ -82,6 +82,15 @@ static inline pp_vec2 v2(float x, float y) {
     return v;
 }
 
+/* A GPU world was refused (why: pp_last_error()): skip, with the reason, where the machine has no GLES 3.1 compute
+ * context; fail where the context came up and one of the project's shaders did not compile or link (a skip there
+ * would hide the bug). */
+static inline void skip_without_gpu(const char *why) {
+    cr_assert_null(strstr(why, "glsl/"), "a shader of the project failed: %s", why);
+    fprintf(stderr, "gpu tests skipped: %s\n", why);
+    cr_skip_test("no GLES 3.1 compute context: %s", why);
+}
+
 /* A world with the default settings but the given gravity. */
 static inline pp_world make_world_def(const pp_world_def *d) {
     pp_world w = {0};

@@ -201,8 +201,7 @@ Test(determinism, the_gpu_backend_gives_the_pinned_hash_per_preset, .timeout = 3
     const pp_status st = pp_world_create(&d, &w);
     if (st != PP_OK) {
         cr_assert_eq(st, PP_ERR_UNSUPPORTED, "a failed GPU world must say UNSUPPORTED, got %s", pp_status_name(st));
-        fprintf(stderr, "gpu golden hash skipped: %s\n", pp_last_error());
-        cr_skip_test("no GLES 3.1 compute context: %s", pp_last_error());
+        skip_without_gpu(pp_last_error());
     }
     pp_world_destroy(w);
     expect_golden(PP_BACKEND_GPU, "GPU");

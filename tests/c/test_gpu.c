@@ -23,10 +23,8 @@ static int gpu_available(char *why, size_t n) {
 #define SKIP_WITHOUT_GPU()                                                   \
     do {                                                                     \
         char why_[512];                                                      \
-        if (!gpu_available(why_, sizeof why_)) {                             \
-            fprintf(stderr, "gpu tests skipped: %s\n", why_);                \
-            cr_skip_test("no GLES 3.1 compute context: %s", why_);           \
-        }                                                                    \
+        if (!gpu_available(why_, sizeof why_))                               \
+            skip_without_gpu(why_);                                          \
     } while (0)
 
 static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
