@@ -18,8 +18,7 @@ int32_t workers_wanted(int32_t worker_threads);
 
 /* Below this many pairs a batch's per-pair host work runs on the calling thread. It costs 1.6 k (set-up) and 2.9 k
  * (contacts) instructions a pair, about 1–2 µs, against a thread wake-up's 30–40 µs: a hundred pairs pays for the
- * wake-ups on many cores. On 2 cores sharing it measured a wash
- * (tests/bench/README.md, Worker threads). */
+ * wake-ups on many cores. On 2 cores sharing it measured a wash (tests/bench/README.md, Worker threads). */
 #define WORKERS_MIN_PAIRS 128
 /* Items a thread takes at a time in that work: pairs cost alike there, and fewer turns of the shared counter. */
 #define WORKERS_GRAIN 16
