@@ -39,27 +39,38 @@ typedef struct patch {
     double dy[2 * PATCH_REACH + 1], dx0[2 * PATCH_REACH + 1], dx1[2 * PATCH_REACH + 1];
 } patch;
 
-static bool patch_pixel(const body *bd, dvec2 l, int32_t x, int32_t y)
+/* Whether pixel x's centre, on a row dy from l, lies within CORNER_RADIUS of l. */
+static bool in_reach(dvec2 l, int32_t x, double dy)
 {
-    const double dx = x + 0.5 - l.x, dy = y + 0.5 - l.y;
-    return dx * dx + dy * dy <= CORNER_RADIUS * CORNER_RADIUS && raster_solid_clamped(&bd->raster, x, y);
+    const double dx = x + 0.5 - l.x;
+    return dx * dx + dy * dy <= CORNER_RADIUS * CORNER_RADIUS;
 }
 
+/* Of each row, the pixels in reach are one run: the test's rounded steps are each monotone in x, so its sum falls
+ * then rises along the row. The run's ends come from the test alone, then its solid ends from the row's bits. */
 static void patch_gather(const body *bd, dvec2 p, patch *out)
 {
     const dvec2 l = dv_add(bd->pivot, dv_unrot(dv_sub(p, bd->pos), bd->cos_a, bd->sin_a));
-    const int32_t cx = (int32_t)floor(l.x), cy = (int32_t)floor(l.y);
+    const int32_t cx = (int32_t)floor(l.x), cy = (int32_t)floor(l.y), left = cx - PATCH_REACH;
     out->bd = bd, out->n = 0;
     for (int32_t y = cy - PATCH_REACH; y <= cy + PATCH_REACH; y++) {
-        int32_t x0 = cx - PATCH_REACH, x1 = cx + PATCH_REACH;
-        while (x0 <= x1 && !patch_pixel(bd, l, x0, y))
+        const double dy = y + 0.5 - l.y;
+        uint64_t bits = raster_row_bits(&bd->raster, y, left) & (((uint64_t)2 << 2 * PATCH_REACH) - 1);
+        if (!bits)
+            continue;
+        int32_t x0 = left, x1 = cx + PATCH_REACH;
+        while (x0 <= x1 && !in_reach(l, x0, dy))
             x0++;
-        while (x1 > x0 && !patch_pixel(bd, l, x1, y))
+        while (x1 > x0 && !in_reach(l, x1, dy))
             x1--;
         if (x0 > x1)
             continue;
-        out->dy[out->n] = y + 0.5 - l.y;
-        out->dx0[out->n] = x0 + 0.5 - l.x, out->dx1[out->n++] = x1 + 0.5 - l.x;
+        bits &= (~(uint64_t)0 >> (63 - (x1 - left))) >> (x0 - left) << (x0 - left);
+        if (!bits)
+            continue;
+        out->dy[out->n] = dy;
+        out->dx0[out->n] = left + __builtin_ctzll(bits) + 0.5 - l.x;
+        out->dx1[out->n++] = left + (63 - __builtin_clzll(bits)) + 0.5 - l.x;
     }
 }
 
