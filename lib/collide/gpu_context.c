@@ -63,6 +63,9 @@ static bool has_extension(const char *list, const char *name)
 
 static pp_status load_libraries(void)
 {
+    static bool loaded;
+    if (loaded)
+        return PP_OK;
     /* PHYSPIX_LIBEGL names another EGL (a vendor's, outside the loader's path). */
     const char *egl_name = getenv("PHYSPIX_LIBEGL") ? getenv("PHYSPIX_LIBEGL") : "libEGL.so.1";
     void *libegl = dlopen(egl_name, RTLD_NOW | RTLD_LOCAL);
@@ -84,7 +87,25 @@ static pp_status load_libraries(void)
     egl.GetPlatformDisplayEXT = (PFNEGLGETPLATFORMDISPLAYEXTPROC)egl.GetProcAddress("eglGetPlatformDisplayEXT");
     egl.QueryDevicesEXT = (PFNEGLQUERYDEVICESEXTPROC)egl.GetProcAddress("eglQueryDevicesEXT");
     egl.QueryDeviceStringEXT = (PFNEGLQUERYDEVICESTRINGEXTPROC)egl.GetProcAddress("eglQueryDeviceStringEXT");
+    loaded = true;
     return PP_OK; /* the libraries stay loaded for the life of the process */
+}
+
+/* Whether EGL lists its devices and every one is Mesa's software device. A GPU driver lists one device per GPU,
+ * and Mesa one per render node it drives, so then any context this process can make is a CPU rasteriser. */
+static bool only_software_devices(void)
+{
+    const char *client = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!egl.QueryDevicesEXT || !egl.QueryDeviceStringEXT || !has_extension(client, "EGL_EXT_device_enumeration"))
+        return false;
+    EGLDeviceEXT devices[16];
+    EGLint n = 0;
+    if (!egl.QueryDevicesEXT(16, devices, &n) || n < 1)
+        return false;
+    for (EGLint i = 0; i < n; i++)
+        if (!has_extension(egl.QueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+            return false;
+    return true;
 }
 
 static bool initialize(EGLDisplay d, const char *platform)
@@ -225,6 +246,36 @@ pp_status gpu_acquire(const char *fn, const gpu_gl **out_gl, const gpu_info **ou
     *out_gl = &gl;
     *out_info = &info;
     return PP_OK;
+}
+
+pp_status gpu_probe_software(const char *fn, bool *software)
+{
+    pthread_mutex_lock(&gpu_lock);
+    static int listed = -1; /* only_software_devices(), asked once */
+    if (!tried && listed < 0)
+        listed = load_libraries() == PP_OK && only_software_devices();
+    const bool told = !tried && listed == 1;
+    pthread_mutex_unlock(&gpu_lock);
+    if (told) {
+        *software = true;
+        return PP_OK;
+    }
+    const gpu_gl *g;
+    const gpu_info *i;
+    const pp_status st = gpu_acquire(fn, &g, &i);
+    if (st)
+        return st;
+    *software = i->software;
+    gpu_release();
+    return PP_OK;
+}
+
+bool gpu_is_up(void)
+{
+    pthread_mutex_lock(&gpu_lock);
+    const bool up = tried && !outcome;
+    pthread_mutex_unlock(&gpu_lock);
+    return up;
 }
 
 void gpu_release(void)

@@ -68,6 +68,14 @@ typedef struct gpu_info {
  * on this thread. On failure: PP_ERR_UNSUPPORTED, and pp_last_error() names the EGL/GL step. */
 pp_status gpu_acquire(const char *fn, const gpu_gl **gl, const gpu_info **info);
 
+/* Whether the context is, or would be, a CPU rasteriser. Where EGL lists only Mesa's software device this is
+ * told without making the context (tens of ms, and its programs compiled, that AUTO would never use); otherwise
+ * the context is brought up as gpu_acquire does, with its failures. */
+pp_status gpu_probe_software(const char *fn, bool *software);
+
+/* Whether the context has been brought up (the tests' view of what AUTO's probe spared). */
+bool gpu_is_up(void);
+
 /* Make the context not current and unlock it. */
 void gpu_release(void);
 

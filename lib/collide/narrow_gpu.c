@@ -34,7 +34,6 @@ struct gpu_narrow {
     int64_t mask_top;           /* 32-bit words of the mask buffer in use, holes included */
     span *holes;                /* freed mask ranges below mask_top, by address */
     int32_t hole_count, hole_cap;
-    bool software;
     int64_t row_groups;         /* the most workgroups a dispatch's row holds: the context's, or fewer (the tests) */
     int64_t mixed, full;        /* tiles of each kind sampled since the world was made (the tests' view of the tiles pass) */
     /* Host staging, grown as needed. */
@@ -54,7 +53,6 @@ pp_status gpu_narrow_create(const char *fn, gpu_narrow **out)
     gpu_narrow *g = pp_calloc(1, sizeof *g);
     if (g) {
         gl->GenBuffers(BUF_COUNT, g->buf);
-        g->software = info->software;
         g->row_groups = info->max_groups_x;
     }
     gpu_release();
@@ -81,7 +79,7 @@ void gpu_narrow_destroy(gpu_narrow *g)
     pp_free(g);
 }
 
-bool gpu_narrow_is_software(const gpu_narrow *g) { return g->software; }
+pp_status gpu_narrow_probe_software(const char *fn, bool *software) { return gpu_probe_software(fn, software); }
 
 void gpu_narrow_limit_rows(gpu_narrow *g, int32_t groups) { g->row_groups = groups; }
 

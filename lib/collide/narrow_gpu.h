@@ -12,8 +12,9 @@ typedef struct gpu_narrow gpu_narrow;
 pp_status gpu_narrow_create(const char *fn, gpu_narrow **out);
 void gpu_narrow_destroy(gpu_narrow *g);
 
-/* True when the context is a CPU rasteriser (llvmpipe): real, but never faster than the CPU. */
-bool gpu_narrow_is_software(const gpu_narrow *g);
+/* Whether the process's context is, or would be, a CPU rasteriser, told without making it where EGL lists only
+ * Mesa's software device (gpu_probe_software): AUTO asks before it pays for a context it would never use. */
+pp_status gpu_narrow_probe_software(const char *fn, bool *software);
 
 /* A raster is going away: give its words in the mirror back (no GL call). */
 void gpu_narrow_forget(gpu_narrow *g, pp_raster *r);

@@ -58,10 +58,10 @@ static void note_threads(world *wd, int32_t used)
 }
 
 /* Whether AUTO may send a batch of `cells` either way: large enough, and a hardware GPU up. A software rasteriser
- * (llvmpipe) never gets AUTO's work: make bench finds it 3–6× slower than the CPU. */
+ * (llvmpipe) never gets AUTO's work (make bench finds it 3–6× slower than the CPU), so AUTO makes no GPU state there. */
 static bool auto_has_choice(const world *wd, int64_t cells)
 {
-    return wd->def.backend == PP_BACKEND_AUTO && cells >= AUTO_MIN_CELLS && wd->gpu && !gpu_narrow_is_software(wd->gpu);
+    return wd->def.backend == PP_BACKEND_AUTO && cells >= AUTO_MIN_CELLS && wd->gpu;
 }
 
 /* AUTO's backend for a batch: the CPU but where it has a choice and backend_auto.h's models of the batches run so
@@ -74,10 +74,14 @@ static pp_backend choose_backend(world *wd, int32_t pairs, int64_t cells)
         return PP_BACKEND_CPU;
     if (!wd->gpu_tried) {
         wd->gpu_tried = true;
-        if (gpu_narrow_create("pp_world_step", &wd->gpu) == PP_OK && gpu_narrow_is_software(wd->gpu))
-            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: the GPU context is a software rasteriser");
-        else if (!wd->gpu)
+        bool software = false;
+        pp_status st = gpu_narrow_probe_software("pp_world_step", &software);
+        if (!st && !software)
+            st = gpu_narrow_create("pp_world_step", &wd->gpu);
+        if (st)
             pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: %s", pp_last_error());
+        else if (software)
+            pp_log(1, "physpix: AUTO keeps the narrowphase on the CPU: the GPU context is a software rasteriser");
     }
     return auto_has_choice(wd, cells) && backend_auto_wants_gpu(&wd->auto_costs, pairs, cells) ? PP_BACKEND_GPU
                                                                                                 : PP_BACKEND_CPU;
